@@ -1,0 +1,7 @@
+// fullscreen.vert: one triangle covering the viewport, from gl_VertexID alone
+// (draw 3 vertices with an empty vertex array): (-1,-1), (3,-1), (-1,3).
+void main()
+{
+    vec2 corner = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)) - 1.0;
+    gl_Position = vec4(corner, 0.0, 1.0);
+}

@@ -1,0 +1,72 @@
+// local_modulation.glsl: the local opacity modulations every algorithm applies
+// per fragment (docs/modulation.md), the GLSL twin of src/core/local_modulation.c.
+// Uniforms are set by oit_gl_set_frame_uniforms() (gl_util.c) by these names.
+//   alpha' = alpha * component_alpha[component] * saturate(d / focus_region)
+// with d the distance, in model coordinates, to the focus point, to the focus
+// plane, or to the focus box (0 inside it). alpha' == 0: the fragment is never stored.
+//   rgb' = saturate((rgb - 0.5) * contrast + 0.5)  (contrast 0 or 1: unchanged)
+#ifndef OIT_LOCAL_MODULATION_GLSL
+#define OIT_LOCAL_MODULATION_GLSL
+#include "common/frame.glsl"
+
+layout(location = OIT_UNIFORM_LOCAL_FOCUS_SHAPE) uniform int u_local_focus_shape;
+layout(location = OIT_UNIFORM_LOCAL_FOCUS_A) uniform vec4 u_local_focus_a; // point xyz | plane abcd | box min
+layout(location = OIT_UNIFORM_LOCAL_FOCUS_B) uniform vec4 u_local_focus_b; // box max
+layout(location = OIT_UNIFORM_LOCAL_FOCUS_REGION) uniform float u_local_focus_region;
+layout(location = OIT_UNIFORM_LOCAL_CONTRAST) uniform float u_local_contrast;
+layout(location = OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW) uniform mat4 u_local_inverse_modelview;
+layout(location = OIT_UNIFORM_LOCAL_COMPONENT_COUNT) uniform int u_local_component_count;
+layout(location = OIT_UNIFORM_LOCAL_COMPONENT_ALPHA)
+uniform vec4 u_local_component_alpha[OIT_LOCAL_MAX_COMPONENTS / 4];
+
+layout(location = OIT_UNIFORM_LOCAL_INVERSE_PROJECTION) uniform mat4 u_local_inverse_projection;
+layout(location = OIT_UNIFORM_DISTANCE_MODE) uniform int u_distance_mode; // -1: off
+layout(location = OIT_UNIFORM_DISTANCE_SKIP) uniform int u_distance_skip;
+layout(location = OIT_UNIFORM_DISTANCE_NORM) uniform float u_distance_norm;
+
+// Linear eye depth of window depth z at a pixel centre (as ib_eye_depth).
+float oit_eye_depth(vec2 pixel_centre, float z)
+{
+    vec4 ndc = vec4(2.0 * pixel_centre / vec2(u_viewport) - 1.0, 2.0 * z - 1.0, 1.0);
+    vec4 eye = u_local_inverse_projection * ndc;
+    return -eye.z / eye.w;
+}
+
+// The distance modulation's opacity: saturate(distance / norm).
+float oit_distance_alpha(float distance)
+{
+    return clamp(distance / u_distance_norm, 0.0, 1.0);
+}
+
+// The distance from model position p to the focus shape.
+float oit_focus_distance(vec3 p)
+{
+    if (u_local_focus_shape == OIT_FOCUS_SHAPE_POINT)
+        return length(p - u_local_focus_a.xyz);
+    if (u_local_focus_shape == OIT_FOCUS_SHAPE_PLANE)
+        return abs(dot(u_local_focus_a.xyz, p) + u_local_focus_a.w) / length(u_local_focus_a.xyz);
+    vec3 outside = max(max(u_local_focus_a.xyz - p, p - u_local_focus_b.xyz), vec3(0.0));
+    return length(outside);
+}
+
+// alpha (already clamped to [0, 1]) times the component's opacity and the
+// focus factor at eye_position (eye space; the shapes are in model space).
+float oit_local_alpha(float alpha, uint component, vec3 eye_position)
+{
+    if (int(component) < u_local_component_count)
+        alpha *= u_local_component_alpha[component >> 2u][component & 3u];
+    if (u_local_focus_shape != OIT_FOCUS_SHAPE_NONE && alpha > 0.0) {
+        vec3 p = (u_local_inverse_modelview * vec4(eye_position, 1.0)).xyz;
+        alpha *= clamp(oit_focus_distance(p) / u_local_focus_region, 0.0, 1.0);
+    }
+    return alpha;
+}
+
+vec3 oit_local_contrast(vec3 rgb)
+{
+    if (u_local_contrast == 0.0 || u_local_contrast == 1.0)
+        return rgb;
+    return clamp((rgb - 0.5) * u_local_contrast + 0.5, 0.0, 1.0);
+}
+
+#endif

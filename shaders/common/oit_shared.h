@@ -1,0 +1,226 @@
+/*
+ * oit_shared.h: the one place where buffer layouts, binding points and limits
+ * shared by the C core and the GLSL shaders are defined.
+ *
+ * This file is included by C (src/core, via the include path) and by every
+ * shader (the shader loader expands `#include "common/oit_shared.h"`).
+ * It must therefore stay valid in both languages: only #define of integer
+ * literals, #ifndef guards and comments.
+ */
+#ifndef OIT_SHARED_H
+#define OIT_SHARED_H
+
+/* ---- vertex attribute locations (common/geometry.vert) ---- */
+#define OIT_ATTRIB_POSITION 0  /* vec3, model space */
+#define OIT_ATTRIB_NORMAL 1    /* vec3, model space */
+#define OIT_ATTRIB_COMPONENT 2 /* uint, index into the component table */
+#define OIT_ATTRIB_WELDED_ID 3 /* uint, position-welded vertex id */
+
+/* ---- shader storage buffer bindings ---- */
+/* vec4 per component: rgb = material colour, a = material opacity */
+#define OIT_SSBO_COMPONENTS 0
+/* linked lists: fragment nodes and their next pointers (see alg_ll.c) */
+#define OIT_SSBO_FRAGMENT_NODES 1
+#define OIT_SSBO_FRAGMENT_NEXT 2
+/* second next-pointer buffer for the in-place insertion sort */
+#define OIT_SSBO_FRAGMENT_SORTED_NEXT 3
+/* per-frame counters: [0] fragments requested, [1] longest list, [2] pixels with fragments */
+#define OIT_SSBO_FRAME_COUNTERS 4
+#define OIT_FRAME_COUNTER_FRAGMENTS 0
+#define OIT_FRAME_COUNTER_MAX_LIST 1
+#define OIT_FRAME_COUNTER_NONEMPTY_PIXELS 2
+#define OIT_FRAME_COUNTER_COUNT 4
+/* ll local-array sort: pixels whose list was longer than OIT_LOCAL_ARRAY_CAPACITY
+ * and were sorted in place instead (uses the spare slot 3) */
+#define OIT_FRAME_COUNTER_LONG_LIST_PIXELS 3
+
+/* ---- per-pixel linked lists (alg_ll.c, shaders/ll/ll_nodes.glsl) ----
+ * Node i of the fragment pool is one uvec4 in OIT_SSBO_FRAGMENT_NODES:
+ *   x = packUnorm2x16(r, g), y = packUnorm2x16(b, a)   shaded colour, straight alpha, 16 bit
+ *   z = floatBitsToUint(gl_FragCoord.z)                window depth
+ *   w = gl_PrimitiveID                                 triangle index (depth tie-break)
+ * Its next pointers are uint i of OIT_SSBO_FRAGMENT_NEXT (list as filled) and of
+ * OIT_SSBO_FRAGMENT_SORTED_NEXT (list sorted front to back); OIT_LIST_END ends a list. */
+#define OIT_LL_NODE_BYTES 16
+#define OIT_LL_NEXT_BYTES 4
+/* ll counters (uint, OIT_SSBO_FRAME_COUNTERS): [0..3] as OIT_FRAME_COUNTER_*, then: */
+#define OIT_LL_COUNTER_PSI_PIXELS 4  /* non-empty pixels whose list is longer than 2/3 of the longest */
+#define OIT_LL_COUNTER_HISTOGRAM 5   /* OIT_LL_HISTOGRAM_BINS bins: pixels per list length (bin 0 unused) */
+#define OIT_LL_HISTOGRAM_BINS 65     /* == OIT_HISTOGRAM_BINS in oit.h: lengths 0..63, then 64 or more */
+/* distance modulation: floatBitsToUint of the frame's largest distance */
+#define OIT_LL_COUNTER_MAX_DISTANCE 70
+#define OIT_LL_COUNTER_COUNT 71
+/* ll compose: what it shows (the numbers of oit_view) and its parameter (int) */
+#define OIT_LL_VIEW_COLOUR 0
+#define OIT_LL_VIEW_HEATMAP 1
+#define OIT_LL_VIEW_PEEL_LIMIT 2
+#define OIT_LL_VIEW_LAYER 3
+
+/* ---- image units ---- */
+#define OIT_IMAGE_LIST_HEAD 0  /* r32ui, one list head per pixel */
+#define OIT_IMAGE_LIST_COUNT 1 /* r32ui, fragments per pixel */
+
+/* ---- texture units ---- */
+#define OIT_TEXUNIT_DEPTH_PREVIOUS 0 /* depth peeling: depth of the layer peeled last */
+#define OIT_TEXUNIT_DEPTH_MINMAX 1   /* dual depth peeling: (-near, far) of remaining layers */
+#define OIT_TEXUNIT_ACCUM_FRONT 2
+#define OIT_TEXUNIT_ACCUM_BACK 3
+#define OIT_TEXUNIT_ACCUM 4          /* weighted blended: sum of weighted premultiplied colour */
+#define OIT_TEXUNIT_REVEALAGE 5      /* weighted blended: product of (1 - alpha) */
+#define OIT_TEXUNIT_PEEL_LAYER 6     /* peeling: colour of the layer just peeled (dp), of the back layer (ddp) */
+/* peeling with the distance modulation (delayed blending): the colour and depth
+ * of the layer peeled after the one being blended */
+#define OIT_TEXUNIT_PEEL_NEXT_LAYER 7
+#define OIT_TEXUNIT_DEPTH_NEXT 8
+/* dp with curvature (neighbours in the same peeled layer): the layer's octahedral
+ * normal and component + 1 (rg32ui, 0 = no fragment) */
+#define OIT_TEXUNIT_PEEL_NORMAL 13
+
+/* ---- limits ---- */
+/* the end-of-list marker in list heads and next pointers */
+#define OIT_LIST_END 0xFFFFFFFFu
+/* local-array sort: the longest list that can be sorted in registers */
+#define OIT_LOCAL_ARRAY_CAPACITY 64
+/* peeling: the most layers one frame may peel (each is one timed stage) */
+#define OIT_MAX_PEEL_LAYERS 256
+
+/* ---- uniform locations shared by the algorithms' shaders ---- */
+#define OIT_UNIFORM_MODELVIEW 0
+#define OIT_UNIFORM_PROJECTION 1
+#define OIT_UNIFORM_NORMAL_MATRIX 2
+#define OIT_UNIFORM_ALPHA 3
+#define OIT_UNIFORM_SHADING 4
+#define OIT_UNIFORM_BACKGROUND 5
+#define OIT_UNIFORM_VIEWPORT 6
+/* local modulation (common/local_modulation.glsl, docs/modulation.md), set by
+ * oit_gl_set_frame_uniforms: focus shape (int, OIT_FOCUS_*), its two vec4 of
+ * parameters, fall-off length (float), contrast (float), inverse modelview
+ * (mat4: four locations, 12..15) */
+#define OIT_UNIFORM_LOCAL_FOCUS_SHAPE 7
+#define OIT_UNIFORM_LOCAL_FOCUS_A 8
+#define OIT_UNIFORM_LOCAL_FOCUS_B 9
+#define OIT_UNIFORM_LOCAL_FOCUS_REGION 10
+#define OIT_UNIFORM_LOCAL_CONTRAST 11
+#define OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW 12
+/* per-component opacity: how many (int, 0 = none) and the values, 4 per vec4
+ * (OIT_LOCAL_MAX_COMPONENTS / 4 locations from OIT_UNIFORM_LOCAL_COMPONENT_ALPHA) */
+#define OIT_UNIFORM_LOCAL_COMPONENT_COUNT 48
+#define OIT_UNIFORM_LOCAL_COMPONENT_ALPHA 64
+#define OIT_LOCAL_MAX_COMPONENTS 1024
+/* distance along the ray (dp, ddp, ll; ib has its own): the inverse projection
+ * (mat4, 52..55), the distance mode (int: OIT_IB_DISTANCE_*, -1 when the frame's
+ * modulation is not distance), skip k (int) and the normalising length (float:
+ * focus region, or the frame's largest distance once known) */
+#define OIT_UNIFORM_LOCAL_INVERSE_PROJECTION 52
+#define OIT_UNIFORM_DISTANCE_MODE 56
+#define OIT_UNIFORM_DISTANCE_SKIP 57
+#define OIT_UNIFORM_DISTANCE_NORM 58
+/* focus shapes (oit_focus_shape in oit.h) */
+#define OIT_FOCUS_SHAPE_NONE 0
+#define OIT_FOCUS_SHAPE_POINT 1
+#define OIT_FOCUS_SHAPE_PLANE 2
+#define OIT_FOCUS_SHAPE_BOX 3
+/* algorithm-specific uniforms start here */
+#define OIT_UNIFORM_ALGORITHM_BASE 16
+/* ll fill: the fragment pool's capacity in nodes (uint); literal because GLSL 4.30
+ * layout qualifiers take literals only */
+#define OIT_UNIFORM_LL_POOL_CAPACITY 16
+/* ll compose: OIT_LL_VIEW_* (int) and the view's parameter (int) */
+#define OIT_UNIFORM_LL_VIEW 17
+#define OIT_UNIFORM_LL_VIEW_PARAMETER 18
+/* ll compose with the distance modulation: 0 normalise by u_distance_norm, 1 only
+ * find the frame's largest distance, 2 normalise by it (int) */
+#define OIT_UNIFORM_LL_DISTANCE_PASS 19
+/* dp peel: 0 for the first layer (nothing to peel against), 1 after (int) */
+#define OIT_UNIFORM_DP_HAS_PREVIOUS 16
+/* dp curvature blend: curvature effect (float), neighbours 4 or 8 (int), the
+ * modulation (int: OIT_IB_MODE_CURVATURE, _DIST_CURV or _EDGES) */
+#define OIT_UNIFORM_DP_CURVATURE_EFFECT 17
+#define OIT_UNIFORM_DP_CURVATURE_NEIGHBOURS 18
+#define OIT_UNIFORM_DP_NEIGHBOUR_MODE 19
+/* ddp peel: 0 on a last pass that may peel only one more layer (odd layer limit), else 1 (int) */
+#define OIT_UNIFORM_DDP_PEEL_BACK 16
+/* ddp probe: 0 counts pixels with layers left, 1 those with two or more distinct depths (int) */
+#define OIT_UNIFORM_DDP_PROBE_TWO 17
+
+/* shading modes (oit_shading in C) */
+#define OIT_SHADING_FLAT 0
+#define OIT_SHADING_HEADLIGHT 1
+
+/* headlight: colour * (ambient + diffuse * |n . v|), two-sided */
+#define OIT_HEADLIGHT_AMBIENT_PERCENT 25
+
+/* ---- Illustration Buffer (alg_ib.c, shaders/ib/ib_common.glsl) ----
+ * Per pixel: OIT_IMAGE_LIST_HEAD holds the list head during the fill and the
+ * start of the pixel's sorted run afterwards; OIT_IMAGE_LIST_COUNT its length.
+ * Per fragment (a fill node, then a slot of a sorted run; layouts in ib_common.glsl):
+ *   nodes      uvec4: fill node (depth, triangle, normal, next); after the sort the
+ *              two ping-pong copies of the transparency fields
+ *   run core   uvec4: depth, triangle, octahedral normal, curvature | distance
+ *   run links  uvec2: four 16-bit neighbour layer indices (left, right, bottom, top) */
+#define OIT_SSBO_IB_NODES 1
+#define OIT_SSBO_IB_RUN_CORE 5
+#define OIT_SSBO_IB_RUN_LINKS 6
+#define OIT_SSBO_IB_COUNTERS 7
+#define OIT_SSBO_IB_PARAMS 8
+#define OIT_SSBO_IB_INDICES 9          /* the scene's index buffer: 3 uint per triangle */
+#define OIT_SSBO_IB_WELDED 10          /* the scene's welded-id vertex buffer */
+#define OIT_SSBO_IB_POSITIONS 11       /* the scene's position vertex buffer: 3 float per vertex */
+#define OIT_SSBO_IB_VERTEX_COMPONENT 12 /* the scene's component vertex buffer */
+/* ib: read-only views of ib buffers as buffer textures (texelFetch is gathered
+ * in SIMD on llvmpipe; storage-buffer loads go lane by lane) */
+#define OIT_TEXUNIT_IB_RUN_CORE 9      /* usamplerBuffer rgba32ui over the run core */
+#define OIT_TEXUNIT_IB_RUN_LINKS 10    /* usamplerBuffer rg32ui over the run links */
+#define OIT_TEXUNIT_IB_TRIANGLES 11    /* usamplerBuffer rgba32ui: the triangle table */
+#define OIT_TEXUNIT_IB_RUN_WORDS 12    /* usamplerBuffer r32ui over the run core: word 4 slot + k */
+#define OIT_TEXUNIT_IB_COMPONENTS 14   /* samplerBuffer rgba32f over the component table */
+#define OIT_TEXUNIT_IB_NODES 15        /* usamplerBuffer rgba32ui over the nodes (fields) */
+#define OIT_SSBO_IB_TRIANGLES 13       /* the triangle table, written by ib/triangles.comp */
+#define OIT_IB_TRIANGLE_BYTES 32       /* ids (3 uint) + component, eye-space plane (4 float) */
+#define OIT_IB_NODE_BYTES 16
+#define OIT_IB_RUN_CORE_BYTES 16
+#define OIT_IB_RUN_LINKS_BYTES 8
+/* ib counters (uint): [0..2] as OIT_FRAME_COUNTER_*, then: */
+#define OIT_IB_COUNTER_RUN_ALLOCATOR 3
+#define OIT_IB_COUNTER_PSI_PIXELS 4
+#define OIT_IB_COUNTER_FOUR_NEIGHBOURS 5
+#define OIT_IB_COUNTER_LINKS 6
+#define OIT_IB_COUNTER_SYMMETRIC_LINKS 7
+#define OIT_IB_COUNTER_SAME_COMPONENT_LINKS 8
+#define OIT_IB_COUNTER_MAX_DISTANCE 9  /* floatBitsToUint of the largest distance */
+#define OIT_IB_COUNTER_HISTOGRAM 10    /* OIT_IB_HISTOGRAM_BINS bins */
+#define OIT_IB_HISTOGRAM_BINS 65       /* = OIT_HISTOGRAM_BINS in oit.h */
+/* fragments queued for the epsilon search (ib/neighbours_epsilon.comp) */
+#define OIT_IB_COUNTER_EPSILON_ITEMS 75
+#define OIT_IB_COUNTER_COUNT 76
+/* a neighbour slot without a neighbour */
+#define OIT_IB_NO_NEIGHBOUR 65535
+/* ib passes: the capacity of the fill pool (uint), the pass parameter (int:
+ * ping-pong source copy, blur direction) */
+#define OIT_UNIFORM_IB_POOL_CAPACITY 16
+#define OIT_UNIFORM_IB_PASS 17
+
+/* ib modulation modes and views, the numbers of oit_modulation_mode and oit_view in oit.h */
+#define OIT_IB_MODE_NONE 0
+#define OIT_IB_MODE_CURVATURE 1
+#define OIT_IB_MODE_DISTANCE 2
+#define OIT_IB_MODE_DIST_CURV 3
+#define OIT_IB_MODE_FIELDS 4
+#define OIT_IB_MODE_EDGES 5
+#define OIT_IB_VIEW_COLOUR 0
+#define OIT_IB_VIEW_HEATMAP 1
+#define OIT_IB_VIEW_PEEL_LIMIT 2
+#define OIT_IB_VIEW_LAYER 3
+#define OIT_IB_VIEW_NEIGHBOURS 4
+#define OIT_IB_VIEW_CURVATURE 5
+#define OIT_IB_VIEW_DISTANCE 6
+#define OIT_IB_VIEW_FIELDS 7
+/* ib neighbour searches (oit_neighbour_search) and distance modes (oit_distance_mode) */
+#define OIT_IB_SEARCH_INDEX 1
+#define OIT_IB_SEARCH_WELDED 2
+#define OIT_IB_SEARCH_EPSILON 3
+#define OIT_IB_DISTANCE_ADJACENT 0
+#define OIT_IB_DISTANCE_SKIP 1
+#define OIT_IB_DISTANCE_FAR_END 2
+
+#endif

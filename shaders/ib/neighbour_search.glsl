@@ -1,0 +1,185 @@
+// neighbour_search.glsl: the surface-neighbour searches of neighbours.comp
+// (index / welded, nearest candidate first) and neighbours_epsilon.comp
+// (epsilon with the mutual check); what they mean: neighbours.comp.
+// Every read goes through a buffer texture (runs) or the triangle table (ids,
+// component, plane: one row each, see triangles.comp).
+#ifndef IB_NEIGHBOUR_SEARCH_GLSL
+#define IB_NEIGHBOUR_SEARCH_GLSL
+#include "ib/ib_common.glsl"
+
+// The ray through a pixel centre, in eye space: near + t * direction.
+struct pixel_ray {
+    vec3 near;
+    vec3 direction;
+};
+
+pixel_ray ray_through(vec2 pixel_centre)
+{
+    pixel_ray r;
+    r.near = ib_eye_position(pixel_centre, 0.0);
+    r.direction = ib_eye_position(pixel_centre, 1.0) - r.near;
+    return r;
+}
+
+// A fragment with what the searches need of it.
+struct described_fragment {
+    vec3 plane_normal; // eye-space plane of the fragment's triangle
+    float plane_offset;
+    vec3 normal;       // the fragment's unit normal
+    uint component;
+    uvec3 ids;         // its triangle's vertex ids (welded or not, as searched)
+    uint triangle;
+};
+
+described_fragment describe(uvec4 f)
+{
+    described_fragment d;
+    uvec4 row = ib_triangle_ids(f.y);
+    vec4 plane = ib_triangle_plane(f.y);
+    d.plane_normal = plane.xyz;
+    d.plane_offset = plane.w;
+    d.normal = ib_unpack_normal(f.z);
+    d.component = row.w;
+    d.ids = row.xyz;
+    d.triangle = f.y;
+    return d;
+}
+
+int shared_ids(uvec3 a, uvec3 b)
+{
+    int n = 0;
+    for (int i = 0; i < 3; ++i)
+        n += (a[i] == b.x || a[i] == b.y || a[i] == b.z) ? 1 : 0;
+    return n;
+}
+
+// Eye depth where the ray meets the fragment's plane.
+float predicted_depth(described_fragment d, pixel_ray r)
+{
+    float denominator = dot(d.plane_normal, r.direction);
+    if (abs(denominator) < 1e-12)
+        return 1e30;
+    float t = (d.plane_offset - dot(d.plane_normal, r.near)) / denominator;
+    return -(r.near + t * r.direction).z;
+}
+
+// ---- epsilon
+
+// predicted: from's plane depth on the ray through to_pixel_centre
+float epsilon(described_fragment from, float predicted, vec2 to_pixel_centre, uvec4 to)
+{
+    if (ib_triangle_component(to.y) != from.component)
+        return 1e30;
+    float actual = ib_eye_depth(to_pixel_centre, uintBitsToFloat(to.x));
+    float eps_z = abs(predicted - actual) / ib_radius_eye;
+    vec3 n_to = ib_unpack_normal(to.z);
+    float eps_n = 1.0 - dot(from.normal, n_to);
+    return eps_z + eps_n;
+}
+
+// Best partner of `from` in the run [start, start + run_length) at to_centre.
+uint best_by_epsilon(described_fragment from, pixel_ray to_ray, vec2 to_centre, uint start,
+                     uint run_length, out float best_eps)
+{
+    uint best = IB_NONE;
+    best_eps = 1e30;
+    float predicted = predicted_depth(from, to_ray);
+    for (uint j = 0u; j < run_length && j < IB_NONE; ++j) {
+        float e = epsilon(from, predicted, to_centre, ib_core_fetch(start + j));
+        if (e < best_eps) {
+            best_eps = e;
+            best = j;
+        }
+    }
+    return best;
+}
+
+// epsilon with the mutual check; IB_NONE if there is no acceptable partner
+uint search_by_epsilon(uint i, described_fragment described, pixel_ray ray, vec2 centre, uint start,
+                       uint run_length, pixel_ray other_ray, vec2 other_centre, uint other_start,
+                       uint other_length)
+{
+    float eps;
+    uint candidate = best_by_epsilon(described, other_ray, other_centre, other_start, other_length, eps);
+    if (candidate == IB_NONE || eps > ib_epsilon_max)
+        return IB_NONE;
+    // mutual check: f must be the candidate's best partner in f's pixel
+    float back_eps;
+    uint back = best_by_epsilon(describe(ib_core_fetch(other_start + candidate)), ray, centre, start,
+                                run_length, back_eps);
+    return back == i ? candidate : IB_NONE;
+}
+
+// ---- index, welded
+
+bool adjacent_to(described_fragment f, uint triangle)
+{
+    if (triangle == f.triangle)
+        return true;
+    // welded ids are shared by touching parts too: a neighbour stays on its part
+    uvec4 row = ib_triangle_ids(triangle);
+    return row.w == f.component && shared_ids(f.ids, row.xyz) > 0;
+}
+
+// Best candidate in the run [start, start + run_length) at to_centre: on f's
+// component, sharing a vertex id with f's triangle, and nearest to the depth
+// f's triangle plane predicts there. The run is sorted by depth, so a binary
+// search finds where the predicted depth falls and the candidates are tried
+// outwards from there, nearest first: the first adjacent one is the answer,
+// and most candidates are never loaded (the thesis walked the whole list).
+uint search_by_ids(described_fragment f, pixel_ray to_ray, vec2 to_centre, uint start,
+                   uint run_length)
+{
+    if (run_length == 0u)
+        return IB_NONE;
+    uint count = min(run_length, IB_NONE);
+    float predicted = predicted_depth(f, to_ray);
+    // first slot whose eye depth is >= predicted
+    uint low = 0u, high = count;
+    while (low < high) {
+        uint middle = (low + high) / 2u;
+        if (ib_eye_depth(to_centre, ib_depth_fetch(start + middle)) < predicted)
+            low = middle + 1u;
+        else
+            high = middle;
+    }
+    // the next candidates at or behind the prediction and in front of it,
+    // with their triangles and depth gaps (1e30: none left on that side)
+    uint behind = low;
+    int in_front = int(low) - 1;
+    uvec4 core_behind = uvec4(0u), core_in_front = uvec4(0u);
+    float gap_behind = 1e30, gap_in_front = 1e30;
+    if (behind < count) {
+        core_behind = ib_core_fetch(start + behind);
+        gap_behind = ib_eye_depth(to_centre, uintBitsToFloat(core_behind.x)) - predicted;
+    }
+    if (in_front >= 0) {
+        core_in_front = ib_core_fetch(start + uint(in_front));
+        gap_in_front = predicted - ib_eye_depth(to_centre, uintBitsToFloat(core_in_front.x));
+    }
+    // one candidate per step, without branches on the side taken: llvmpipe
+    // would run both sides (masked) and load twice as much
+    while (behind < count || in_front >= 0) {
+        bool take_behind = behind < count && (in_front < 0 || gap_behind <= gap_in_front);
+        uint j = take_behind ? behind : uint(in_front);
+        if (adjacent_to(f, take_behind ? core_behind.y : core_in_front.y))
+            return j;
+        // the next candidate on the side just tried (the fetch is ignored past the run)
+        int next = take_behind ? int(behind) + 1 : in_front - 1;
+        bool valid = next >= 0 && uint(next) < count;
+        uvec4 next_core = ib_core_fetch(start + uint(next));
+        float gap = ib_eye_depth(to_centre, uintBitsToFloat(next_core.x)) - predicted;
+        if (take_behind) {
+            behind = uint(next);
+            core_behind = next_core;
+            gap_behind = valid ? gap : 1e30;
+        } else {
+            in_front = next;
+            core_in_front = next_core;
+            gap_in_front = valid ? -gap : 1e30;
+        }
+    }
+    return IB_NONE;
+}
+
+#endif

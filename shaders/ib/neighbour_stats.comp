@@ -1,0 +1,55 @@
+// neighbour_stats.comp: the per-frame quality of the neighbour links, summed
+// on the GPU with atomics (one add per pixel and counter): fragments with all
+// four neighbours, links, links whose partner links back (g is f's right
+// neighbour and f is g's left one), links that stay on the same component;
+// and Psi's numerator (pixels whose list is longer than 2/3 of the longest).
+// Compute pass, one invocation per pixel; reads through the buffer textures,
+// the neighbouring runs' starts are loaded once per pixel.
+#include "common/oit_shared.h"
+#include "ib/ib_common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+void main()
+{
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (!ib_inside(pixel))
+        return;
+    uint run_length = ib_run_length(pixel);
+    if (run_length == 0u)
+        return;
+    uint start = ib_run_start(pixel);
+    uint other_start[4];
+    for (int d = 0; d < 4; ++d) {
+        ivec2 other = pixel + IB_DIRECTIONS[d];
+        other_start[d] = ib_inside(other) ? ib_run_start(other) : 0u;
+    }
+    uint four = 0u, links = 0u, symmetric = 0u, same_component = 0u;
+    for (uint i = 0u; i < run_length; ++i) {
+        uint slot = start + i;
+        uint component = ib_triangle_component(ib_core_fetch(slot).y);
+        uvec2 words = texelFetch(ib_links_texture, int(slot)).xy;
+        int count = 0;
+        for (int d = 0; d < 4; ++d) {
+            uint word = d < 2 ? words.x : words.y;
+            uint layer = (d & 1) == 0 ? (word & 0xFFFFu) : (word >> 16);
+            if (layer == IB_NONE)
+                continue;
+            uint other_slot = other_start[d] + layer;
+            ++count;
+            ++links;
+            if (ib_link(other_slot, d ^ 1) == i)
+                ++symmetric;
+            if (ib_triangle_component(ib_core_fetch(other_slot).y) == component)
+                ++same_component;
+        }
+        if (count == 4)
+            ++four;
+    }
+    atomicAdd(ib_counters[OIT_IB_COUNTER_FOUR_NEIGHBOURS], four);
+    atomicAdd(ib_counters[OIT_IB_COUNTER_LINKS], links);
+    atomicAdd(ib_counters[OIT_IB_COUNTER_SYMMETRIC_LINKS], symmetric);
+    atomicAdd(ib_counters[OIT_IB_COUNTER_SAME_COMPONENT_LINKS], same_component);
+    if (3u * run_length > 2u * ib_counters[OIT_FRAME_COUNTER_MAX_LIST])
+        atomicAdd(ib_counters[OIT_IB_COUNTER_PSI_PIXELS], 1u);
+}

@@ -1,0 +1,27 @@
+// fill.frag: the linked lists' geometry pass (depth test and colour writes off).
+// Every fragment with alpha > 0 takes a node from the pool and pushes itself
+// onto its pixel's list. A fragment past the pool's end stores nothing, but the
+// counter still counts it, so the C side sees the pool overflow, grows it and
+// fills again: no fragment is dropped and nothing is written out of bounds.
+#extension GL_ARB_ES3_1_compatibility : enable
+#include "common/oit_shared.h"
+#include "common/shade.glsl"
+#include "ll/ll_nodes.glsl"
+
+layout(location = OIT_UNIFORM_LL_POOL_CAPACITY) uniform uint pool_capacity;
+
+void main()
+{
+    if (LL_HELPER_INVOCATION)
+        return;
+    vec4 colour = oit_shade_fragment();
+    if (colour.a <= 0.0)
+        return; // hidden parts (opacity 0) are not stored
+    if (u_distance_mode >= 0) // distance modulation: compose sets alpha; keep the local factor
+        colour.a = oit_local_alpha(1.0, v_component, v_eye_position);
+    uint node = atomicAdd(ll_counters[OIT_FRAME_COUNTER_FRAGMENTS], 1u);
+    if (node >= pool_capacity)
+        return;
+    ll_nodes[node] = ll_pack_node(colour, gl_FragCoord.z, uint(gl_PrimitiveID));
+    ll_next[node] = imageAtomicExchange(ll_heads, ivec2(gl_FragCoord.xy), node);
+}

@@ -1,0 +1,107 @@
+// ll_nodes.glsl: the per-pixel linked lists' buffers and node layout, shared by
+// the ll shaders (and by what builds on them). Layout and bindings: oit_shared.h.
+#ifndef LL_NODES_GLSL
+#define LL_NODES_GLSL
+
+#include "common/oit_shared.h"
+
+// Helper invocations (the extra lanes of 2x2 quads along triangle edges, even
+// the edges where llvmpipe splits the clipped full-screen triangle) must not
+// write memory, but Mesa llvmpipe 22.3 lets their buffer and image stores
+// through, which corrupts the lists. Every ll pass returns early in them; the
+// shader enables GL_ARB_ES3_1_compatibility (gl_HelperInvocation under #version
+// 430) in its first line, since #extension must precede all declarations.
+#ifdef GL_ARB_ES3_1_compatibility
+#define LL_HELPER_INVOCATION gl_HelperInvocation
+#else
+#define LL_HELPER_INVOCATION false
+#endif
+
+// Node i: x = packUnorm2x16(r, g), y = packUnorm2x16(b, a), z = depth bits, w = triangle.
+layout(std430, binding = OIT_SSBO_FRAGMENT_NODES) buffer ll_node_buffer {
+    uvec4 ll_nodes[];
+};
+// Next pointers as the fill built the lists (newest first).
+layout(std430, binding = OIT_SSBO_FRAGMENT_NEXT) buffer ll_next_buffer {
+    uint ll_next[];
+};
+// Next pointers after the sort: front to back.
+layout(std430, binding = OIT_SSBO_FRAGMENT_SORTED_NEXT) buffer ll_sorted_next_buffer {
+    uint ll_sorted_next[];
+};
+layout(std430, binding = OIT_SSBO_FRAME_COUNTERS) buffer ll_counter_buffer {
+    uint ll_counters[OIT_LL_COUNTER_COUNT];
+};
+// First node of each pixel's list: as filled, and after the sort the front-most.
+layout(binding = OIT_IMAGE_LIST_HEAD, r32ui) uniform uimage2D ll_heads;
+
+uvec4 ll_pack_node(vec4 colour, float depth, uint triangle)
+{
+    return uvec4(packUnorm2x16(colour.rg), packUnorm2x16(colour.ba), floatBitsToUint(depth),
+                 triangle);
+}
+
+vec4 ll_node_colour(uvec4 node)
+{
+    return vec4(unpackUnorm2x16(node.x), unpackUnorm2x16(node.y));
+}
+
+// The depth order every algorithm uses: window depth, then triangle index, so
+// fragments at equal depth always come in the same order.
+bool ll_in_front(float depth_a, uint triangle_a, float depth_b, uint triangle_b)
+{
+    return depth_a < depth_b || (depth_a == depth_b && triangle_a < triangle_b);
+}
+
+// Insertion sort done on the list itself (thesis algorithm 10): takes the nodes
+// of the list at `head` one by one along ll_next and links each into place in
+// ll_sorted_next, so the original list stays intact. Returns the sorted list's
+// first node; `length` gets the number of nodes.
+uint ll_sort_in_place(uint head, out uint length)
+{
+    uint sorted_head = OIT_LIST_END;
+    float head_depth = 0.0;
+    uint head_triangle = 0u;
+    length = 0u;
+    for (uint node = head; node != OIT_LIST_END; node = ll_next[node]) {
+        uvec2 key = ll_nodes[node].zw;
+        float depth = uintBitsToFloat(key.x);
+        ++length;
+        if (sorted_head == OIT_LIST_END || ll_in_front(depth, key.y, head_depth, head_triangle)) {
+            ll_sorted_next[node] = sorted_head;
+            sorted_head = node;
+            head_depth = depth;
+            head_triangle = key.y;
+            continue;
+        }
+        // walk the sorted list to the last node in front of this one
+        uint previous = sorted_head;
+        uint current = ll_sorted_next[previous];
+        while (current != OIT_LIST_END) {
+            uvec2 current_key = ll_nodes[current].zw;
+            if (ll_in_front(depth, key.y, uintBitsToFloat(current_key.x), current_key.y))
+                break;
+            previous = current;
+            current = ll_sorted_next[current];
+        }
+        ll_sorted_next[node] = current;
+        ll_sorted_next[previous] = node;
+    }
+    return sorted_head;
+}
+
+// What every sort variant does after sorting a pixel: store the sorted head
+// and count the figures reported in the statistics (empty pixels are not
+// counted: the C side knows them as pixels - non-empty).
+void ll_finish_sort(ivec2 pixel, uint sorted_head, uint length)
+{
+    imageStore(ll_heads, pixel, uvec4(sorted_head, 0u, 0u, 0u));
+    if (length > 0u) {
+        atomicMax(ll_counters[OIT_FRAME_COUNTER_MAX_LIST], length);
+        atomicAdd(ll_counters[OIT_FRAME_COUNTER_NONEMPTY_PIXELS], 1u);
+        uint bin = min(length, uint(OIT_LL_HISTOGRAM_BINS - 1));
+        atomicAdd(ll_counters[OIT_LL_COUNTER_HISTOGRAM + bin], 1u);
+    }
+}
+
+#endif

@@ -1,0 +1,15 @@
+// sort_insertion.frag: sort each pixel's list in place (insertion sort over
+// the list, second next-pointer buffer). Full-screen pass, writes no colour.
+#extension GL_ARB_ES3_1_compatibility : enable
+#include "common/oit_shared.h"
+#include "ll/ll_nodes.glsl"
+
+void main()
+{
+    if (LL_HELPER_INVOCATION)
+        return;
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    uint length;
+    uint sorted_head = ll_sort_in_place(imageLoad(ll_heads, pixel).x, length);
+    ll_finish_sort(pixel, sorted_head, length);
+}

@@ -1,0 +1,170 @@
+/*
+ * alg_blend.c: plain alpha blending in submission order, the cheapest and
+ * deliberately wrong baseline. One geometry pass with the depth test off
+ * blends every fragment "over" a float target cleared to the background
+ * (C = a*c + (1-a)*C, exact only if triangles arrive back to front); a
+ * full-screen pass writes the RGBA8 output.
+ */
+#include <stdlib.h>
+
+#include "gl_util.h"
+
+struct oit_algorithm {
+    oit_algorithm_config config;
+    GLuint draw_program, resolve_program;
+    GLuint accumulation;             /* RGBA32F */
+    GLuint accumulation_framebuffer;
+    oit_gl_output output;
+    oit_stage_timer timer;
+    oit_stats stats;
+};
+
+static void blend_destroy(oit_algorithm *alg)
+{
+    if (!alg)
+        return;
+    glDeleteProgram(alg->draw_program);
+    glDeleteProgram(alg->resolve_program);
+    glDeleteTextures(1, &alg->accumulation);
+    glDeleteFramebuffers(1, &alg->accumulation_framebuffer);
+    oit_gl_output_release(&alg->output);
+    oit_timer_destroy(&alg->timer);
+    free(alg);
+}
+
+static oit_status blend_create(const oit_algorithm_config *config, oit_algorithm **out,
+                               oit_error *err)
+{
+    *out = NULL;
+    oit_algorithm *alg = calloc(1, sizeof *alg);
+    if (!alg)
+        return oit_fail(err, OIT_E_RUNTIME, "blend: out of memory");
+    alg->config = *config;
+    oit_stats_reset(&alg->stats);
+    oit_status status = oit_gl_program(config->shader_dir, "common/geometry.vert",
+                                       "blend/draw.frag", &alg->draw_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+                                "blend/resolve.frag", &alg->resolve_program, err);
+    if (status != OIT_OK) {
+        blend_destroy(alg);
+        return status;
+    }
+    oit_timer_create(&alg->timer);
+    *out = alg;
+    return OIT_OK;
+}
+
+static oit_status blend_resize(oit_algorithm *alg, int width, int height, oit_error *err)
+{
+    oit_status status = oit_gl_output_resize(&alg->output, width, height, err);
+    if (status != OIT_OK)
+        return status;
+    glDeleteTextures(1, &alg->accumulation);
+    if (!alg->accumulation_framebuffer)
+        glGenFramebuffers(1, &alg->accumulation_framebuffer);
+    alg->accumulation = oit_gl_texture_2d(GL_RGBA32F, width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, alg->accumulation_framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                           alg->accumulation, 0);
+    GLenum framebuffer_status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (framebuffer_status != GL_FRAMEBUFFER_COMPLETE)
+        return oit_fail(err, OIT_E_RUNTIME, "blend: the RGBA32F target is incomplete (0x%04x)",
+                        (unsigned)framebuffer_status);
+    alg->stats.memory_bytes = (uint64_t)width * (uint64_t)height * (16 + 4);
+    return oit_gl_check("blend: resize", err);
+}
+
+static oit_status stage_check(const oit_algorithm *alg, const char *stage, oit_error *err)
+{
+    return alg->config.debug ? oit_gl_check(stage, err) : OIT_OK;
+}
+
+static oit_status blend_render(oit_algorithm *alg, const oit_scene *scene,
+                               const oit_frame_settings *frame, oit_error *err)
+{
+    if (!scene->has_gpu)
+        return oit_fail(err, OIT_E_RUNTIME, "blend: the scene is not on the GPU");
+    const oit_modulation *modulation = &frame->modulation;
+    if (modulation->mode == OIT_MODULATE_DISTANCE)
+        return oit_fail(err, OIT_E_INPUT, "blend: the distance modulation needs the next fragment along the ray, and "
+                        "blending in submission order never has two fragments of a pixel at once");
+    if (modulation->mode != OIT_MODULATE_NONE)
+        return oit_fail(err, OIT_E_INPUT,
+                        "blend: opacity modulation %d needs surface neighbours (ib only): blending "
+                        "in submission order never sees the adjacent pixels' fragments of the "
+                        "same surface",
+                        (int)modulation->mode);
+    if (modulation->view != OIT_VIEW_COLOUR)
+        return oit_fail(err, OIT_E_INPUT, "blend: buffer views are ll's and ib's (view %d)",
+                        (int)modulation->view);
+    if (frame->width != alg->output.width || frame->height != alg->output.height) {
+        oit_status status = blend_resize(alg, frame->width, frame->height, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    uint64_t memory_bytes = alg->stats.memory_bytes;
+    oit_stats_reset(&alg->stats);
+    alg->stats.memory_bytes = memory_bytes;
+    oit_timer_frame_begin(&alg->timer);
+
+    oit_timer_stage_begin(&alg->timer, "draw");
+    glBindFramebuffer(GL_FRAMEBUFFER, alg->accumulation_framebuffer);
+    glViewport(0, 0, frame->width, frame->height);
+    glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    /* alpha stays 1: the target starts opaque (the background) */
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    glUseProgram(alg->draw_program);
+    oit_gl_set_frame_uniforms(frame);
+    oit_gl_draw_scene(scene);
+    glDisable(GL_BLEND);
+    oit_status status = stage_check(alg, "blend: draw", err);
+
+    if (status == OIT_OK) {
+        oit_timer_stage_begin(&alg->timer, "resolve");
+        glBindFramebuffer(GL_FRAMEBUFFER, alg->output.framebuffer);
+        glViewport(0, 0, frame->width, frame->height);
+        glUseProgram(alg->resolve_program);
+        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM);
+        glBindTexture(GL_TEXTURE_2D, alg->accumulation);
+        oit_gl_draw_fullscreen(&alg->output);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glActiveTexture(GL_TEXTURE0);
+        status = stage_check(alg, "blend: resolve", err);
+    }
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    oit_timer_frame_end(&alg->timer, &alg->stats);
+    if (status == OIT_OK)
+        status = oit_gl_check("blend: render", err);
+    return status;
+}
+
+static oit_status blend_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
+{
+    return oit_gl_output_read(&alg->output, out, err);
+}
+
+static void blend_stats(const oit_algorithm *alg, oit_stats *out)
+{
+    *out = alg->stats;
+}
+
+const oit_algorithm_ops oit_algorithm_blend = {
+    .name = "blend",
+    .summary = "alpha blending in submission order (one pass, not order-independent)",
+    .uses_gl = true,
+    .exact = false,
+    .create = blend_create,
+    .resize = blend_resize,
+    .render = blend_render,
+    .read_image = blend_read_image,
+    .stats = blend_stats,
+    .destroy = blend_destroy,
+};

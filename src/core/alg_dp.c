@@ -1,0 +1,620 @@
+/*
+ * alg_dp.c: depth peeling (Everitt 2001), front to back.
+ *
+ * Every layer costs one geometry pass. The peel shader discards fragments at
+ * or in front of the depth captured by the previous pass; the ordinary depth
+ * test (LESS) then keeps the nearest of the rest, whose colour lands in the
+ * layer target. A full-screen pass blends the layer under the float
+ * accumulation (rgb = premultiplied colour so far, a = transmittance T). The
+ * loop ends when an occlusion query sees no samples or at the layer limit;
+ * a final pass adds T * background and writes the RGBA8 output.
+ *
+ * Distance modulation (docs/modulation.md): a layer's opacity is its distance
+ * along the ray to the next layer, known only once that layer is peeled. So the
+ * peel writes the straight colour and the local factor, and blending is delayed
+ * by one layer: after peeling layer k, blend_distance blends layer k-1 (a second
+ * layer-colour target keeps it). Same number of geometry passes; the last layer
+ * of a pixel gets distance 0. Only the adjacent distance: skip and far-end
+ * distances need more than one layer behind (lists: ll, ib). With an automatic
+ * focus region the frame's largest distance must be known before anything is
+ * blended, so a first sweep peels every layer and MAX-blends the distances into
+ * an R32F target: twice the geometry passes.
+ *
+ * Curvature (docs/modulation.md, "Non-local modulations"): the approximation
+ * peeling allows. The Illustration Buffer finds a fragment's neighbours through
+ * the surface in the adjacent pixels' lists; a peeled layer has one fragment
+ * per pixel, so the neighbour here is the same layer's fragment in the adjacent
+ * pixel, if it is on the same component. The peel (dp/peel_neighbours.frag)
+ * also writes the layer's octahedral normal and component into an RG32UI
+ * target, and the layer's blend pass becomes dp/blend_curvature.frag, which
+ * computes the curvature exactly as ib does from those neighbours: same passes,
+ * + two RG32UI targets. dist-curv combines it with the delayed blending above
+ * (each layer is blended after the next one is peeled; after the last peel the
+ * last layer is blended too, as its curvature may make it visible). Edges
+ * (opaque where a fragment has fewer than four neighbours) use the same
+ * neighbours in the same pass. Transparency fields are refused: they diffuse
+ * over the whole surface, across layers.
+ *
+ * Equal depths: the strict "behind the previous layer" test loses all but one
+ * of several fragments at exactly the same depth (coplanar faces). The one
+ * kept is the first drawn, i.e. the lowest triangle index, which is the one
+ * the reference composites first. This is the documented behaviour of plain
+ * depth peeling; the z-fighting-aware variants are not implemented.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "gl_util.h"
+#include "oit.h"
+
+_Static_assert(OIT_IB_MODE_CURVATURE == OIT_MODULATE_CURVATURE &&
+                   OIT_IB_MODE_DIST_CURV == OIT_MODULATE_DIST_CURV &&
+                   OIT_IB_MODE_EDGES == OIT_MODULATE_EDGES,
+               "blend_curvature.frag's modes differ from oit_modulation_mode");
+
+typedef struct dp_state {
+    oit_algorithm_config config;
+    oit_gl_output output;
+    oit_stage_timer timer;
+    oit_stats stats;
+
+    GLuint peel_program;    /* geometry.vert + dp/peel.frag */
+    GLuint blend_program;   /* fullscreen.vert + dp/blend_layer.frag */
+    GLuint compose_program; /* fullscreen.vert + dp/compose.frag */
+    GLuint samples_query;   /* GL_ANY_SAMPLES_PASSED of the peel pass */
+    GLuint blend_distance_program; /* fullscreen.vert + dp/blend_distance.frag */
+    GLuint distance_max_program;   /* fullscreen.vert + dp/distance_max.frag */
+    GLuint peel_neighbours_program; /* geometry.vert + dp/peel_neighbours.frag */
+    GLuint blend_curvature_program; /* fullscreen.vert + dp/blend_curvature.frag */
+
+    /* Two depth textures used in turn: one is read (previous layer) while the
+     * other is the depth attachment of the current peel. */
+    GLuint depth[2];          /* GL_DEPTH_COMPONENT32F */
+    GLuint layer_colour;      /* GL_RGBA32F, premultiplied layer colour, in both peel FBOs */
+    GLuint peel_framebuffer[2];
+    /* distance modulation only (allocated on first use): peel FBO i writes
+     * distance_colour[i], so layer k-1 is still there after peeling layer k;
+     * distance_max (R32F) collects the largest distance of the first sweep */
+    bool distance_targets;
+    GLuint distance_colour[2];
+    GLuint distance_peel_framebuffer[2];
+    GLuint distance_max;
+    GLuint distance_max_framebuffer;
+    /* curvature and dist-curv only (allocated on first use): each layer's
+     * octahedral normal and component + 1 (RG32UI, one per peel FBO), written
+     * beside layer_colour (curvature) or distance_colour[i] (dist-curv) */
+    bool normal_targets;
+    GLuint layer_normal[2];
+    GLuint curvature_peel_framebuffer[2]; /* layer_colour, layer_normal[i], depth[i] */
+    GLuint dist_curv_peel_framebuffer[2]; /* distance_colour[i], layer_normal[i], depth[i] */
+    GLuint accumulation;      /* GL_RGBA32F: rgb = sum T*a*c, a = T */
+    GLuint accumulation_framebuffer;
+    int width, height;
+} dp_state;
+
+/* Bytes per pixel of the targets: 2 depth (4 each), the layer colour and the
+ * accumulation (16 each), the RGBA8 output (4). */
+#define DP_BYTES_PER_PIXEL (2 * 4 + 16 + 16 + 4)
+/* with the distance modulation: two layer colours (16 each) and the R32F maximum */
+#define DP_DISTANCE_BYTES_PER_PIXEL (2 * 16 + 4)
+/* with curvature: two normal + component targets (RG32UI, 8 each) */
+#define DP_CURVATURE_BYTES_PER_PIXEL (2 * 8)
+
+static void dp_release_targets(dp_state *s)
+{
+    glDeleteFramebuffers(2, s->peel_framebuffer);
+    glDeleteFramebuffers(1, &s->accumulation_framebuffer);
+    glDeleteTextures(2, s->depth);
+    glDeleteTextures(1, &s->layer_colour);
+    glDeleteTextures(1, &s->accumulation);
+    glDeleteFramebuffers(2, s->distance_peel_framebuffer);
+    glDeleteFramebuffers(1, &s->distance_max_framebuffer);
+    glDeleteTextures(2, s->distance_colour);
+    glDeleteTextures(1, &s->distance_max);
+    glDeleteFramebuffers(2, s->curvature_peel_framebuffer);
+    glDeleteFramebuffers(2, s->dist_curv_peel_framebuffer);
+    glDeleteTextures(2, s->layer_normal);
+    for (int i = 0; i < 2; ++i)
+        s->peel_framebuffer[i] = s->depth[i] = s->distance_peel_framebuffer[i] =
+            s->distance_colour[i] = s->layer_normal[i] = s->curvature_peel_framebuffer[i] =
+                s->dist_curv_peel_framebuffer[i] = 0;
+    s->distance_max = s->distance_max_framebuffer = 0;
+    s->layer_colour = s->accumulation_framebuffer = s->accumulation = 0;
+    s->width = s->height = 0;
+}
+
+static oit_status dp_check_framebuffer(const char *what, oit_error *err)
+{
+    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        return oit_fail(err, OIT_E_RUNTIME, "dp: %s framebuffer incomplete (0x%x)", what,
+                        (unsigned)status);
+    return OIT_OK;
+}
+
+/* With config.debug, check for GL errors after each stage. */
+static oit_status dp_stage_check(const dp_state *s, const char *stage, oit_error *err)
+{
+    if (!s->config.debug)
+        return OIT_OK;
+    char where[64];
+    snprintf(where, sizeof where, "dp: %s", stage);
+    return oit_gl_check(where, err);
+}
+
+static void dp_destroy(oit_algorithm *alg);
+
+static uint64_t dp_memory(const dp_state *s)
+{
+    uint64_t per_pixel = DP_BYTES_PER_PIXEL + (s->distance_targets ? DP_DISTANCE_BYTES_PER_PIXEL : 0) +
+                         (s->normal_targets ? DP_CURVATURE_BYTES_PER_PIXEL : 0);
+    return (uint64_t)s->width * (uint64_t)s->height * per_pixel;
+}
+
+static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **out,
+                            oit_error *err)
+{
+    *out = NULL;
+    if (config->max_layers < 1 || config->max_layers > OIT_MAX_PEEL_LAYERS)
+        return oit_fail(err, OIT_E_INPUT, "dp: layer limit %d outside 1..%d", config->max_layers,
+                        OIT_MAX_PEEL_LAYERS);
+    dp_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return oit_fail(err, OIT_E_RUNTIME, "dp: out of memory");
+    s->config = *config;
+    oit_stats_reset(&s->stats);
+    oit_timer_create(&s->timer);
+    glGenQueries(1, &s->samples_query);
+
+    oit_status status =
+        oit_gl_program(config->shader_dir, "common/geometry.vert", "dp/peel.frag",
+                       &s->peel_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+                                "dp/blend_layer.frag", &s->blend_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert", "dp/compose.frag",
+                                &s->compose_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+                                "dp/blend_distance.frag", &s->blend_distance_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+                                "dp/distance_max.frag", &s->distance_max_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/geometry.vert",
+                                "dp/peel_neighbours.frag", &s->peel_neighbours_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+                                "dp/blend_curvature.frag", &s->blend_curvature_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_check("dp: create", err);
+    if (status != OIT_OK) {
+        dp_destroy((oit_algorithm *)s);
+        return status;
+    }
+    *out = (oit_algorithm *)s;
+    return OIT_OK;
+}
+
+static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error *err)
+{
+    dp_state *s = (dp_state *)alg;
+    if (width < 1 || height < 1)
+        return oit_fail(err, OIT_E_INPUT, "dp: bad size %dx%d", width, height);
+    dp_release_targets(s);
+    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    if (status != OIT_OK)
+        return status;
+
+    s->layer_colour = oit_gl_texture_2d(GL_RGBA32F, width, height);
+    for (int i = 0; i < 2; ++i) {
+        s->depth[i] = oit_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
+        glGenFramebuffers(1, &s->peel_framebuffer[i]);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[i]);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               s->layer_colour, 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
+        status = dp_check_framebuffer("peel", err);
+        if (status != OIT_OK)
+            break;
+    }
+    if (status == OIT_OK) {
+        s->accumulation = oit_gl_texture_2d(GL_RGBA32F, width, height);
+        glGenFramebuffers(1, &s->accumulation_framebuffer);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               s->accumulation, 0);
+        status = dp_check_framebuffer("accumulation", err);
+    }
+    for (int i = 0; status == OIT_OK && s->distance_targets && i < 2; ++i) {
+        s->distance_colour[i] = oit_gl_texture_2d(GL_RGBA32F, width, height);
+        glGenFramebuffers(1, &s->distance_peel_framebuffer[i]);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->distance_peel_framebuffer[i]);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               s->distance_colour[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
+        status = dp_check_framebuffer("distance peel", err);
+    }
+    if (status == OIT_OK && s->distance_targets) {
+        s->distance_max = oit_gl_texture_2d(GL_R32F, width, height);
+        glGenFramebuffers(1, &s->distance_max_framebuffer);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               s->distance_max, 0);
+        status = dp_check_framebuffer("distance maximum", err);
+    }
+    static const GLenum two_targets[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    for (int i = 0; status == OIT_OK && s->normal_targets && i < 2; ++i) {
+        s->layer_normal[i] = oit_gl_texture_2d(GL_RG32UI, width, height);
+        glGenFramebuffers(1, &s->curvature_peel_framebuffer[i]);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->curvature_peel_framebuffer[i]);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               s->layer_colour, 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
+                               s->layer_normal[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
+        glDrawBuffers(2, two_targets);
+        status = dp_check_framebuffer("curvature peel", err);
+        if (status != OIT_OK || !s->distance_targets)
+            continue;
+        glGenFramebuffers(1, &s->dist_curv_peel_framebuffer[i]);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->dist_curv_peel_framebuffer[i]);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               s->distance_colour[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
+                               s->layer_normal[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
+        glDrawBuffers(2, two_targets);
+        status = dp_check_framebuffer("dist-curv peel", err);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (status == OIT_OK)
+        status = oit_gl_check("dp: resize", err);
+    if (status != OIT_OK) {
+        dp_release_targets(s);
+        return status;
+    }
+    s->width = width;
+    s->height = height;
+    s->stats.memory_bytes = dp_memory(s);
+    return OIT_OK;
+}
+
+/* What one peeling sweep does with each layer. */
+typedef enum dp_sweep {
+    DP_SWEEP_PLAIN,          /* blend layer k after peeling it */
+    DP_SWEEP_CURVATURE,      /* curvature: blend layer k after peeling it, opacity from its neighbours */
+    DP_SWEEP_DISTANCE_MAX,   /* distance modulation, first sweep: largest distance only */
+    DP_SWEEP_DISTANCE_BLEND  /* distance (or dist-curv): blend layer k-1 after peeling layer k */
+} dp_sweep;
+
+/* Whether the frame's modulation needs each layer's neighbours (normal targets). */
+static bool dp_needs_neighbours(const oit_frame_settings *frame)
+{
+    return frame->modulation.mode == OIT_MODULATE_CURVATURE ||
+           frame->modulation.mode == OIT_MODULATE_DIST_CURV ||
+           frame->modulation.mode == OIT_MODULATE_EDGES;
+}
+
+/* Blend a peeled layer (straight colour and local factor in target `colour`,
+ * normals in `normal`) under the accumulation with blend_curvature.frag. With
+ * dist-curv, `next_colour`/`next_depth` hold the layer peeled after it and
+ * `depth` its own depth. */
+static void dp_blend_curvature(dp_state *s, const oit_frame_settings *frame, GLuint colour,
+                               GLuint normal, GLuint depth, GLuint next_colour, GLuint next_depth,
+                               float distance_norm)
+{
+    const oit_modulation *m = &frame->modulation;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(s->blend_curvature_program);
+    oit_gl_set_frame_uniforms(frame);
+    glUniform1f(OIT_UNIFORM_DP_CURVATURE_EFFECT,
+                m->curvature_effect > 0.0f ? m->curvature_effect : 8.0f);
+    glUniform1i(OIT_UNIFORM_DP_CURVATURE_NEIGHBOURS, m->curvature_neighbours == 8 ? 8 : 4);
+    const bool dist_curv = m->mode == OIT_MODULATE_DIST_CURV;
+    /* oit_modulation_mode and OIT_IB_MODE_* share their values */
+    glUniform1i(OIT_UNIFORM_DP_NEIGHBOUR_MODE, (GLint)m->mode);
+    if (dist_curv)
+        glUniform1f(OIT_UNIFORM_DISTANCE_NORM, distance_norm);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_LAYER);
+    glBindTexture(GL_TEXTURE_2D, colour);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_NORMAL);
+    glBindTexture(GL_TEXTURE_2D, normal);
+    /* curvature alone: the dist-curv samplers are unused but must not be the
+     * target being drawn, so they get the layer's own textures */
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
+    glBindTexture(GL_TEXTURE_2D, dist_curv ? depth : s->depth[0]);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_NEXT_LAYER);
+    glBindTexture(GL_TEXTURE_2D, dist_curv ? next_colour : colour);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_NEXT);
+    glBindTexture(GL_TEXTURE_2D, dist_curv ? next_depth : s->depth[1]);
+    oit_gl_draw_fullscreen(&s->output);
+    glDisable(GL_BLEND);
+}
+
+static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_frame_settings *frame,
+                                dp_sweep sweep, float distance_norm, int *layers_out,
+                                oit_error *err)
+{
+    static const GLfloat empty_layer[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    static const GLuint no_normal[4] = {0u, 0u, 0u, 0u}; /* component + 1 = 0: no fragment */
+    static const GLfloat far_depth = 1.0f;
+    const bool distance = sweep == DP_SWEEP_DISTANCE_MAX || sweep == DP_SWEEP_DISTANCE_BLEND;
+    const bool neighbours = dp_needs_neighbours(frame);
+    const char *prefix = sweep == DP_SWEEP_DISTANCE_MAX ? "distance_peel" : "peel";
+    int limit = s->config.max_layers;
+    if (limit > OIT_MAX_PEEL_LAYERS)
+        limit = OIT_MAX_PEEL_LAYERS;
+    int layers = 0;
+    bool last_had_samples = false;
+    oit_status status = OIT_OK;
+    for (int layer = 0; layer < limit; ++layer) {
+        char stage[OIT_STAGE_NAME_SIZE];
+        snprintf(stage, sizeof stage, "%s_%d", prefix, layer);
+        oit_timer_stage_begin(&s->timer, stage);
+        const int current = layer & 1, previous = current ^ 1;
+
+        /* Peel: nearest fragment strictly behind the previous layer. */
+        GLuint framebuffer = s->peel_framebuffer[current];
+        if (sweep == DP_SWEEP_CURVATURE)
+            framebuffer = s->curvature_peel_framebuffer[current];
+        else if (distance)
+            framebuffer = neighbours ? s->dist_curv_peel_framebuffer[current]
+                                     : s->distance_peel_framebuffer[current];
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDepthMask(GL_TRUE); /* before the clears: a mask left false by another algorithm blocks them */
+        glClearBufferfv(GL_COLOR, 0, empty_layer);
+        if (neighbours)
+            glClearBufferuiv(GL_COLOR, 1, no_normal);
+        glClearBufferfv(GL_DEPTH, 0, &far_depth);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glUseProgram(neighbours ? s->peel_neighbours_program : s->peel_program);
+        oit_gl_set_frame_uniforms(frame);
+        glUniform1i(OIT_UNIFORM_DP_HAS_PREVIOUS, layer > 0);
+        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
+        glBindTexture(GL_TEXTURE_2D, s->depth[previous]);
+        glBeginQuery(GL_ANY_SAMPLES_PASSED, s->samples_query);
+        oit_gl_draw_scene(scene);
+        glEndQuery(GL_ANY_SAMPLES_PASSED);
+        glDisable(GL_DEPTH_TEST);
+
+        /* Waiting here is inherent to the algorithm: the next pass depends on it. */
+        GLuint any_samples = 0;
+        glGetQueryObjectuiv(s->samples_query, GL_QUERY_RESULT, &any_samples);
+        if (any_samples)
+            ++layers;
+        last_had_samples = any_samples != 0;
+        if (any_samples && sweep == DP_SWEEP_PLAIN) {
+            /* Blend the layer under the accumulation: rgb += T * (a c), T *= 1 - a. */
+            glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
+            glEnable(GL_BLEND);
+            glBlendEquation(GL_FUNC_ADD);
+            glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+            glUseProgram(s->blend_program);
+            glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_LAYER);
+            glBindTexture(GL_TEXTURE_2D, s->layer_colour);
+            oit_gl_draw_fullscreen(&s->output);
+            glDisable(GL_BLEND);
+        } else if (any_samples && sweep == DP_SWEEP_CURVATURE) {
+            /* The whole layer is peeled: each fragment's neighbours are known. */
+            dp_blend_curvature(s, frame, s->layer_colour, s->layer_normal[current], 0, 0, 0,
+                               distance_norm);
+        } else if (sweep == DP_SWEEP_DISTANCE_BLEND && neighbours && layer > 0) {
+            /* dist-curv: layer k-1 now knows its distance and its neighbours; blended
+             * even when layer k is empty, as its curvature may still show it */
+            dp_blend_curvature(s, frame, s->distance_colour[previous], s->layer_normal[previous],
+                               s->depth[previous], s->distance_colour[current], s->depth[current],
+                               distance_norm);
+        } else if (any_samples && layer > 0) {
+            /* Layer k-1 now knows its distance to layer k: blend it (or take the maximum). */
+            glEnable(GL_BLEND);
+            if (sweep == DP_SWEEP_DISTANCE_MAX) {
+                glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer);
+                glBlendEquation(GL_MAX);
+                glBlendFunc(GL_ONE, GL_ONE);
+                glUseProgram(s->distance_max_program);
+            } else {
+                glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
+                glBlendEquation(GL_FUNC_ADD);
+                glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+                glUseProgram(s->blend_distance_program);
+            }
+            oit_gl_set_frame_uniforms(frame);
+            glUniform1f(OIT_UNIFORM_DISTANCE_NORM, distance_norm);
+            glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_LAYER);
+            glBindTexture(GL_TEXTURE_2D, s->distance_colour[previous]);
+            glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
+            glBindTexture(GL_TEXTURE_2D, s->depth[previous]);
+            glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_NEXT_LAYER);
+            glBindTexture(GL_TEXTURE_2D, s->distance_colour[current]);
+            glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_NEXT);
+            glBindTexture(GL_TEXTURE_2D, s->depth[current]);
+            oit_gl_draw_fullscreen(&s->output);
+            glBlendEquation(GL_FUNC_ADD);
+            glDisable(GL_BLEND);
+        }
+        /* With no layer k, every layer k-1 was its pixel's last: distance 0, nothing to blend. */
+        oit_timer_stage_end(&s->timer);
+        if ((status = dp_stage_check(s, stage, err)) != OIT_OK)
+            break;
+        if (!any_samples)
+            break;
+    }
+    if (status == OIT_OK && sweep == DP_SWEEP_DISTANCE_BLEND && neighbours && last_had_samples) {
+        /* dist-curv stopped by the layer limit: the last layer peeled still has to
+         * be blended, with no next layer (the other colour target, cleared) */
+        oit_timer_stage_begin(&s->timer, "blend_last_layer");
+        const int last = (layers - 1) & 1, other = last ^ 1;
+        glBindFramebuffer(GL_FRAMEBUFFER, s->dist_curv_peel_framebuffer[other]);
+        glClearBufferfv(GL_COLOR, 0, empty_layer);
+        dp_blend_curvature(s, frame, s->distance_colour[last], s->layer_normal[last],
+                           s->depth[last], s->distance_colour[other], s->depth[other],
+                           distance_norm);
+        oit_timer_stage_end(&s->timer);
+        status = dp_stage_check(s, "blend_last_layer", err);
+    }
+    *layers_out = layers;
+    return status;
+}
+
+/* The distance modulation's normalising length: the focus region, or the
+ * frame's largest distance (a first sweep; 1 if there is none). */
+static oit_status dp_distance_norm(dp_state *s, const oit_scene *scene,
+                                   const oit_frame_settings *frame, float *norm, oit_error *err)
+{
+    *norm = frame->modulation.focus_region;
+    if (*norm > 0.0f)
+        return OIT_OK;
+    static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer);
+    glClearBufferfv(GL_COLOR, 0, zero);
+    int layers = 0;
+    oit_status status = dp_peel_sweep(s, scene, frame, DP_SWEEP_DISTANCE_MAX, 1.0f, &layers, err);
+    if (status != OIT_OK)
+        return status;
+    oit_timer_stage_begin(&s->timer, "distance_max_read");
+    size_t pixels = (size_t)s->width * (size_t)s->height;
+    float *values = malloc(pixels * sizeof *values);
+    if (!values)
+        return oit_fail(err, OIT_E_RUNTIME, "dp: out of memory for the distance maximum");
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, s->distance_max_framebuffer);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, s->width, s->height, GL_RED, GL_FLOAT, values);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    float largest = 0.0f;
+    for (size_t i = 0; i < pixels; ++i)
+        largest = values[i] > largest ? values[i] : largest;
+    free(values);
+    oit_timer_stage_end(&s->timer);
+    *norm = largest > 0.0f ? largest : 1.0f;
+    return dp_stage_check(s, "distance_max_read", err);
+}
+
+static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
+                            const oit_frame_settings *frame, oit_error *err)
+{
+    dp_state *s = (dp_state *)alg;
+    if (!scene->has_gpu)
+        return oit_fail(err, OIT_E_INPUT, "dp: the scene has no GPU buffers");
+    const oit_modulation *m = &frame->modulation;
+    /* dist-curv needs the distance (delayed blending) and the neighbours */
+    const bool distance = m->mode == OIT_MODULATE_DISTANCE || m->mode == OIT_MODULATE_DIST_CURV;
+    const bool neighbours = dp_needs_neighbours(frame);
+    if (m->mode == OIT_MODULATE_FIELDS)
+        return oit_fail(err, OIT_E_INPUT,
+                        "dp: opacity modulation 4 (fields) needs surface neighbours (ib only): "
+                        "the fields diffuse over the whole surface, across layers, and a peeled "
+                        "layer is gone once blended; dp does the local ones, the adjacent "
+                        "distance, and curvature and edges from neighbours in the same layer");
+    if (distance && m->distance != OIT_DISTANCE_ADJACENT)
+        return oit_fail(err, OIT_E_INPUT,
+                        "dp: only the adjacent distance: skip and far-end distances need layers "
+                        "further behind than the last one peeled (use ll, ib or reference)");
+    if (m->view != OIT_VIEW_COLOUR)
+        return oit_fail(err, OIT_E_INPUT, "dp: buffer views are ll's and ib's (view %d)",
+                        (int)m->view);
+    if (frame->width != s->width || frame->height != s->height ||
+        (distance && !s->distance_targets) || (neighbours && !s->normal_targets)) {
+        s->distance_targets = s->distance_targets || distance;
+        s->normal_targets = s->normal_targets || neighbours;
+        oit_status status = dp_resize(alg, frame->width, frame->height, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    oit_status status = OIT_OK;
+    oit_stats_reset(&s->stats);
+    oit_timer_frame_begin(&s->timer);
+
+    glViewport(0, 0, s->width, s->height);
+    glDisable(GL_CULL_FACE); /* both sides of every surface are layers */
+    glDisable(GL_BLEND);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
+
+    float distance_norm = 1.0f;
+    if (distance)
+        status = dp_distance_norm(s, scene, frame, &distance_norm, err);
+
+    static const GLfloat empty_accumulation[4] = {0.0f, 0.0f, 0.0f, 1.0f}; /* C = 0, T = 1 */
+    glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
+    glClearBufferfv(GL_COLOR, 0, empty_accumulation);
+
+    int layers = 0;
+    if (status == OIT_OK)
+        status = dp_peel_sweep(s, scene, frame,
+                               distance     ? DP_SWEEP_DISTANCE_BLEND
+                               : neighbours ? DP_SWEEP_CURVATURE
+                                            : DP_SWEEP_PLAIN,
+                               distance_norm, &layers, err);
+
+    if (status == OIT_OK) {
+        oit_timer_stage_begin(&s->timer, "compose");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        glUseProgram(s->compose_program);
+        oit_gl_set_frame_uniforms(frame);
+        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM_FRONT);
+        glBindTexture(GL_TEXTURE_2D, s->accumulation);
+        oit_gl_draw_fullscreen(&s->output);
+        oit_timer_stage_end(&s->timer);
+        status = dp_stage_check(s, "compose", err);
+    }
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    oit_timer_frame_end(&s->timer, &s->stats);
+    if (status == OIT_OK)
+        status = oit_gl_check("dp: render", err);
+    s->stats.layers = layers;
+    s->stats.memory_bytes = dp_memory(s);
+    return status;
+}
+
+static oit_status dp_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
+{
+    dp_state *s = (dp_state *)alg;
+    return oit_gl_output_read(&s->output, out, err);
+}
+
+static void dp_stats(const oit_algorithm *alg, oit_stats *out)
+{
+    const dp_state *s = (const dp_state *)alg;
+    *out = s->stats;
+}
+
+static void dp_destroy(oit_algorithm *alg)
+{
+    dp_state *s = (dp_state *)alg;
+    if (!s)
+        return;
+    dp_release_targets(s);
+    oit_gl_output_release(&s->output);
+    glDeleteProgram(s->peel_program);
+    glDeleteProgram(s->blend_program);
+    glDeleteProgram(s->compose_program);
+    glDeleteProgram(s->blend_distance_program);
+    glDeleteProgram(s->distance_max_program);
+    glDeleteProgram(s->peel_neighbours_program);
+    glDeleteProgram(s->blend_curvature_program);
+    glDeleteQueries(1, &s->samples_query);
+    oit_timer_destroy(&s->timer);
+    free(s);
+}
+
+const oit_algorithm_ops oit_algorithm_dp = {
+    .name = "dp",
+    .summary = "depth peeling (Everitt 2001): one geometry pass per layer, front to back",
+    .uses_gl = true,
+    .exact = true,
+    .create = dp_create,
+    .resize = dp_resize,
+    .render = dp_render,
+    .read_image = dp_read_image,
+    .stats = dp_stats,
+    .destroy = dp_destroy,
+};

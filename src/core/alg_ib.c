@@ -1,0 +1,760 @@
+/*
+ * alg_ib.c: the Illustration Buffer (Carnecky et al. 2013; thesis 3.1.5, 3.3,
+ * 4.3-4.6): per-pixel fragment lists whose fragments also know their surface
+ * neighbours, and the opacity modulations that use them.
+ * docs/illustration-buffer.md describes the layout, stages and choices.
+ *
+ * GPU data (bindings in oit_shared.h, GLSL in shaders/ib/ib_common.glsl):
+ *   per pixel (8 bytes)
+ *     head image   r32ui: list head during the fill, the run's start afterwards
+ *     count image  r32ui: the run's length
+ *   per fragment (40 bytes)
+ *     nodes        uvec4: the fill's node (depth, triangle, normal, next); after
+ *                  the sort the two ping-pong copies of the transparency fields
+ *     run core     uvec4: depth, triangle, octahedral normal, curvature | distance
+ *     run links    uvec2: the four neighbours' layer indices, 16 bit each
+ *   The triangle's vertices, welded ids, component and eye-space plane come from
+ *   the scene's own index and vertex buffers, bound as storage buffers.
+ *
+ * One frame (each a timed stage; modulation passes that are off do not run):
+ *   fill        geometry pass into linked lists (as ll); overflow: grow, fill again
+ *   sort        each list becomes a contiguous run sorted front to back
+ *   neighbours  the four surface neighbours of every fragment (--neighbours)
+ *   neighbour_stats  link quality and Psi, summed on the GPU
+ *   fields, diffusion, blur   transparency fields (modulation fields / view fields)
+ *   curvature_distance        (curvature, distance, dist-curv / their views)
+ *   compose     composite front to back in float, or show a view
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_util.h"
+
+#define IB_BYTES_PER_FRAGMENT \
+    ((uint64_t)OIT_IB_NODE_BYTES + OIT_IB_RUN_CORE_BYTES + OIT_IB_RUN_LINKS_BYTES)
+#define IB_BYTES_PER_PIXEL 8u /* head/run start + count */
+#define IB_DEFAULT_FRAGMENTS_PER_PIXEL 4u
+#define IB_MAX_FILLS 3
+#define IB_MEGABYTE (1024.0 * 1024.0)
+
+_Static_assert(OIT_IB_HISTOGRAM_BINS == OIT_HISTOGRAM_BINS, "histogram bins differ");
+_Static_assert(OIT_IB_COUNTER_HISTOGRAM + OIT_IB_HISTOGRAM_BINS <= OIT_IB_COUNTER_COUNT,
+               "counter buffer too small");
+_Static_assert(OIT_IB_MODE_FIELDS == OIT_MODULATE_FIELDS && OIT_IB_MODE_EDGES == OIT_MODULATE_EDGES &&
+                   OIT_IB_MODE_DIST_CURV == OIT_MODULATE_DIST_CURV,
+               "modes differ");
+_Static_assert(OIT_IB_VIEW_FIELDS == OIT_VIEW_FIELDS && OIT_IB_VIEW_NEIGHBOURS == OIT_VIEW_NEIGHBOURS,
+               "views differ");
+_Static_assert(OIT_IB_SEARCH_EPSILON == OIT_NEIGHBOURS_EPSILON &&
+                   OIT_IB_SEARCH_WELDED == OIT_NEIGHBOURS_WELDED,
+               "searches differ");
+_Static_assert(OIT_IB_DISTANCE_FAR_END == OIT_DISTANCE_FAR_END, "distance modes differ");
+
+/* Mirrors the ib_param_buffer block of ib_common.glsl (std430: a mat4, then
+ * 4-byte scalars). */
+typedef struct ib_params {
+    float inverse_projection[16];
+    int32_t mode, view, view_parameter, search;
+    int32_t curvature_neighbours;
+    float curvature_effect, focus_region;
+    int32_t distance_mode, distance_skip, fields;
+    float lambda_alpha, lambda_beta, lambda_gamma;
+    float halo[3];
+    int32_t last_layer_opaque;
+    float epsilon_max, radius_eye;
+    int32_t needs_fields;
+} ib_params;
+
+enum ib_program {
+    IB_FILL,
+    IB_SORT,
+    IB_TRIANGLES,
+    IB_NEIGHBOURS,
+    IB_NEIGHBOURS_EPSILON,
+    IB_NEIGHBOUR_STATS,
+    IB_FIELDS,
+    IB_DIFFUSION,
+    IB_BLUR,
+    IB_CURVATURE_DISTANCE,
+    IB_COMPOSE,
+    IB_PROGRAM_COUNT
+};
+
+/* fill and compose are drawn (geometry pass, full-screen pass); the passes
+ * between are compute shaders with one invocation per pixel. (Full-screen
+ * fragment passes lost some storage-buffer writes made in data-dependent loops
+ * on llvmpipe; compute invocations have no quad or helper semantics.) */
+static const char *const ib_shaders[IB_PROGRAM_COUNT] = {
+    "ib/fill.frag",      "ib/sort.comp",      "ib/triangles.comp", "ib/neighbours.comp",
+    "ib/neighbours_epsilon.comp",
+    "ib/neighbour_stats.comp", "ib/fields_init.comp", "ib/diffusion.comp",
+    "ib/blur.comp",      "ib/curvature_distance.comp", "ib/compose.frag",
+};
+
+typedef struct ib_state {
+    oit_algorithm_config config;
+    char *shader_dir;
+    oit_gl_output output;
+    oit_stage_timer timer;
+    GLuint programs[IB_PROGRAM_COUNT];
+
+    GLuint head_image, count_image;
+    GLuint node_buffer, core_buffer, links_buffer;
+    GLuint counter_buffer, param_buffer;
+    /* the triangle table (ib/triangles.comp): 2 uvec4 per triangle */
+    GLuint triangle_buffer;
+    uint64_t triangle_capacity;
+    /* read-only buffer-texture views of core, links and the triangle table */
+    GLuint core_texture, links_texture, triangle_texture, core_words_texture;
+    GLuint nodes_texture, components_texture;
+    uint64_t pool_capacity;
+    uint64_t gl_fragment_limit;
+    uint64_t gl_texel_limit; /* GL_MAX_TEXTURE_BUFFER_SIZE */
+    oit_stats last_stats;
+} ib_state;
+
+static ib_state *ib_from(oit_algorithm *alg) { return (ib_state *)alg; }
+
+/* ------------------------------------------------------------- the pool */
+
+static uint64_t ib_budget_fragments(const ib_state *s)
+{
+    return s->config.max_memory_bytes / IB_BYTES_PER_FRAGMENT;
+}
+
+static uint64_t ib_fragment_limit(const ib_state *s)
+{
+    uint64_t limit = ib_budget_fragments(s);
+    return limit < s->gl_fragment_limit ? limit : s->gl_fragment_limit;
+}
+
+static oit_status ib_allocate_pool(ib_state *s, uint64_t capacity, oit_error *err)
+{
+    if (capacity == 0)
+        capacity = 1;
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    const struct {
+        GLuint buffer;
+        uint64_t bytes;
+    } pools[] = {{s->node_buffer, OIT_IB_NODE_BYTES},
+                 {s->core_buffer, OIT_IB_RUN_CORE_BYTES},
+                 {s->links_buffer, OIT_IB_RUN_LINKS_BYTES}};
+    for (size_t i = 0; i < sizeof pools / sizeof pools[0]; ++i) {
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, pools[i].buffer);
+        glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(capacity * pools[i].bytes), NULL,
+                     GL_DYNAMIC_COPY);
+    }
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_BUFFER, s->core_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, s->core_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, s->links_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32UI, s->links_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, s->core_words_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32UI, s->core_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, s->nodes_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, s->node_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    GLenum error = glGetError();
+    if (error != GL_NO_ERROR) {
+        s->pool_capacity = 0;
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ib: could not allocate buffers for %llu fragments (%.1f MB): GL error "
+                        "0x%04x",
+                        (unsigned long long)capacity,
+                        (double)(capacity * IB_BYTES_PER_FRAGMENT) / IB_MEGABYTE, (unsigned)error);
+    }
+    s->pool_capacity = capacity;
+    return OIT_OK;
+}
+
+static oit_status ib_grow_pool(ib_state *s, uint64_t needed, oit_error *err)
+{
+    if (needed > ib_budget_fragments(s))
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ib: the frame needs %llu fragments (%.1f MB), over the --max-memory "
+                        "budget of %.1f MB",
+                        (unsigned long long)needed,
+                        (double)(needed * IB_BYTES_PER_FRAGMENT) / IB_MEGABYTE,
+                        (double)s->config.max_memory_bytes / IB_MEGABYTE);
+    if (needed > s->gl_fragment_limit)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ib: the frame needs %llu fragments, more than this GL can address in "
+                        "one shader storage buffer (%llu)",
+                        (unsigned long long)needed, (unsigned long long)s->gl_fragment_limit);
+    uint64_t capacity = needed + needed / 4;
+    uint64_t limit = ib_fragment_limit(s);
+    if (capacity > limit)
+        capacity = limit;
+    return ib_allocate_pool(s, capacity, err);
+}
+
+/* --------------------------------------------------------------- create */
+
+static void ib_destroy(oit_algorithm *alg)
+{
+    ib_state *s = ib_from(alg);
+    if (!s)
+        return;
+    for (int p = 0; p < IB_PROGRAM_COUNT; ++p)
+        glDeleteProgram(s->programs[p]);
+    GLuint textures[] = {s->head_image, s->count_image, s->core_texture, s->links_texture,
+                         s->triangle_texture, s->core_words_texture, s->nodes_texture,
+                         s->components_texture};
+    glDeleteTextures(8, textures);
+    GLuint buffers[] = {s->node_buffer, s->core_buffer, s->links_buffer, s->counter_buffer,
+                        s->param_buffer, s->triangle_buffer};
+    glDeleteBuffers(6, buffers);
+    oit_gl_output_release(&s->output);
+    oit_timer_destroy(&s->timer);
+    free(s->shader_dir);
+    free(s);
+}
+
+static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **out,
+                            oit_error *err)
+{
+    *out = NULL;
+    if (!GLEW_VERSION_4_4 && !GLEW_ARB_clear_texture)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ib: needs OpenGL 4.4 or GL_ARB_clear_texture to clear the list heads");
+    ib_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return oit_fail(err, OIT_E_RUNTIME, "ib: out of memory");
+    s->config = *config;
+    const char *dir = config->shader_dir ? config->shader_dir : ".";
+    s->shader_dir = malloc(strlen(dir) + 1);
+    if (!s->shader_dir) {
+        free(s);
+        return oit_fail(err, OIT_E_RUNTIME, "ib: out of memory");
+    }
+    strcpy(s->shader_dir, dir);
+    s->config.shader_dir = s->shader_dir;
+    oit_stats_reset(&s->last_stats);
+    oit_timer_create(&s->timer);
+
+    oit_status status = OIT_OK;
+    for (int p = 0; p < IB_PROGRAM_COUNT && status == OIT_OK; ++p) {
+        if (p == IB_FILL)
+            status = oit_gl_program(s->shader_dir, "common/geometry.vert", ib_shaders[p],
+                                    &s->programs[p], err);
+        else if (p == IB_COMPOSE)
+            status = oit_gl_program(s->shader_dir, "ib/compose.vert", ib_shaders[p],
+                                    &s->programs[p], err);
+        else
+            status = oit_gl_compute_program(s->shader_dir, ib_shaders[p], &s->programs[p], err);
+    }
+    if (status != OIT_OK) {
+        ib_destroy((oit_algorithm *)s);
+        return status;
+    }
+
+    GLint64 max_block_bytes = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
+    s->gl_fragment_limit = (uint64_t)max_block_bytes / OIT_IB_NODE_BYTES;
+    if (s->gl_fragment_limit >= OIT_LIST_END)
+        s->gl_fragment_limit = OIT_LIST_END - 1u;
+    /* the run core is also read as buffer textures, up to 4 texels per fragment */
+    GLint max_texels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    s->gl_texel_limit = max_texels > 0 ? (uint64_t)max_texels : 0;
+    if (s->gl_fragment_limit > s->gl_texel_limit / 4u)
+        s->gl_fragment_limit = s->gl_texel_limit / 4u;
+
+    GLuint buffers[6];
+    glGenBuffers(6, buffers);
+    s->node_buffer = buffers[0];
+    s->core_buffer = buffers[1];
+    s->links_buffer = buffers[2];
+    s->counter_buffer = buffers[3];
+    s->param_buffer = buffers[4];
+    s->triangle_buffer = buffers[5];
+    GLuint buffer_textures[6];
+    glGenTextures(6, buffer_textures);
+    s->core_texture = buffer_textures[0];
+    s->links_texture = buffer_textures[1];
+    s->triangle_texture = buffer_textures[2];
+    s->core_words_texture = buffer_textures[3];
+    s->nodes_texture = buffer_textures[4];
+    s->components_texture = buffer_textures[5];
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, OIT_IB_COUNTER_COUNT * sizeof(GLuint), NULL,
+                 GL_DYNAMIC_READ);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->param_buffer);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(ib_params), NULL, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+
+    status = oit_gl_check("ib create", err);
+    if (status != OIT_OK) {
+        ib_destroy((oit_algorithm *)s);
+        return status;
+    }
+    *out = (oit_algorithm *)s;
+    return OIT_OK;
+}
+
+static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error *err)
+{
+    ib_state *s = ib_from(alg);
+    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    if (status != OIT_OK)
+        return status;
+    GLuint textures[] = {s->head_image, s->count_image};
+    glDeleteTextures(2, textures);
+    s->head_image = oit_gl_texture_2d(GL_R32UI, width, height);
+    s->count_image = oit_gl_texture_2d(GL_R32UI, width, height);
+
+    uint64_t initial = s->config.initial_fragment_capacity
+                           ? s->config.initial_fragment_capacity
+                           : IB_DEFAULT_FRAGMENTS_PER_PIXEL * (uint64_t)width * (uint64_t)height;
+    uint64_t limit = ib_fragment_limit(s);
+    if (initial > limit)
+        initial = limit;
+    if (s->pool_capacity < initial || s->pool_capacity == 0) {
+        status = ib_allocate_pool(s, initial, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    return oit_gl_check("ib resize", err);
+}
+
+/* ------------------------------------------------------------ parameters */
+
+/* Inverse of a column-major 4x4 matrix by Gauss-Jordan elimination with
+ * partial pivoting; false if singular. */
+static bool ib_invert(const float m[16], float out[16])
+{
+    double a[4][8];
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) {
+            a[r][c] = m[c * 4 + r];
+            a[r][c + 4] = r == c ? 1.0 : 0.0;
+        }
+    for (int col = 0; col < 4; ++col) {
+        int pivot = col;
+        for (int r = col + 1; r < 4; ++r)
+            if (fabs(a[r][col]) > fabs(a[pivot][col]))
+                pivot = r;
+        if (fabs(a[pivot][col]) < 1e-30)
+            return false;
+        if (pivot != col)
+            for (int c = 0; c < 8; ++c) {
+                double t = a[col][c];
+                a[col][c] = a[pivot][c];
+                a[pivot][c] = t;
+            }
+        double scale = 1.0 / a[col][col];
+        for (int c = 0; c < 8; ++c)
+            a[col][c] *= scale;
+        for (int r = 0; r < 4; ++r)
+            if (r != col) {
+                double factor = a[r][col];
+                for (int c = 0; c < 8; ++c)
+                    a[r][c] -= factor * a[col][c];
+            }
+    }
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c)
+            out[c * 4 + r] = (float)a[r][c + 4];
+    return true;
+}
+
+/* The settings of one frame with every default filled in. */
+typedef struct ib_plan {
+    ib_params params;
+    bool curvature_distance; /* run the curvature_distance pass */
+    bool fields;             /* run fields (and diffusion, blur) */
+    int diffusion_iterations;
+    int blur_iterations;
+} ib_plan;
+
+static oit_status ib_make_plan(const oit_frame_settings *frame, const oit_scene *scene,
+                               ib_plan *plan, oit_error *err)
+{
+    const oit_modulation *m = &frame->modulation;
+    memset(plan, 0, sizeof *plan);
+    ib_params *p = &plan->params;
+    if (!ib_invert(frame->projection, p->inverse_projection))
+        return oit_fail(err, OIT_E_INPUT, "ib: the projection matrix is singular");
+    if ((int)m->mode < OIT_MODULATE_NONE || (int)m->mode > OIT_MODULATE_EDGES)
+        return oit_fail(err, OIT_E_INPUT, "ib: unknown modulation %d", (int)m->mode);
+    if ((int)m->view < OIT_VIEW_COLOUR || (int)m->view > OIT_VIEW_FIELDS)
+        return oit_fail(err, OIT_E_INPUT, "ib: unknown view %d", (int)m->view);
+    if ((int)m->neighbours < OIT_NEIGHBOURS_DEFAULT || (int)m->neighbours > OIT_NEIGHBOURS_EPSILON)
+        return oit_fail(err, OIT_E_INPUT, "ib: unknown neighbour search %d", (int)m->neighbours);
+    if ((int)m->distance < OIT_DISTANCE_ADJACENT || (int)m->distance > OIT_DISTANCE_FAR_END)
+        return oit_fail(err, OIT_E_INPUT, "ib: unknown distance mode %d", (int)m->distance);
+    if ((m->fields & ~(OIT_FIELD_ALPHA | OIT_FIELD_BETA | OIT_FIELD_GAMMA)) != 0)
+        return oit_fail(err, OIT_E_INPUT, "ib: unknown transparency fields 0x%x", (unsigned)m->fields);
+    p->mode = m->mode;
+    p->view = m->view;
+    p->view_parameter = m->view_parameter < 0 ? 0 : m->view_parameter;
+    p->search = m->neighbours == OIT_NEIGHBOURS_DEFAULT ? OIT_NEIGHBOURS_WELDED : (int)m->neighbours;
+    p->curvature_neighbours = m->curvature_neighbours == 8 ? 8 : 4;
+    p->curvature_effect = m->curvature_effect > 0.0f ? m->curvature_effect : 8.0f;
+    p->focus_region = m->focus_region > 0.0f ? m->focus_region : 0.0f;
+    p->distance_mode = m->distance;
+    p->distance_skip = m->distance_skip > 0 ? m->distance_skip : 2;
+    p->fields = m->fields ? m->fields : (OIT_FIELD_ALPHA | OIT_FIELD_BETA | OIT_FIELD_GAMMA);
+    plan->diffusion_iterations = m->diffusion_iterations == 0 ? 15
+                                 : m->diffusion_iterations < 0 ? 0
+                                                               : m->diffusion_iterations;
+    plan->blur_iterations = m->blur_iterations == 0 ? 1 : m->blur_iterations < 0 ? 0 : m->blur_iterations;
+    p->lambda_alpha = m->lambda_alpha > 0.0f ? m->lambda_alpha : 1.0f;
+    p->lambda_beta = m->lambda_beta > 0.0f ? m->lambda_beta
+                     : plan->diffusion_iterations > 0 ? 0.95f / (float)plan->diffusion_iterations
+                                                      : 0.95f;
+    p->lambda_gamma = m->lambda_gamma > 0.0f ? m->lambda_gamma : 0.45f;
+    for (int c = 0; c < 3; ++c)
+        p->halo[c] = m->has_halo_colour ? m->halo_colour[c] : 1.0f;
+    p->last_layer_opaque = m->last_layer_opaque ? 1 : 0;
+    p->epsilon_max = m->epsilon_max > 0.0f ? m->epsilon_max : 0.05f;
+    /* the model radius in eye space: scaled by the modelview's largest axis scale */
+    float scale = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        const float *col = frame->modelview + c * 4;
+        float length = sqrtf(col[0] * col[0] + col[1] * col[1] + col[2] * col[2]);
+        if (length > scale)
+            scale = length;
+    }
+    float radius = scene->model ? scene->model->radius : 1.0f;
+    p->radius_eye = radius * scale > 0.0f ? radius * scale : 1.0f;
+
+    plan->curvature_distance = m->mode == OIT_MODULATE_CURVATURE || m->mode == OIT_MODULATE_DISTANCE ||
+                               m->mode == OIT_MODULATE_DIST_CURV || m->view == OIT_VIEW_CURVATURE ||
+                               m->view == OIT_VIEW_DISTANCE;
+    plan->fields = m->mode == OIT_MODULATE_FIELDS || m->view == OIT_VIEW_FIELDS;
+    p->needs_fields = plan->fields;
+    return OIT_OK;
+}
+
+/* --------------------------------------------------------------- render */
+
+static void ib_bind(const ib_state *s, const oit_scene *scene)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_NODES, s->node_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_RUN_CORE, s->core_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_RUN_LINKS, s->links_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_COUNTERS, s->counter_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_PARAMS, s->param_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_INDICES, scene->index_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_POSITIONS, scene->vertex_buffers[0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_VERTEX_COMPONENT,
+                     scene->vertex_buffers[2]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_WELDED, scene->vertex_buffers[3]);
+    glBindImageTexture(OIT_IMAGE_LIST_HEAD, s->head_image, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_R32UI);
+    glBindImageTexture(OIT_IMAGE_LIST_COUNT, s->count_image, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_R32UI);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_TRIANGLES, s->triangle_buffer);
+    const struct {
+        GLenum unit;
+        GLuint texture;
+    } views[] = {{OIT_TEXUNIT_IB_RUN_CORE, s->core_texture},
+                 {OIT_TEXUNIT_IB_RUN_LINKS, s->links_texture},
+                 {OIT_TEXUNIT_IB_TRIANGLES, s->triangle_texture},
+                 {OIT_TEXUNIT_IB_RUN_WORDS, s->core_words_texture},
+                 {OIT_TEXUNIT_IB_NODES, s->nodes_texture},
+                 {OIT_TEXUNIT_IB_COMPONENTS, s->components_texture}};
+    glBindTexture(GL_TEXTURE_BUFFER, s->components_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, scene->component_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    for (size_t i = 0; i < sizeof views / sizeof views[0]; ++i) {
+        glActiveTexture(GL_TEXTURE0 + views[i].unit);
+        glBindTexture(GL_TEXTURE_BUFFER, views[i].texture);
+    }
+    glActiveTexture(GL_TEXTURE0);
+}
+
+/* The triangle table holds 2 rows per triangle; grown to the scene's size. */
+static oit_status ib_reserve_triangles(ib_state *s, uint64_t triangles, oit_error *err)
+{
+    if (triangles == 0)
+        triangles = 1;
+    if (triangles <= s->triangle_capacity)
+        return OIT_OK;
+    if (2u * triangles > s->gl_texel_limit)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ib: the scene's %llu triangles do not fit in one buffer texture (%llu "
+                        "texels)",
+                        (unsigned long long)triangles, (unsigned long long)s->gl_texel_limit);
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->triangle_buffer);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(triangles * OIT_IB_TRIANGLE_BYTES), NULL,
+                 GL_DYNAMIC_COPY);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_BUFFER, s->triangle_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, s->triangle_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    GLenum error = glGetError();
+    if (error != GL_NO_ERROR) {
+        s->triangle_capacity = 0;
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ib: could not allocate the triangle table for %llu triangles: GL error "
+                        "0x%04x",
+                        (unsigned long long)triangles, (unsigned)error);
+    }
+    s->triangle_capacity = triangles;
+    return OIT_OK;
+}
+
+
+static oit_status ib_check(const ib_state *s, const char *stage, oit_error *err)
+{
+    return s->config.debug ? oit_gl_check(stage, err) : OIT_OK;
+}
+
+static void ib_barrier(void)
+{
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+/* A pass of program p with one invocation per item (work groups of 64, in
+ * rows past the work-group count limit); the shader skips those past the end. */
+static void ib_item_pass(ib_state *s, enum ib_program p, const oit_frame_settings *frame,
+                         GLuint items)
+{
+    GLuint groups = (items + 63u) / 64u;
+    GLuint rows = 1;
+    while (groups > 65535u) {
+        groups = (groups + 1u) / 2u;
+        rows *= 2u;
+    }
+    ib_barrier();
+    glUseProgram(s->programs[p]);
+    oit_gl_set_frame_uniforms(frame);
+    if (glGetUniformLocation(s->programs[p], "item_count") == OIT_UNIFORM_IB_PASS)
+        glUniform1i(OIT_UNIFORM_IB_PASS, (GLint)items);
+    if (items > 0)
+        glDispatchCompute(groups, rows, 1);
+}
+
+/* One per-pixel pass of program p (compute, or the full-screen compose), with
+ * the frame uniforms and the pass parameter. */
+static void ib_pass(ib_state *s, enum ib_program p, const oit_frame_settings *frame,
+                    int pass_parameter)
+{
+    ib_barrier();
+    glUseProgram(s->programs[p]);
+    oit_gl_set_frame_uniforms(frame);
+    if (glGetUniformLocation(s->programs[p], p == IB_BLUR         ? "pass_parameter"
+                                             : p == IB_DIFFUSION  ? "source_copy"
+                                                                  : "fields_copy") ==
+        OIT_UNIFORM_IB_PASS)
+        glUniform1i(OIT_UNIFORM_IB_PASS, pass_parameter);
+    if (p == IB_COMPOSE)
+        oit_gl_draw_fullscreen(&s->output);
+    else
+        glDispatchCompute((GLuint)(s->output.width + 7) / 8, (GLuint)(s->output.height + 7) / 8, 1);
+}
+
+static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_frame_settings *frame,
+                              int retry)
+{
+    oit_timer_stage_begin(&s->timer, retry ? "clear_retry" : "clear");
+    const GLuint list_end = OIT_LIST_END;
+    glClearTexImage(s->head_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
+    const GLuint zeros[OIT_IB_COUNTER_COUNT] = {0};
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zeros, zeros);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    ib_barrier();
+
+    oit_timer_stage_begin(&s->timer, retry ? "fill_retry" : "fill");
+    glUseProgram(s->programs[IB_FILL]);
+    oit_gl_set_frame_uniforms(frame);
+    glUniform1ui(OIT_UNIFORM_IB_POOL_CAPACITY, (GLuint)s->pool_capacity);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    oit_gl_draw_scene(scene);
+    oit_timer_stage_end(&s->timer);
+}
+
+static void ib_fill_stats(const ib_state *s, const GLuint *counters, int retries, oit_stats *stats)
+{
+    stats->fragments = counters[OIT_FRAME_COUNTER_FRAGMENTS];
+    stats->max_list = counters[OIT_FRAME_COUNTER_MAX_LIST];
+    stats->overflow_retries = retries;
+    uint64_t pixels = (uint64_t)s->output.width * (uint64_t)s->output.height;
+    stats->memory_bytes = pixels * IB_BYTES_PER_PIXEL + s->pool_capacity * IB_BYTES_PER_FRAGMENT +
+                          s->triangle_capacity * OIT_IB_TRIANGLE_BYTES +
+                          OIT_IB_COUNTER_COUNT * sizeof(GLuint) + sizeof(ib_params);
+    stats->bytes_per_fragment = (double)IB_BYTES_PER_FRAGMENT;
+    stats->bytes_per_pixel = (double)IB_BYTES_PER_PIXEL;
+    GLuint nonempty = counters[OIT_FRAME_COUNTER_NONEMPTY_PIXELS];
+    stats->mean_list = nonempty ? (double)stats->fragments / nonempty : 0.0;
+    stats->psi = nonempty ? (double)counters[OIT_IB_COUNTER_PSI_PIXELS] / nonempty : 0.0;
+    stats->histogram_bins = OIT_HISTOGRAM_BINS;
+    for (int b = 0; b < OIT_HISTOGRAM_BINS; ++b)
+        stats->list_histogram[b] = counters[OIT_IB_COUNTER_HISTOGRAM + b];
+    GLuint fragments = counters[OIT_FRAME_COUNTER_FRAGMENTS];
+    GLuint links = counters[OIT_IB_COUNTER_LINKS];
+    stats->neighbours_four_share =
+        fragments ? (double)counters[OIT_IB_COUNTER_FOUR_NEIGHBOURS] / fragments : 0.0;
+    stats->neighbours_symmetric_share =
+        links ? (double)counters[OIT_IB_COUNTER_SYMMETRIC_LINKS] / links : 0.0;
+    stats->neighbours_same_component_share =
+        links ? (double)counters[OIT_IB_COUNTER_SAME_COMPONENT_LINKS] / links : 0.0;
+}
+
+static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
+                            const oit_frame_settings *frame, oit_error *err)
+{
+    ib_state *s = ib_from(alg);
+    oit_status status;
+    if (!scene->has_gpu)
+        return oit_fail(err, OIT_E_INPUT, "ib: the scene has not been uploaded to the GPU");
+    ib_plan plan;
+    status = ib_make_plan(frame, scene, &plan, err);
+    if (status != OIT_OK)
+        return status;
+    if (frame->width != s->output.width || frame->height != s->output.height || !s->head_image) {
+        status = ib_resize(alg, frame->width, frame->height, err);
+        if (status != OIT_OK)
+            return status;
+    }
+
+    status = ib_reserve_triangles(s, scene->index_count / 3u, err);
+    if (status != OIT_OK)
+        return status;
+
+    oit_stats stats;
+    oit_stats_reset(&stats);
+    oit_timer_frame_begin(&s->timer);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+    glViewport(0, 0, s->output.width, s->output.height);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->param_buffer);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof plan.params, &plan.params);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    ib_bind(s, scene);
+
+    int retries = 0;
+    GLuint needed = 0;
+    for (;;) {
+        ib_clear_and_fill(s, scene, frame, retries);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_FRAME_COUNTER_FRAGMENTS * sizeof(GLuint),
+                           sizeof needed, &needed);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+        status = ib_check(s, "ib fill", err);
+        if (status != OIT_OK)
+            goto failed;
+        if (needed <= s->pool_capacity)
+            break;
+        if (retries + 1 >= IB_MAX_FILLS) {
+            status = oit_fail(err, OIT_E_RUNTIME,
+                              "ib: the frame still needs %u fragments after growing the pool to "
+                              "%llu",
+                              (unsigned)needed, (unsigned long long)s->pool_capacity);
+            goto failed;
+        }
+        status = ib_grow_pool(s, needed, err);
+        if (status != OIT_OK)
+            goto failed;
+        ++retries;
+    }
+
+    oit_timer_stage_begin(&s->timer, "sort");
+    ib_pass(s, IB_SORT, frame, 0);
+    /* the triangle table, the index / welded search, then epsilon for the
+     * fragments the first search queued (at most all of them) */
+    oit_timer_stage_begin(&s->timer, "neighbours");
+    ib_item_pass(s, IB_TRIANGLES, frame, scene->index_count / 3u);
+    ib_pass(s, IB_NEIGHBOURS, frame, 0);
+    if (plan.params.search != OIT_NEIGHBOURS_INDEX)
+        ib_item_pass(s, IB_NEIGHBOURS_EPSILON, frame, needed);
+    oit_timer_stage_begin(&s->timer, "neighbour_stats");
+    ib_pass(s, IB_NEIGHBOUR_STATS, frame, 0);
+    status = ib_check(s, "ib neighbours", err);
+    if (status != OIT_OK)
+        goto failed;
+
+    int fields_copy = 0;
+    if (plan.fields) {
+        oit_timer_stage_begin(&s->timer, "fields");
+        ib_pass(s, IB_FIELDS, frame, 0);
+        if (plan.diffusion_iterations > 0) {
+            oit_timer_stage_begin(&s->timer, "diffusion");
+            for (int k = 0; k < plan.diffusion_iterations; ++k) {
+                ib_pass(s, IB_DIFFUSION, frame, fields_copy);
+                fields_copy = 1 - fields_copy;
+            }
+        }
+        if (plan.blur_iterations > 0 && (plan.params.fields & OIT_FIELD_BETA)) {
+            oit_timer_stage_begin(&s->timer, "blur");
+            for (int k = 0; k < plan.blur_iterations; ++k)
+                for (int axis = 0; axis < 2; ++axis) {
+                    ib_pass(s, IB_BLUR, frame, fields_copy | (axis << 1));
+                    fields_copy = 1 - fields_copy;
+                }
+        }
+        status = ib_check(s, "ib fields", err);
+        if (status != OIT_OK)
+            goto failed;
+    }
+    if (plan.curvature_distance) {
+        oit_timer_stage_begin(&s->timer, "curvature_distance");
+        ib_pass(s, IB_CURVATURE_DISTANCE, frame, 0);
+        status = ib_check(s, "ib curvature_distance", err);
+        if (status != OIT_OK)
+            goto failed;
+    }
+
+    oit_timer_stage_begin(&s->timer, "compose");
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    ib_pass(s, IB_COMPOSE, frame, fields_copy);
+    oit_timer_stage_end(&s->timer);
+    status = ib_check(s, "ib compose", err);
+    if (status != OIT_OK)
+        goto failed;
+
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint counters[OIT_IB_COUNTER_COUNT];
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counters, counters);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    glUseProgram(0);
+    oit_timer_frame_end(&s->timer, &stats);
+    ib_fill_stats(s, counters, retries, &stats);
+    s->last_stats = stats;
+    return oit_gl_check("ib render", err);
+
+failed:
+    oit_timer_stage_end(&s->timer);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glUseProgram(0);
+    return status;
+}
+
+static oit_status ib_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
+{
+    return oit_gl_output_read(&ib_from(alg)->output, out, err);
+}
+
+static void ib_stats(const oit_algorithm *alg, oit_stats *out)
+{
+    *out = ((const ib_state *)alg)->last_stats;
+}
+
+const oit_algorithm_ops oit_algorithm_ib = {
+    .name = "ib",
+    .summary = "Illustration Buffer: sorted runs with surface neighbours; opacity modulation",
+    .uses_gl = true,
+    .exact = true,
+    .create = ib_create,
+    .resize = ib_resize,
+    .render = ib_render,
+    .read_image = ib_read_image,
+    .stats = ib_stats,
+    .destroy = ib_destroy,
+};

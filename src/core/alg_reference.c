@@ -1,0 +1,956 @@
+/*
+ * alg_reference.c: the exact CPU renderer, the test oracle for every GPU algorithm.
+ *
+ * It rasterizes the model the way GL does (clip in homogeneous space, perspective
+ * divide, viewport transform, sample at pixel centres with a fill rule, no culling),
+ * keeps every fragment, sorts each pixel's fragments by (window depth as float,
+ * triangle index) and composites them front to back in double precision.
+ *
+ * Rasterization details chosen to match Mesa's llvmpipe:
+ * - window coordinates are snapped to 1/256 pixel (llvmpipe's 8 subpixel bits) and
+ *   the edge functions are evaluated exactly in 64-bit integers, so two triangles
+ *   sharing an edge cover each pixel centre on it exactly once;
+ * - ties (a pixel centre exactly on an edge) follow Gallium's rule for GL
+ *   framebuffer objects: in GL window coordinates (y up) a centre on a left edge or
+ *   on a horizontal edge with the triangle above it is inside (see edge_is_inclusive);
+ * - x/y are clipped only against a wide guard band, so ordinary triangles are never
+ *   split and keep their exact edges; near/far (-w <= z <= w) are clipped as in GL.
+ * - snapping decides coverage only: window depth (linear in screen space, rounded
+ *   to float) and the perspective-correct eye position and eye normal are
+ *   interpolated from the unsnapped window positions, as llvmpipe's attribute
+ *   planes are. Coverage then matches llvmpipe pixel for pixel, ties included;
+ *   depth agrees to about 1e-6 (llvmpipe evaluates its planes in float).
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "oit.h"
+
+/* llvmpipe's subpixel precision: 8 bits. */
+#define SUBPIXEL_BITS 8
+#define SUBPIXEL_ONE (1 << SUBPIXEL_BITS)
+#define SUBPIXEL_HALF (SUBPIXEL_ONE / 2)
+
+/* Largest output size accepted (GL_MAX_RENDERBUFFER_SIZE of llvmpipe). */
+#define REFERENCE_MAX_SIZE 16384
+
+/* Window coordinates stay within +-2^20 pixels after guard-band clipping, so
+ * snapped coordinates need 29 bits and edge functions fit easily in int64. */
+#define GUARD_BAND_PIXELS 1048576.0
+
+/* The smallest clip w kept: guards the perspective divide for odd projections. */
+#define CLIP_W_EPSILON 1e-12
+
+/* Clipping adds at most one vertex per plane: 3 + 7. */
+#define CLIP_PLANE_COUNT 7
+#define CLIP_MAX_VERTICES (3 + CLIP_PLANE_COUNT)
+
+/* Lists this short are sorted by insertion; longer ones with qsort. */
+#define INSERTION_SORT_LIMIT 24
+
+typedef struct reference_fragment {
+    float depth;       /* window depth, as gl_FragCoord.z */
+    uint32_t triangle; /* gl_PrimitiveID: ties in depth sort by it */
+    float rgb[3];      /* shaded colour */
+    float alpha;
+    float local;       /* the local modulation's factor (component opacity x focus) */
+} reference_fragment;
+
+/* A vertex after the vertex stage, in double. */
+typedef struct clip_vertex {
+    double clip[4];   /* projection * modelview * position */
+    double eye[3];    /* (modelview * position).xyz */
+    double normal[3]; /* normal matrix * normal, not normalized */
+} clip_vertex;
+
+struct oit_algorithm {
+    oit_algorithm_config config;
+    int width, height;
+    uint8_t *rgba; /* output, top row first */
+
+    /* Per-pixel fragment store in GL row order (row 0 = bottom): a counting sort. */
+    uint32_t *pixel_counts;  /* width * height: fragments per pixel, then fill cursor */
+    uint64_t *pixel_offsets; /* width * height + 1: prefix sum of the counts */
+    reference_fragment *fragments;
+    size_t fragment_capacity;
+
+    clip_vertex *vertices;
+    size_t vertex_capacity;
+
+    oit_stats stats;
+};
+
+/* Everything the rasterizer needs for one frame. */
+typedef struct raster_context {
+    int width, height;
+    bool fill; /* false: count fragments per pixel; true: store shaded fragments */
+    uint32_t *pixel_counts;
+    const uint64_t *pixel_offsets;
+    reference_fragment *fragments;
+    const oit_frame_settings *frame;
+    double guard_band_x, guard_band_y; /* |x| <= g * w, |y| <= g * w in clip space */
+    /* the current triangle's flat inputs */
+    uint32_t triangle;
+    uint32_t component;
+    const float *colour;
+    float material_alpha; /* clamp(frame alpha * material opacity, 0, 1) */
+    float alpha;          /* times the component's local opacity */
+    /* local modulation: a focus shape makes alpha per fragment, and fragments
+     * whose alpha is 0 are not stored (so the counting pass evaluates it too) */
+    bool per_fragment_alpha;
+    double inverse_modelview[16];
+} raster_context;
+
+/* ------------------------------------------------------------------ timing */
+
+/* Stage times are this thread's CPU time; the frame's cpu_ms is wall time. */
+static double thread_cpu_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static double wall_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static void add_stage(oit_stats *stats, const char *name, double ms)
+{
+    if (stats->stage_count >= OIT_MAX_STAGES)
+        return;
+    oit_stage_time *stage = &stats->stages[stats->stage_count++];
+    strncpy(stage->name, name, sizeof stage->name - 1);
+    stage->name[sizeof stage->name - 1] = '\0';
+    stage->gpu_ms = ms;
+}
+
+/* ----------------------------------------------------------- rasterizing */
+
+/* Floor division for possibly negative fixed-point values. */
+static int64_t floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    if ((a % b != 0) && ((a < 0) != (b < 0)))
+        --q;
+    return q;
+}
+
+/*
+ * The tie rule for a pixel centre exactly on an edge. The triangle is oriented
+ * counter-clockwise in GL window coordinates (y up), so its interior lies left of
+ * each edge a->b. Gallium rasterizes GL framebuffer objects with its "top-left"
+ * rule in memory rows, where row 0 is GL's y = 0; in GL's y-up coordinates that
+ * includes left edges (heading down, dy < 0) and horizontal edges with the
+ * interior above them (heading right, dx > 0). Opposite edges of two triangles
+ * sharing an edge get opposite answers, so shared edges are covered once.
+ * (Checked against llvmpipe with triangles on a half-pixel grid: identical; the
+ * top-left rule in y-up coordinates differs on about 2% of such triangles.)
+ */
+static bool edge_is_inclusive(int64_t dx, int64_t dy)
+{
+    return dy < 0 || (dy == 0 && dx > 0);
+}
+
+typedef struct window_vertex {
+    double window_x, window_y; /* window position before snapping */
+    int64_t x, y;              /* snapped window position, 1/256 pixel: coverage */
+    double z;                  /* window depth */
+    double inv_w;              /* 1 / clip w, for perspective-correct interpolation */
+    const clip_vertex *attributes;
+} window_vertex;
+
+static void to_window(const raster_context *ctx, const clip_vertex *v, window_vertex *out)
+{
+    double inv_w = 1.0 / v->clip[3];
+    double ndc_x = v->clip[0] * inv_w, ndc_y = v->clip[1] * inv_w, ndc_z = v->clip[2] * inv_w;
+    out->window_x = (ndc_x * 0.5 + 0.5) * ctx->width;
+    out->window_y = (ndc_y * 0.5 + 0.5) * ctx->height;
+    out->x = llround(out->window_x * SUBPIXEL_ONE);
+    out->y = llround(out->window_y * SUBPIXEL_ONE);
+    out->z = ndc_z * 0.5 + 0.5;
+    out->inv_w = inv_w;
+    out->attributes = v;
+}
+
+/*
+ * Snapping decides coverage only. Inputs are interpolated from the unsnapped
+ * window positions, as llvmpipe's attribute planes are: a triangle's
+ * screen-space barycentrics are b_i = (a_i x + b_i y + c_i) / area.
+ */
+typedef struct interpolation_plane {
+    double step_x[3], step_y[3], offset[3]; /* per vertex, already divided by the area */
+    bool use_snapped; /* unsnapped area is zero: fall back to the exact edge values */
+    double inv_snapped_area;
+} interpolation_plane;
+
+static void interpolation_setup(const window_vertex v[3], int64_t snapped_area2,
+                                interpolation_plane *plane)
+{
+    double area = (v[1].window_x - v[0].window_x) * (v[2].window_y - v[0].window_y) -
+                  (v[1].window_y - v[0].window_y) * (v[2].window_x - v[0].window_x);
+    plane->use_snapped = !(area != 0.0 && isfinite(area));
+    plane->inv_snapped_area = 1.0 / (double)snapped_area2;
+    if (plane->use_snapped)
+        return;
+    double inv_area = 1.0 / area;
+    for (int i = 0; i < 3; ++i) {
+        /* the edge opposite vertex i, from vertex i+1 to vertex i+2 */
+        const window_vertex *a = &v[(i + 1) % 3], *b = &v[(i + 2) % 3];
+        double dx = b->window_x - a->window_x, dy = b->window_y - a->window_y;
+        plane->step_x[i] = -dy * inv_area;
+        plane->step_y[i] = dx * inv_area;
+        plane->offset[i] = (dy * a->window_x - dx * a->window_y) * inv_area;
+    }
+}
+
+/* Interpolates depth, eye position and eye normal at pixel (x, y); returns the
+ * fragment's opacity after local modulation. */
+static float fragment_inputs(const raster_context *ctx, int64_t x, int64_t y,
+                             const window_vertex v[3], const interpolation_plane *plane,
+                             const int64_t edge[3], double *depth_out, float eye[3],
+                             float normal[3])
+{
+    double b[3];
+    if (plane->use_snapped) {
+        for (int i = 0; i < 3; ++i)
+            b[i] = (double)edge[i] * plane->inv_snapped_area;
+    } else {
+        double centre_x = (double)x + 0.5, centre_y = (double)y + 0.5;
+        for (int i = 0; i < 3; ++i)
+            b[i] = plane->step_x[i] * centre_x + plane->step_y[i] * centre_y + plane->offset[i];
+    }
+    /* screen-space linear depth, as GL */
+    double depth = b[0] * v[0].z + b[1] * v[1].z + b[2] * v[2].z;
+    depth = depth < 0.0 ? 0.0 : (depth > 1.0 ? 1.0 : depth);
+
+    /* perspective-correct weights */
+    double p0 = b[0] * v[0].inv_w, p1 = b[1] * v[1].inv_w, p2 = b[2] * v[2].inv_w;
+    double sum = p0 + p1 + p2;
+    if (sum != 0.0) {
+        p0 /= sum;
+        p1 /= sum;
+        p2 /= sum;
+    }
+    const clip_vertex *a0 = v[0].attributes, *a1 = v[1].attributes, *a2 = v[2].attributes;
+    for (int i = 0; i < 3; ++i) {
+        eye[i] = (float)(p0 * a0->eye[i] + p1 * a1->eye[i] + p2 * a2->eye[i]);
+        normal[i] = (float)(p0 * a0->normal[i] + p1 * a1->normal[i] + p2 * a2->normal[i]);
+    }
+    *depth_out = depth;
+    if (!ctx->per_fragment_alpha)
+        return ctx->alpha;
+    /* the model position from the (float) eye position, as the shaders do */
+    const double *m = ctx->inverse_modelview;
+    double model[3];
+    for (int row = 0; row < 3; ++row)
+        model[row] = m[row] * eye[0] + m[4 + row] * eye[1] + m[8 + row] * eye[2] + m[12 + row];
+    return (float)oit_local_alpha(ctx->frame, ctx->material_alpha, ctx->component, model);
+}
+
+/* Counting pass: would this fragment be stored (alpha > 0)? */
+static bool fragment_kept(const raster_context *ctx, int64_t x, int64_t y,
+                          const window_vertex v[3], const interpolation_plane *plane,
+                          const int64_t edge[3])
+{
+    double depth;
+    float eye[3], normal[3];
+    return fragment_inputs(ctx, x, y, v, plane, edge, &depth, eye, normal) > 0.0f;
+}
+
+static void store_fragment(const raster_context *ctx, size_t pixel, int64_t x, int64_t y,
+                           const window_vertex v[3], const interpolation_plane *plane,
+                           const int64_t edge[3])
+{
+    double depth;
+    float eye[3], normal[3];
+    float alpha = fragment_inputs(ctx, x, y, v, plane, edge, &depth, eye, normal);
+    if (!(alpha > 0.0f))
+        return; /* alpha 0 is never stored (the counting pass skipped it too) */
+    reference_fragment *f = &ctx->fragments[ctx->pixel_offsets[pixel] + ctx->pixel_counts[pixel]++];
+    f->depth = (float)depth;
+    f->triangle = ctx->triangle;
+    oit_shade(ctx->frame, ctx->colour, normal, eye, f->rgb);
+    oit_local_contrast(ctx->frame, f->rgb);
+    f->alpha = alpha;
+    f->local = ctx->material_alpha > 0.0f ? alpha / ctx->material_alpha : 0.0f;
+}
+
+/* Rasterize one triangle whose vertices are inside the clip volume (guard band). */
+static void rasterize_clipped(raster_context *ctx, const clip_vertex *c0, const clip_vertex *c1,
+                              const clip_vertex *c2)
+{
+    window_vertex v[3];
+    to_window(ctx, c0, &v[0]);
+    to_window(ctx, c1, &v[1]);
+    to_window(ctx, c2, &v[2]);
+
+    int64_t area2 = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
+    if (area2 == 0)
+        return; /* zero area after snapping: GL draws nothing */
+    if (area2 < 0) {
+        /* make it counter-clockwise; faces are not culled */
+        window_vertex t = v[1];
+        v[1] = v[2];
+        v[2] = t;
+        area2 = -area2;
+    }
+
+    int64_t min_x = v[0].x, max_x = v[0].x, min_y = v[0].y, max_y = v[0].y;
+    for (int i = 1; i < 3; ++i) {
+        min_x = v[i].x < min_x ? v[i].x : min_x;
+        max_x = v[i].x > max_x ? v[i].x : max_x;
+        min_y = v[i].y < min_y ? v[i].y : min_y;
+        max_y = v[i].y > max_y ? v[i].y : max_y;
+    }
+    /* pixels whose centres (256 * p + 128) lie in the bounding box */
+    int64_t x0 = -floor_div(-(min_x - SUBPIXEL_HALF), SUBPIXEL_ONE);
+    int64_t x1 = floor_div(max_x - SUBPIXEL_HALF, SUBPIXEL_ONE);
+    int64_t y0 = -floor_div(-(min_y - SUBPIXEL_HALF), SUBPIXEL_ONE);
+    int64_t y1 = floor_div(max_y - SUBPIXEL_HALF, SUBPIXEL_ONE);
+    if (x0 < 0)
+        x0 = 0;
+    if (y0 < 0)
+        y0 = 0;
+    if (x1 > ctx->width - 1)
+        x1 = ctx->width - 1;
+    if (y1 > ctx->height - 1)
+        y1 = ctx->height - 1;
+    if (x0 > x1 || y0 > y1)
+        return;
+
+    /* Edge i runs from vertex i+1 to vertex i+2 and is positive inside. The bias
+     * makes "> 0, or == 0 on an inclusive edge" a single ">= 0" test. */
+    int64_t step_x[3], step_y[3], row_start[3], bias[3];
+    const int64_t start_x = x0 * SUBPIXEL_ONE + SUBPIXEL_HALF;
+    const int64_t start_y = y0 * SUBPIXEL_ONE + SUBPIXEL_HALF;
+    for (int i = 0; i < 3; ++i) {
+        const window_vertex *a = &v[(i + 1) % 3], *b = &v[(i + 2) % 3];
+        int64_t dx = b->x - a->x, dy = b->y - a->y;
+        bias[i] = edge_is_inclusive(dx, dy) ? 0 : -1;
+        row_start[i] = dx * (start_y - a->y) - dy * (start_x - a->x) + bias[i];
+        step_x[i] = -dy * SUBPIXEL_ONE;
+        step_y[i] = dx * SUBPIXEL_ONE;
+    }
+
+    interpolation_plane plane = {.use_snapped = true};
+    if (ctx->fill || ctx->per_fragment_alpha)
+        interpolation_setup(v, area2, &plane);
+
+    const int width = ctx->width;
+    for (int64_t y = y0; y <= y1; ++y) {
+        int64_t e0 = row_start[0], e1 = row_start[1], e2 = row_start[2];
+        size_t pixel = (size_t)y * (size_t)width + (size_t)x0;
+        for (int64_t x = x0; x <= x1; ++x, ++pixel) {
+            if ((e0 | e1 | e2) >= 0) {
+                const int64_t edge[3] = {e0 - bias[0], e1 - bias[1], e2 - bias[2]};
+                if (ctx->fill)
+                    store_fragment(ctx, pixel, x, y, v, &plane, edge);
+                else if (!ctx->per_fragment_alpha || fragment_kept(ctx, x, y, v, &plane, edge))
+                    ctx->pixel_counts[pixel]++;
+            }
+            e0 += step_x[0];
+            e1 += step_x[1];
+            e2 += step_x[2];
+        }
+        row_start[0] += step_y[0];
+        row_start[1] += step_y[1];
+        row_start[2] += step_y[2];
+    }
+}
+
+/* Signed distance to clip plane `plane`; inside when >= 0. */
+static double plane_distance(const raster_context *ctx, const clip_vertex *v, int plane)
+{
+    const double *c = v->clip;
+    switch (plane) {
+    case 0: return c[3] - CLIP_W_EPSILON;       /* w > epsilon */
+    case 1: return c[3] + c[2];                 /* near: z >= -w */
+    case 2: return c[3] - c[2];                 /* far: z <= w */
+    case 3: return ctx->guard_band_x * c[3] + c[0];
+    case 4: return ctx->guard_band_x * c[3] - c[0];
+    case 5: return ctx->guard_band_y * c[3] + c[1];
+    default: return ctx->guard_band_y * c[3] - c[1];
+    }
+}
+
+/* The intersection of edge (inside, outside) with a plane. Always computed from
+ * the inside vertex, so triangles sharing the edge get the identical vertex. */
+static void clip_intersect(const clip_vertex *inside, double d_inside, const clip_vertex *outside,
+                           double d_outside, clip_vertex *out)
+{
+    double t = d_inside / (d_inside - d_outside);
+    for (int i = 0; i < 4; ++i)
+        out->clip[i] = inside->clip[i] + t * (outside->clip[i] - inside->clip[i]);
+    for (int i = 0; i < 3; ++i) {
+        out->eye[i] = inside->eye[i] + t * (outside->eye[i] - inside->eye[i]);
+        out->normal[i] = inside->normal[i] + t * (outside->normal[i] - inside->normal[i]);
+    }
+}
+
+static void rasterize_triangle(raster_context *ctx, const clip_vertex *a, const clip_vertex *b,
+                               const clip_vertex *c)
+{
+    const clip_vertex *corner[3] = {a, b, c};
+    unsigned outside_any = 0, outside_all = (1u << CLIP_PLANE_COUNT) - 1;
+    for (int i = 0; i < 3; ++i) {
+        unsigned outside = 0;
+        for (int p = 0; p < CLIP_PLANE_COUNT; ++p)
+            if (!(plane_distance(ctx, corner[i], p) >= 0.0))
+                outside |= 1u << p;
+        outside_any |= outside;
+        outside_all &= outside;
+    }
+    if (outside_all)
+        return; /* all three vertices outside one plane */
+    if (!outside_any) {
+        rasterize_clipped(ctx, a, b, c);
+        return;
+    }
+
+    /* Sutherland-Hodgman against the planes the triangle crosses. */
+    clip_vertex buffers[2][CLIP_MAX_VERTICES];
+    clip_vertex *polygon = buffers[0], *next = buffers[1];
+    int count = 3;
+    polygon[0] = *a;
+    polygon[1] = *b;
+    polygon[2] = *c;
+    for (int p = 0; p < CLIP_PLANE_COUNT && count >= 3; ++p) {
+        if (!(outside_any & (1u << p)))
+            continue;
+        int next_count = 0;
+        for (int i = 0; i < count; ++i) {
+            const clip_vertex *cur = &polygon[i], *following = &polygon[(i + 1) % count];
+            double d_cur = plane_distance(ctx, cur, p);
+            double d_following = plane_distance(ctx, following, p);
+            bool cur_in = d_cur >= 0.0, following_in = d_following >= 0.0;
+            if (cur_in)
+                next[next_count++] = *cur;
+            if (cur_in != following_in) {
+                if (cur_in)
+                    clip_intersect(cur, d_cur, following, d_following, &next[next_count++]);
+                else
+                    clip_intersect(following, d_following, cur, d_cur, &next[next_count++]);
+            }
+        }
+        clip_vertex *swap = polygon;
+        polygon = next;
+        next = swap;
+        count = next_count;
+    }
+    for (int i = 1; i + 1 < count; ++i)
+        rasterize_clipped(ctx, &polygon[0], &polygon[i], &polygon[i + 1]);
+}
+
+static void rasterize_model(raster_context *ctx, const oit_model *model, const clip_vertex *vertices)
+{
+    for (uint32_t t = 0; t < model->triangle_count; ++t) {
+        const uint32_t *index = &model->indices[3 * (size_t)t];
+        ctx->triangle = t;
+        /* flat inputs come from the provoking (last) vertex, as in GL */
+        ctx->component = model->vertex_component[index[2]];
+        const oit_component *component = &model->components[ctx->component];
+        float alpha = ctx->frame->alpha * component->opacity;
+        alpha = alpha < 0.0f ? 0.0f : (alpha > 1.0f ? 1.0f : alpha);
+        ctx->material_alpha = alpha;
+        /* the per-component opacity here; the focus factor comes per fragment */
+        const oit_local_modulation *local = &ctx->frame->local;
+        if (local->component_alpha && ctx->component < local->component_count)
+            alpha *= local->component_alpha[ctx->component];
+        ctx->alpha = alpha;
+        ctx->colour = component->colour;
+        if (!(ctx->alpha > 0.0f))
+            continue; /* hidden parts and opacity 0: never stored */
+        rasterize_triangle(ctx, &vertices[index[0]], &vertices[index[1]], &vertices[index[2]]);
+    }
+}
+
+/* ------------------------------------------------------- sort and compose */
+
+static int compare_fragments(const void *pa, const void *pb)
+{
+    const reference_fragment *a = pa, *b = pb;
+    if (a->depth != b->depth)
+        return a->depth < b->depth ? -1 : 1;
+    return (a->triangle > b->triangle) - (a->triangle < b->triangle);
+}
+
+static void sort_fragments(reference_fragment *list, size_t count)
+{
+    if (count > INSERTION_SORT_LIMIT) {
+        qsort(list, count, sizeof *list, compare_fragments);
+        return;
+    }
+    for (size_t i = 1; i < count; ++i) {
+        reference_fragment key = list[i];
+        size_t j = i;
+        while (j > 0 && compare_fragments(&list[j - 1], &key) > 0) {
+            list[j] = list[j - 1];
+            --j;
+        }
+        list[j] = key;
+    }
+}
+
+static uint8_t quantize(double value)
+{
+    value = value < 0.0 ? 0.0 : (value > 1.0 ? 1.0 : value);
+    return (uint8_t)lround(value * 255.0);
+}
+
+/* Linear eye depth of window depth z at the pixel centre (x, y), through the
+ * inverse projection, as the GPU algorithms compute it (ib_eye_depth). */
+static double eye_depth(const double inverse_projection[16], int width, int height, int x, int y,
+                        float z)
+{
+    double ndc[4] = {2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0,
+                     2.0 * (double)z - 1.0, 1.0};
+    double eye_z = 0.0, eye_w = 0.0;
+    for (int col = 0; col < 4; ++col) {
+        eye_z += inverse_projection[col * 4 + 2] * ndc[col];
+        eye_w += inverse_projection[col * 4 + 3] * ndc[col];
+    }
+    return -eye_z / eye_w;
+}
+
+/* The distance modulation (docs/modulation.md; the same definition as ib's
+ * curvature_distance.comp): fragment i's distance along the ray, in linear eye
+ * depth, to fragment i+1 (adjacent), i+k (skip, or the last) or the last (far
+ * end); the last fragment's is 0. Sorts every list and leaves each fragment's
+ * distance in .alpha; returns the frame's largest distance. */
+static double distances(oit_algorithm *alg, const oit_frame_settings *frame,
+                        const double inverse_projection[16])
+{
+    const oit_modulation *m = &frame->modulation;
+    const size_t skip = m->distance_skip > 0 ? (size_t)m->distance_skip : 2;
+    double largest = 0.0;
+    for (int y = 0; y < alg->height; ++y)
+        for (int x = 0; x < alg->width; ++x) {
+            size_t pixel = (size_t)y * (size_t)alg->width + (size_t)x;
+            size_t count = alg->pixel_offsets[pixel + 1] - alg->pixel_offsets[pixel];
+            if (count == 0)
+                continue;
+            reference_fragment *list = alg->fragments + alg->pixel_offsets[pixel];
+            if (count > 1)
+                sort_fragments(list, count);
+            for (size_t i = 0; i < count; ++i) {
+                size_t target = count - 1;
+                if (m->distance == OIT_DISTANCE_ADJACENT)
+                    target = i + 1 < count ? i + 1 : count - 1;
+                else if (m->distance == OIT_DISTANCE_SKIP)
+                    target = i + skip < count ? i + skip : count - 1;
+                double d = 0.0;
+                if (target != i)
+                    d = fabs(eye_depth(inverse_projection, alg->width, alg->height, x, y,
+                                       list[target].depth) -
+                             eye_depth(inverse_projection, alg->width, alg->height, x, y,
+                                       list[i].depth));
+                list[i].alpha = (float)d; /* only depths are read across fragments */
+                largest = d > largest ? d : largest;
+            }
+        }
+    return largest;
+}
+
+static void sort_and_compose(oit_algorithm *alg, const oit_frame_settings *frame,
+                             bool distance_mode, double distance_norm)
+{
+    const int width = alg->width, height = alg->height;
+    const oit_view view = frame->modulation.view;
+    const size_t view_parameter =
+        frame->modulation.view_parameter > 0 ? (size_t)frame->modulation.view_parameter : 0;
+    for (int y = 0; y < height; ++y) {
+        /* GL row y (bottom up) is image row height - 1 - y (top down) */
+        uint8_t *out_row = alg->rgba + (size_t)(height - 1 - y) * (size_t)width * 4;
+        for (int x = 0; x < width; ++x) {
+            size_t pixel = (size_t)y * (size_t)width + (size_t)x;
+            size_t count = alg->pixel_offsets[pixel + 1] - alg->pixel_offsets[pixel];
+            double colour[3] = {0.0, 0.0, 0.0};
+            double transmittance = 1.0;
+            reference_fragment *list = count ? alg->fragments + alg->pixel_offsets[pixel] : NULL;
+            if (count > 1 && !distance_mode) /* distances() sorted them already */
+                sort_fragments(list, count);
+            size_t first = 0, end = count; /* the fragments this view composites */
+            if (view == OIT_VIEW_PEEL_LIMIT) {
+                end = count < view_parameter ? count : view_parameter;
+            } else if (view == OIT_VIEW_LAYER) {
+                first = view_parameter < count ? view_parameter : count;
+                end = first < count ? first + 1 : count;
+            }
+            for (size_t i = first; i < end; ++i) {
+                double a = list[i].alpha;
+                if (distance_mode) {
+                    /* alpha = saturate(distance / region), then the local modulation */
+                    a = list[i].alpha / distance_norm;
+                    a = (a < 0.0 ? 0.0 : (a > 1.0 ? 1.0 : a)) * list[i].local;
+                }
+                for (int k = 0; k < 3; ++k)
+                    colour[k] += transmittance * a * list[i].rgb[k];
+                transmittance *= 1.0 - a;
+            }
+            uint8_t *out = out_row + (size_t)x * 4;
+            for (int k = 0; k < 3; ++k)
+                out[k] = quantize(colour[k] + transmittance * frame->background[k]);
+            out[3] = 255;
+        }
+    }
+}
+
+/* --------------------------------------------------------------- memory */
+
+static uint64_t bytes_held(const oit_algorithm *alg)
+{
+    uint64_t pixels = (uint64_t)alg->width * (uint64_t)alg->height;
+    uint64_t bytes = 0;
+    if (alg->rgba)
+        bytes += pixels * 4;
+    if (alg->pixel_counts)
+        bytes += pixels * sizeof *alg->pixel_counts;
+    if (alg->pixel_offsets)
+        bytes += (pixels + 1) * sizeof *alg->pixel_offsets;
+    bytes += (uint64_t)alg->fragment_capacity * sizeof *alg->fragments;
+    bytes += (uint64_t)alg->vertex_capacity * sizeof *alg->vertices;
+    return bytes;
+}
+
+static oit_status reserve_fragments(oit_algorithm *alg, uint64_t count, oit_error *err)
+{
+    if (count > UINT64_MAX / sizeof(reference_fragment))
+        return oit_fail(err, OIT_E_RUNTIME, "reference: out of memory for %llu fragments",
+                        (unsigned long long)count);
+    uint64_t bytes = count * sizeof(reference_fragment);
+    /* the fragment store is the buffer that grows with the scene, as the GPU
+     * algorithms' fragment pools; a budget of 0 means no limit */
+    uint64_t budget = alg->config.max_memory_bytes;
+    if (budget != 0 && bytes > budget)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "reference: %llu fragments need %llu bytes (%.1f MiB), over the memory "
+                        "budget of %llu bytes (%.1f MiB)",
+                        (unsigned long long)count, (unsigned long long)bytes, bytes / 1048576.0,
+                        (unsigned long long)budget, budget / 1048576.0);
+    /* keep the store between frames; give back a large one that is mostly unused */
+    bool mostly_unused = alg->fragment_capacity / 4 > count &&
+                         alg->fragment_capacity * sizeof(reference_fragment) > (64u << 20);
+    if (count <= alg->fragment_capacity && !mostly_unused)
+        return OIT_OK;
+    if (count > SIZE_MAX / sizeof(reference_fragment))
+        return oit_fail(err, OIT_E_RUNTIME, "reference: out of memory for %llu fragments",
+                        (unsigned long long)count);
+    free(alg->fragments);
+    alg->fragment_capacity = 0;
+    alg->fragments = malloc((size_t)count * sizeof(reference_fragment));
+    if (!alg->fragments)
+        return oit_fail(err, OIT_E_RUNTIME, "reference: out of memory for %llu fragments",
+                        (unsigned long long)count);
+    alg->fragment_capacity = (size_t)count;
+    return OIT_OK;
+}
+
+static oit_status reserve_vertices(oit_algorithm *alg, uint32_t count, oit_error *err)
+{
+    if (count <= alg->vertex_capacity)
+        return OIT_OK;
+    free(alg->vertices);
+    alg->vertex_capacity = 0;
+    alg->vertices = malloc((size_t)count * sizeof *alg->vertices);
+    if (!alg->vertices)
+        return oit_fail(err, OIT_E_RUNTIME, "reference: out of memory for %u vertices", count);
+    alg->vertex_capacity = count;
+    return OIT_OK;
+}
+
+/* ------------------------------------------------------------ the table */
+
+static void reference_destroy(oit_algorithm *alg)
+{
+    if (!alg)
+        return;
+    free(alg->rgba);
+    free(alg->pixel_counts);
+    free(alg->pixel_offsets);
+    free(alg->fragments);
+    free(alg->vertices);
+    free(alg);
+}
+
+static oit_status reference_create(const oit_algorithm_config *config, oit_algorithm **out,
+                                   oit_error *err)
+{
+    *out = NULL;
+    oit_algorithm *alg = calloc(1, sizeof *alg);
+    if (!alg)
+        return oit_fail(err, OIT_E_RUNTIME, "reference: out of memory");
+    if (config)
+        alg->config = *config;
+    else
+        oit_algorithm_config_defaults(&alg->config);
+    oit_stats_reset(&alg->stats);
+    *out = alg;
+    return OIT_OK;
+}
+
+static oit_status reference_resize(oit_algorithm *alg, int width, int height, oit_error *err)
+{
+    if (width < 1 || height < 1 || width > REFERENCE_MAX_SIZE || height > REFERENCE_MAX_SIZE)
+        return oit_fail(err, OIT_E_INPUT, "reference: image size %dx%d is outside 1..%d", width,
+                        height, REFERENCE_MAX_SIZE);
+    if (width == alg->width && height == alg->height && alg->rgba)
+        return OIT_OK;
+    free(alg->rgba);
+    free(alg->pixel_counts);
+    free(alg->pixel_offsets);
+    alg->rgba = NULL;
+    alg->pixel_counts = NULL;
+    alg->pixel_offsets = NULL;
+    alg->width = alg->height = 0;
+    size_t pixels = (size_t)width * (size_t)height;
+    alg->rgba = calloc(pixels, 4);
+    alg->pixel_counts = calloc(pixels, sizeof *alg->pixel_counts);
+    alg->pixel_offsets = calloc(pixels + 1, sizeof *alg->pixel_offsets);
+    if (!alg->rgba || !alg->pixel_counts || !alg->pixel_offsets) {
+        free(alg->rgba);
+        free(alg->pixel_counts);
+        free(alg->pixel_offsets);
+        alg->rgba = NULL;
+        alg->pixel_counts = NULL;
+        alg->pixel_offsets = NULL;
+        return oit_fail(err, OIT_E_RUNTIME, "reference: out of memory for a %dx%d image", width,
+                        height);
+    }
+    alg->width = width;
+    alg->height = height;
+    return OIT_OK;
+}
+
+/* Indices and component ids are trusted by the rasterizer; check them once. */
+static oit_status check_model(const oit_model *model, oit_error *err)
+{
+    if (model->triangle_count == 0)
+        return OIT_OK;
+    if (!model->positions || !model->indices || !model->vertex_component || !model->components ||
+        model->component_count == 0)
+        return oit_fail(err, OIT_E_INPUT, "reference: the model lacks positions, indices or components");
+    for (size_t i = 0; i < 3 * (size_t)model->triangle_count; ++i)
+        if (model->indices[i] >= model->vertex_count)
+            return oit_fail(err, OIT_E_INPUT,
+                            "reference: triangle %zu uses vertex %u of %u", i / 3,
+                            model->indices[i], model->vertex_count);
+    for (uint32_t v = 0; v < model->vertex_count; ++v)
+        if (model->vertex_component[v] >= model->component_count)
+            return oit_fail(err, OIT_E_INPUT, "reference: vertex %u has component %u of %u", v,
+                            model->vertex_component[v], model->component_count);
+    return OIT_OK;
+}
+
+/* The vertex stage, in double: clip position, eye position, eye normal. */
+static void transform_vertices(const oit_model *model, const oit_frame_settings *frame,
+                               clip_vertex *out)
+{
+    float normal_matrix[9];
+    if (!oit_mat4_normal_matrix(frame->modelview, normal_matrix)) {
+        /* unreachable after oit_matrices_validate; keep normals finite anyway */
+        memset(normal_matrix, 0, sizeof normal_matrix);
+    }
+    const float *mv = frame->modelview, *pr = frame->projection;
+    for (uint32_t v = 0; v < model->vertex_count; ++v) {
+        const float *p = &model->positions[3 * (size_t)v];
+        double eye[4];
+        for (int row = 0; row < 4; ++row)
+            eye[row] = (double)mv[row] * p[0] + (double)mv[4 + row] * p[1] +
+                       (double)mv[8 + row] * p[2] + (double)mv[12 + row];
+        clip_vertex *o = &out[v];
+        for (int row = 0; row < 4; ++row)
+            o->clip[row] = pr[row] * eye[0] + pr[4 + row] * eye[1] + pr[8 + row] * eye[2] +
+                           pr[12 + row] * eye[3];
+        for (int i = 0; i < 3; ++i)
+            o->eye[i] = eye[i];
+        if (model->normals) {
+            const float *n = &model->normals[3 * (size_t)v];
+            for (int row = 0; row < 3; ++row)
+                o->normal[row] = (double)normal_matrix[row] * n[0] +
+                                 (double)normal_matrix[3 + row] * n[1] +
+                                 (double)normal_matrix[6 + row] * n[2];
+        } else {
+            o->normal[0] = o->normal[1] = o->normal[2] = 0.0;
+        }
+    }
+}
+
+/* mean list length over non-empty pixels and psi, the share of non-empty pixels
+ * whose list is longer than 2/3 of the longest */
+static void list_statistics(const uint32_t *counts, size_t pixels, uint64_t total,
+                            uint64_t max_list, oit_stats *stats)
+{
+    uint64_t non_empty = 0, long_lists = 0;
+    for (size_t p = 0; p < pixels; ++p) {
+        if (counts[p] == 0)
+            continue;
+        ++non_empty;
+        if (3 * (uint64_t)counts[p] > 2 * max_list)
+            ++long_lists;
+    }
+    stats->mean_list = non_empty ? (double)total / (double)non_empty : 0.0;
+    stats->psi = non_empty ? (double)long_lists / (double)non_empty : 0.0;
+}
+
+/* The reference shows the composited image and the views that select fragments
+ * by depth order; list heat maps and the Illustration Buffer's modulation are
+ * the GPU algorithms' business. */
+static oit_status check_view(const oit_modulation *modulation, oit_error *err)
+{
+    if (modulation->view != OIT_VIEW_COLOUR && modulation->view != OIT_VIEW_PEEL_LIMIT &&
+        modulation->view != OIT_VIEW_LAYER)
+        return oit_fail(err, OIT_E_INPUT,
+                        "reference: view %d is not supported (only colour, peel limit and layer)",
+                        (int)modulation->view);
+    if (modulation->mode != OIT_MODULATE_NONE && modulation->mode != OIT_MODULATE_DISTANCE)
+        return oit_fail(err, OIT_E_INPUT,
+                        "reference: opacity modulation %d is not supported (only distance; the "
+                        "non-local ones are ib's)",
+                        (int)modulation->mode);
+    if ((int)modulation->distance < OIT_DISTANCE_ADJACENT ||
+        (int)modulation->distance > OIT_DISTANCE_FAR_END)
+        return oit_fail(err, OIT_E_INPUT, "reference: unknown distance mode %d",
+                        (int)modulation->distance);
+    return OIT_OK;
+}
+
+static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
+                                   const oit_frame_settings *frame, oit_error *err)
+{
+    double frame_start = wall_ms();
+    oit_stats_reset(&alg->stats);
+    if (!scene || !scene->model || !frame)
+        return oit_fail(err, OIT_E_INPUT, "reference: no scene or frame settings");
+    const oit_model *model = scene->model;
+
+    oit_status status = reference_resize(alg, frame->width, frame->height, err);
+    if (status != OIT_OK)
+        return status;
+    status = oit_matrices_validate(frame->modelview, frame->projection, err);
+    if (status != OIT_OK)
+        return status;
+    status = check_model(model, err);
+    if (status != OIT_OK)
+        return status;
+    status = check_view(&frame->modulation, err);
+    if (status != OIT_OK)
+        return status;
+
+    double stage_start = thread_cpu_ms();
+    if (model->triangle_count > 0) {
+        status = reserve_vertices(alg, model->vertex_count, err);
+        if (status != OIT_OK)
+            return status;
+        transform_vertices(model, frame, alg->vertices);
+    }
+
+    const size_t pixels = (size_t)alg->width * (size_t)alg->height;
+    raster_context ctx = {
+        .width = alg->width,
+        .height = alg->height,
+        .pixel_counts = alg->pixel_counts,
+        .pixel_offsets = alg->pixel_offsets,
+        .frame = frame,
+        .guard_band_x = GUARD_BAND_PIXELS / alg->width,
+        .guard_band_y = GUARD_BAND_PIXELS / alg->height,
+        .per_fragment_alpha = frame->local.focus_shape != OIT_FOCUS_NONE,
+    };
+    if (ctx.per_fragment_alpha && !oit_local_inverse_modelview(frame->modelview, ctx.inverse_modelview))
+        return oit_fail(err, OIT_E_INPUT,
+                        "reference: the modelview is singular, so focus shapes (model coordinates) "
+                        "cannot be placed");
+
+    /* pass 1: count fragments per pixel */
+    memset(alg->pixel_counts, 0, pixels * sizeof *alg->pixel_counts);
+    if (model->triangle_count > 0)
+        rasterize_model(&ctx, model, alg->vertices);
+
+    uint64_t total = 0, max_list = 0;
+    oit_stats *stats = &alg->stats;
+    stats->histogram_bins = OIT_HISTOGRAM_BINS;
+    for (size_t p = 0; p < pixels; ++p) {
+        uint32_t count = alg->pixel_counts[p];
+        alg->pixel_offsets[p] = total;
+        total += count;
+        if (count > max_list)
+            max_list = count;
+        stats->list_histogram[count < OIT_HISTOGRAM_BINS - 1 ? count : OIT_HISTOGRAM_BINS - 1]++;
+    }
+    alg->pixel_offsets[pixels] = total;
+    list_statistics(alg->pixel_counts, pixels, total, max_list, stats);
+
+    /* pass 2: store the shaded fragments, each pixel's at its offset */
+    status = reserve_fragments(alg, total, err);
+    if (status != OIT_OK)
+        return status;
+    if (total > 0) {
+        memset(alg->pixel_counts, 0, pixels * sizeof *alg->pixel_counts);
+        ctx.fill = true;
+        ctx.fragments = alg->fragments;
+        rasterize_model(&ctx, model, alg->vertices);
+    }
+    add_stage(&alg->stats, "rasterize", thread_cpu_ms() - stage_start);
+
+    stage_start = thread_cpu_ms();
+    bool distance_mode = frame->modulation.mode == OIT_MODULATE_DISTANCE;
+    double distance_norm = 1.0;
+    if (distance_mode) {
+        double inverse_projection[16];
+        if (!oit_local_inverse_modelview(frame->projection, inverse_projection))
+            return oit_fail(err, OIT_E_INPUT, "reference: the projection matrix is singular");
+        double largest = distances(alg, frame, inverse_projection);
+        /* focus region 0: normalise by the frame's largest distance (as ib) */
+        distance_norm = frame->modulation.focus_region > 0.0f ? frame->modulation.focus_region
+                        : largest > 0.0                        ? (double)(float)largest
+                                                               : 1.0;
+    }
+    sort_and_compose(alg, frame, distance_mode, distance_norm);
+    add_stage(&alg->stats, "sort_compose", thread_cpu_ms() - stage_start);
+
+    alg->stats.fragments = (int64_t)total;
+    alg->stats.max_list = (int64_t)max_list;
+    alg->stats.memory_bytes = bytes_held(alg);
+    alg->stats.bytes_per_fragment = sizeof(reference_fragment);
+    /* per pixel: list count, list offset, output colour */
+    alg->stats.bytes_per_pixel =
+        sizeof *alg->pixel_counts + sizeof *alg->pixel_offsets + 4;
+    alg->stats.cpu_ms = wall_ms() - frame_start;
+    return OIT_OK;
+}
+
+static oit_status reference_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
+{
+    if (!alg->rgba)
+        return oit_fail(err, OIT_E_RUNTIME, "reference: nothing rendered yet");
+    oit_status status = oit_image_alloc(out, alg->width, alg->height, err);
+    if (status != OIT_OK)
+        return status;
+    memcpy(out->rgba, alg->rgba, (size_t)alg->width * (size_t)alg->height * 4);
+    return OIT_OK;
+}
+
+static void reference_stats(const oit_algorithm *alg, oit_stats *out)
+{
+    *out = alg->stats;
+}
+
+const oit_algorithm_ops oit_algorithm_reference = {
+    .name = "reference",
+    .summary = "exact CPU rasterizer: every fragment sorted per pixel (the test oracle)",
+    .uses_gl = false,
+    .exact = true,
+    .create = reference_create,
+    .resize = reference_resize,
+    .render = reference_render,
+    .read_image = reference_read_image,
+    .stats = reference_stats,
+    .destroy = reference_destroy,
+};

@@ -1,0 +1,228 @@
+/*
+ * alg_wboit.c: weighted blended order-independent transparency
+ * (McGuire & Bavoil 2013). Approximate, one geometry pass, constant memory.
+ *
+ * "accumulate": depth test off, every fragment adds w*a*c and w*a into a float
+ * accumulation target (additive blending) and multiplies a revealage target
+ * by (1 - a) (glBlendFunci(ZERO, ONE_MINUS_SRC_COLOR)). The weight w is in
+ * shaders/wboit/accumulate.frag. "compose": C = accum.rgb / max(accum.a, 1e-5)
+ * * (1 - revealage) + background * revealage. Float targets throughout (32 bit,
+ * so that sums of large weights cannot overflow as they can in 16 bit).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "gl_util.h"
+#include "oit.h"
+
+typedef struct wboit_state {
+    oit_algorithm_config config;
+    oit_gl_output output;
+    oit_stage_timer timer;
+    oit_stats stats;
+
+    GLuint accumulate_program; /* geometry.vert + wboit/accumulate.frag */
+    GLuint compose_program;    /* fullscreen.vert + wboit/compose.frag */
+
+    GLuint accumulation; /* GL_RGBA32F: rgb = sum w*a*c, a = sum w*a */
+    GLuint revealage;    /* GL_R32F: product of (1 - a) */
+    GLuint accumulate_framebuffer; /* colour attachments 0 = accumulation, 1 = revealage */
+    int width, height;
+} wboit_state;
+
+/* Bytes per pixel of the targets: accumulation (16), revealage (4), the RGBA8 output (4). */
+#define WBOIT_BYTES_PER_PIXEL (16 + 4 + 4)
+
+static void wboit_release_targets(wboit_state *s)
+{
+    glDeleteFramebuffers(1, &s->accumulate_framebuffer);
+    glDeleteTextures(1, &s->accumulation);
+    glDeleteTextures(1, &s->revealage);
+    s->accumulate_framebuffer = s->accumulation = s->revealage = 0;
+    s->width = s->height = 0;
+}
+
+/* With config.debug, check for GL errors after each stage. */
+static oit_status wboit_stage_check(const wboit_state *s, const char *stage, oit_error *err)
+{
+    if (!s->config.debug)
+        return OIT_OK;
+    char where[64];
+    snprintf(where, sizeof where, "wboit: %s", stage);
+    return oit_gl_check(where, err);
+}
+
+static void wboit_destroy(oit_algorithm *alg);
+
+static oit_status wboit_create(const oit_algorithm_config *config, oit_algorithm **out,
+                               oit_error *err)
+{
+    *out = NULL;
+    wboit_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return oit_fail(err, OIT_E_RUNTIME, "wboit: out of memory");
+    s->config = *config;
+    oit_stats_reset(&s->stats);
+    oit_timer_create(&s->timer);
+
+    oit_status status = oit_gl_program(config->shader_dir, "common/geometry.vert",
+                                       "wboit/accumulate.frag", &s->accumulate_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+                                "wboit/compose.frag", &s->compose_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_check("wboit: create", err);
+    if (status != OIT_OK) {
+        wboit_destroy((oit_algorithm *)s);
+        return status;
+    }
+    *out = (oit_algorithm *)s;
+    return OIT_OK;
+}
+
+static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_error *err)
+{
+    wboit_state *s = (wboit_state *)alg;
+    if (width < 1 || height < 1)
+        return oit_fail(err, OIT_E_INPUT, "wboit: bad size %dx%d", width, height);
+    wboit_release_targets(s);
+    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    if (status != OIT_OK)
+        return status;
+
+    s->accumulation = oit_gl_texture_2d(GL_RGBA32F, width, height);
+    s->revealage = oit_gl_texture_2d(GL_R32F, width, height);
+    glGenFramebuffers(1, &s->accumulate_framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->accumulate_framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->accumulation,
+                           0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, s->revealage, 0);
+    static const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(2, buffers);
+    GLenum complete = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (complete != GL_FRAMEBUFFER_COMPLETE)
+        status = oit_fail(err, OIT_E_RUNTIME, "wboit: accumulation framebuffer incomplete (0x%x)",
+                          (unsigned)complete);
+    if (status == OIT_OK)
+        status = oit_gl_check("wboit: resize", err);
+    if (status != OIT_OK) {
+        wboit_release_targets(s);
+        return status;
+    }
+    s->width = width;
+    s->height = height;
+    s->stats.memory_bytes = (uint64_t)width * (uint64_t)height * WBOIT_BYTES_PER_PIXEL;
+    return OIT_OK;
+}
+
+static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
+                               const oit_frame_settings *frame, oit_error *err)
+{
+    wboit_state *s = (wboit_state *)alg;
+    if (!scene->has_gpu)
+        return oit_fail(err, OIT_E_INPUT, "wboit: the scene has no GPU buffers");
+    const oit_modulation *modulation = &frame->modulation;
+    if (modulation->mode == OIT_MODULATE_DISTANCE)
+        return oit_fail(err, OIT_E_INPUT, "wboit: the distance modulation needs the next fragment along the ray, and "
+                        "weighted blending accumulates fragments with no order");
+    if (modulation->mode != OIT_MODULATE_NONE)
+        return oit_fail(err, OIT_E_INPUT,
+                        "wboit: opacity modulation %d needs surface neighbours (ib only): weighted "
+                        "blending keeps no fragment, so no pixel sees its neighbours' fragments",
+                        (int)modulation->mode);
+    if (modulation->view != OIT_VIEW_COLOUR)
+        return oit_fail(err, OIT_E_INPUT, "wboit: buffer views are ll's and ib's (view %d)",
+                        (int)modulation->view);
+    if (frame->width != s->width || frame->height != s->height) {
+        oit_status status = wboit_resize(alg, frame->width, frame->height, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    oit_status status = OIT_OK;
+    oit_stats_reset(&s->stats);
+    oit_timer_frame_begin(&s->timer);
+
+    glViewport(0, 0, s->width, s->height);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST); /* every fragment counts, in any order */
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
+
+    oit_timer_stage_begin(&s->timer, "accumulate");
+    static const GLfloat empty_accumulation[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    static const GLfloat empty_revealage[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+    glBindFramebuffer(GL_FRAMEBUFFER, s->accumulate_framebuffer);
+    glClearBufferfv(GL_COLOR, 0, empty_accumulation);
+    glClearBufferfv(GL_COLOR, 1, empty_revealage);
+    glEnable(GL_BLEND);
+    glBlendEquationi(0, GL_FUNC_ADD);
+    glBlendFunci(0, GL_ONE, GL_ONE);
+    glBlendEquationi(1, GL_FUNC_ADD);
+    glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+    glUseProgram(s->accumulate_program);
+    oit_gl_set_frame_uniforms(frame);
+    oit_gl_draw_scene(scene);
+    glDisable(GL_BLEND);
+    oit_timer_stage_end(&s->timer);
+    status = wboit_stage_check(s, "accumulate", err);
+
+    if (status == OIT_OK) {
+        oit_timer_stage_begin(&s->timer, "compose");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        glUseProgram(s->compose_program);
+        oit_gl_set_frame_uniforms(frame);
+        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM);
+        glBindTexture(GL_TEXTURE_2D, s->accumulation);
+        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_REVEALAGE);
+        glBindTexture(GL_TEXTURE_2D, s->revealage);
+        oit_gl_draw_fullscreen(&s->output);
+        oit_timer_stage_end(&s->timer);
+        status = wboit_stage_check(s, "compose", err);
+    }
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    oit_timer_frame_end(&s->timer, &s->stats);
+    if (status == OIT_OK)
+        status = oit_gl_check("wboit: render", err);
+    s->stats.memory_bytes = (uint64_t)s->width * (uint64_t)s->height * WBOIT_BYTES_PER_PIXEL;
+    return status;
+}
+
+static oit_status wboit_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
+{
+    wboit_state *s = (wboit_state *)alg;
+    return oit_gl_output_read(&s->output, out, err);
+}
+
+static void wboit_stats(const oit_algorithm *alg, oit_stats *out)
+{
+    const wboit_state *s = (const wboit_state *)alg;
+    *out = s->stats;
+}
+
+static void wboit_destroy(oit_algorithm *alg)
+{
+    wboit_state *s = (wboit_state *)alg;
+    if (!s)
+        return;
+    wboit_release_targets(s);
+    oit_gl_output_release(&s->output);
+    glDeleteProgram(s->accumulate_program);
+    glDeleteProgram(s->compose_program);
+    oit_timer_destroy(&s->timer);
+    free(s);
+}
+
+const oit_algorithm_ops oit_algorithm_wboit = {
+    .name = "wboit",
+    .summary = "weighted blended OIT (McGuire & Bavoil 2013): one pass, approximate",
+    .uses_gl = true,
+    .exact = false,
+    .create = wboit_create,
+    .resize = wboit_resize,
+    .render = wboit_render,
+    .read_image = wboit_read_image,
+    .stats = wboit_stats,
+    .destroy = wboit_destroy,
+};

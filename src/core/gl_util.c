@@ -1,0 +1,592 @@
+/* gl_util.c: shader loading, error checks, stage timers, the RGBA8 output and
+ * scene drawing shared by the GPU algorithms. */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "gl_util.h"
+
+/* ------------------------------------------------------------ programs */
+
+#define SHADER_MAX_FILES 32
+#define SHADER_MAX_INCLUDE_DEPTH 16
+
+typedef struct shader_source {
+    char *text;
+    size_t length, capacity;
+    char *files[SHADER_MAX_FILES]; /* index == GLSL source-string number in #line */
+    int file_count;
+} shader_source;
+
+static bool source_append(shader_source *source, const char *text, size_t length)
+{
+    if (source->length + length + 1 > source->capacity) {
+        size_t capacity = source->capacity ? source->capacity : 4096;
+        while (source->length + length + 1 > capacity)
+            capacity *= 2;
+        char *grown = realloc(source->text, capacity);
+        if (!grown)
+            return false;
+        source->text = grown;
+        source->capacity = capacity;
+    }
+    memcpy(source->text + source->length, text, length);
+    source->length += length;
+    source->text[source->length] = '\0';
+    return true;
+}
+
+static bool source_printf(shader_source *source, const char *fmt, int a, int b)
+{
+    char line[64];
+    int length = snprintf(line, sizeof line, fmt, a, b);
+    return source_append(source, line, (size_t)length);
+}
+
+static void source_free(shader_source *source)
+{
+    free(source->text);
+    for (int i = 0; i < source->file_count; ++i)
+        free(source->files[i]);
+    memset(source, 0, sizeof *source);
+}
+
+static char *read_text_file(const char *path)
+{
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return NULL;
+    char *text = NULL;
+    if (fseek(file, 0, SEEK_END) == 0) {
+        long size = ftell(file);
+        if (size >= 0 && fseek(file, 0, SEEK_SET) == 0 && (text = malloc((size_t)size + 1))) {
+            if (fread(text, 1, (size_t)size, file) != (size_t)size) {
+                free(text);
+                text = NULL;
+            } else {
+                text[size] = '\0';
+            }
+        }
+    }
+    fclose(file);
+    return text;
+}
+
+/* If the line is `#include "path"`, copy path into out and return true. */
+static bool parse_include(const char *line, size_t length, char *out, size_t out_size)
+{
+    const char *end = line + length;
+    while (line < end && (*line == ' ' || *line == '\t'))
+        ++line;
+    if (line == end || *line != '#')
+        return false;
+    ++line;
+    while (line < end && (*line == ' ' || *line == '\t'))
+        ++line;
+    if ((size_t)(end - line) < 7 || strncmp(line, "include", 7) != 0)
+        return false;
+    line += 7;
+    while (line < end && (*line == ' ' || *line == '\t'))
+        ++line;
+    if (line == end || *line != '"')
+        return false;
+    const char *close = memchr(line + 1, '"', (size_t)(end - line - 1));
+    if (!close || (size_t)(close - line - 1) >= out_size)
+        return false;
+    memcpy(out, line + 1, (size_t)(close - line - 1));
+    out[close - line - 1] = '\0';
+    return true;
+}
+
+static oit_status expand_file(shader_source *source, const char *shader_dir,
+                              const char *relative_path, const char *included_from, int depth,
+                              oit_error *err)
+{
+    for (int i = 0; i < source->file_count; ++i)
+        if (strcmp(source->files[i], relative_path) == 0)
+            return OIT_OK; /* expanded once per shader */
+    if (depth > SHADER_MAX_INCLUDE_DEPTH)
+        return oit_fail(err, OIT_E_RUNTIME, "shader %s: includes nested too deeply",
+                        relative_path);
+    if (source->file_count == SHADER_MAX_FILES)
+        return oit_fail(err, OIT_E_RUNTIME, "shader %s: more than %d included files",
+                        relative_path, SHADER_MAX_FILES);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", shader_dir, relative_path);
+    char *text = read_text_file(path);
+    if (!text) {
+        if (included_from)
+            return oit_fail(err, OIT_E_RUNTIME, "shader %s: cannot read %s (included from %s)",
+                            relative_path, path, included_from);
+        return oit_fail(err, OIT_E_RUNTIME, "shader %s: cannot read %s", relative_path, path);
+    }
+    int file_number = source->file_count;
+    source->files[source->file_count++] = strdup(relative_path);
+
+    oit_status status = OIT_OK;
+    if (!source_printf(source, "#line 1 %d\n", file_number, 0))
+        status = oit_fail(err, OIT_E_RUNTIME, "shader %s: out of memory", relative_path);
+    int line_number = 0;
+    for (const char *line = text; status == OIT_OK && *line;) {
+        const char *newline = strchr(line, '\n');
+        size_t length = newline ? (size_t)(newline - line) : strlen(line);
+        ++line_number;
+        char include_path[512];
+        if (parse_include(line, length, include_path, sizeof include_path)) {
+            status = expand_file(source, shader_dir, include_path,
+                                 source->files[file_number], depth + 1, err);
+            if (status == OIT_OK &&
+                !source_printf(source, "#line %d %d\n", line_number + 1, file_number))
+                status = oit_fail(err, OIT_E_RUNTIME, "shader %s: out of memory", relative_path);
+        } else if (!source_append(source, line, length) || !source_append(source, "\n", 1)) {
+            status = oit_fail(err, OIT_E_RUNTIME, "shader %s: out of memory", relative_path);
+        }
+        line += length + (newline ? 1 : 0);
+    }
+    free(text);
+    return status;
+}
+
+static oit_status compile_shader(const char *shader_dir, const char *path, GLenum type,
+                                 GLuint *out, oit_error *err)
+{
+    *out = 0;
+    shader_source source = {0};
+    oit_status status = OIT_OK;
+    if (!source_append(&source, "#version 430 core\n", 18))
+        status = oit_fail(err, OIT_E_RUNTIME, "shader %s: out of memory", path);
+    if (status == OIT_OK)
+        status = expand_file(&source, shader_dir, path, NULL, 0, err);
+    if (status != OIT_OK) {
+        source_free(&source);
+        return status;
+    }
+    GLuint shader = glCreateShader(type);
+    const GLchar *text = source.text;
+    glShaderSource(shader, 1, &text, NULL);
+    glCompileShader(shader);
+    GLint compiled = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &compiled);
+    if (!compiled) {
+        char files[256] = "";
+        size_t used = 0;
+        for (int i = 0; i < source.file_count && used < sizeof files; ++i)
+            used += (size_t)snprintf(files + used, sizeof files - used, "%s%d=%s", i ? " " : "",
+                                     i, source.files[i]);
+        char log[OIT_ERROR_MESSAGE_SIZE];
+        glGetShaderInfoLog(shader, sizeof log, NULL, log);
+        status = oit_fail(err, OIT_E_RUNTIME, "compile error in %s (sources %s): %s", path, files,
+                          log);
+        glDeleteShader(shader);
+        shader = 0;
+    }
+    source_free(&source);
+    *out = shader;
+    return status;
+}
+
+static oit_status link_program(GLuint *shaders, int shader_count, const char *description,
+                               GLuint *out, oit_error *err)
+{
+    GLuint program = glCreateProgram();
+    for (int i = 0; i < shader_count; ++i)
+        glAttachShader(program, shaders[i]);
+    glLinkProgram(program);
+    for (int i = 0; i < shader_count; ++i) {
+        glDetachShader(program, shaders[i]);
+        glDeleteShader(shaders[i]);
+    }
+    GLint linked = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (!linked) {
+        char log[OIT_ERROR_MESSAGE_SIZE];
+        glGetProgramInfoLog(program, sizeof log, NULL, log);
+        glDeleteProgram(program);
+        *out = 0;
+        return oit_fail(err, OIT_E_RUNTIME, "link error in %s: %s", description, log);
+    }
+    *out = program;
+    return OIT_OK;
+}
+
+oit_status oit_gl_program(const char *shader_dir, const char *vertex_path,
+                          const char *fragment_path, GLuint *out, oit_error *err)
+{
+    *out = 0;
+    GLuint shaders[2] = {0, 0};
+    oit_status status = compile_shader(shader_dir, vertex_path, GL_VERTEX_SHADER, &shaders[0], err);
+    if (status != OIT_OK)
+        return status;
+    status = compile_shader(shader_dir, fragment_path, GL_FRAGMENT_SHADER, &shaders[1], err);
+    if (status != OIT_OK) {
+        glDeleteShader(shaders[0]);
+        return status;
+    }
+    char description[512];
+    snprintf(description, sizeof description, "%s + %s", vertex_path, fragment_path);
+    return link_program(shaders, 2, description, out, err);
+}
+
+oit_status oit_gl_compute_program(const char *shader_dir, const char *compute_path, GLuint *out,
+                                  oit_error *err)
+{
+    *out = 0;
+    GLuint shader = 0;
+    oit_status status = compile_shader(shader_dir, compute_path, GL_COMPUTE_SHADER, &shader, err);
+    if (status != OIT_OK)
+        return status;
+    return link_program(&shader, 1, compute_path, out, err);
+}
+
+/* -------------------------------------------------------------- errors */
+
+static const char *gl_error_name(GLenum error)
+{
+    switch (error) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    default: return "unknown GL error";
+    }
+}
+
+oit_status oit_gl_check(const char *where, oit_error *err)
+{
+    GLenum error = glGetError();
+    /* Drain the queue so the next check starts clean. */
+    for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i)
+        ;
+    char debug_message[OIT_ERROR_MESSAGE_SIZE];
+    bool has_debug_message = oit_gl_debug_take_error(debug_message, sizeof debug_message);
+    if (error != GL_NO_ERROR && has_debug_message)
+        return oit_fail(err, OIT_E_RUNTIME, "%s in %s: %s", gl_error_name(error), where,
+                        debug_message);
+    if (error != GL_NO_ERROR)
+        return oit_fail(err, OIT_E_RUNTIME, "%s (0x%04x) in %s", gl_error_name(error),
+                        (unsigned)error, where);
+    if (has_debug_message)
+        return oit_fail(err, OIT_E_RUNTIME, "GL error in %s: %s", where, debug_message);
+    return OIT_OK;
+}
+
+/* ---------------------------------------------------------- stage timing */
+
+double oit_now_ms(void)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (double)now.tv_sec * 1e3 + (double)now.tv_nsec * 1e-6;
+}
+
+static bool software_renderer(void)
+{
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    return renderer && (strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") ||
+                        strstr(renderer, "swrast"));
+}
+
+void oit_timer_create(oit_stage_timer *timer)
+{
+    memset(timer, 0, sizeof *timer);
+    timer->wall_clock = software_renderer();
+    if (!timer->wall_clock)
+        glGenQueries(OIT_MAX_STAGES, timer->queries);
+    timer->created = true;
+}
+
+void oit_timer_destroy(oit_stage_timer *timer)
+{
+    if (timer->created && !timer->wall_clock)
+        glDeleteQueries(OIT_MAX_STAGES, timer->queries);
+    memset(timer, 0, sizeof *timer);
+}
+
+void oit_timer_frame_begin(oit_stage_timer *timer)
+{
+    timer->count = 0;
+    timer->stage_open = false;
+    if (timer->wall_clock)
+        glFinish(); /* earlier work must not count towards the first stage */
+    timer->cpu_start_ms = oit_now_ms();
+}
+
+/* The last slot, once begun, keeps running until the frame ends: that is
+ * how it absorbs every stage past OIT_MAX_STAGES (time-elapsed queries
+ * cannot be resumed). */
+static bool last_slot_running(const oit_stage_timer *timer)
+{
+    return timer->count == OIT_MAX_STAGES;
+}
+
+static void slot_start(oit_stage_timer *timer, int slot)
+{
+    if (timer->wall_clock) {
+        glFinish();
+        timer->stage_start_ms = oit_now_ms();
+    } else if (timer->created) {
+        glBeginQuery(GL_TIME_ELAPSED, timer->queries[slot]);
+    }
+}
+
+static void slot_stop(oit_stage_timer *timer, int slot)
+{
+    if (timer->wall_clock) {
+        glFinish();
+        timer->wall_ms[slot] = oit_now_ms() - timer->stage_start_ms;
+    } else if (timer->created) {
+        glEndQuery(GL_TIME_ELAPSED);
+    }
+}
+
+void oit_timer_stage_begin(oit_stage_timer *timer, const char *name)
+{
+    if (timer->stage_open)
+        oit_timer_stage_end(timer);
+    if (last_slot_running(timer)) {
+        snprintf(timer->names[OIT_MAX_STAGES - 1], OIT_STAGE_NAME_SIZE, "%s",
+                 "(remaining stages)");
+    } else {
+        snprintf(timer->names[timer->count], OIT_STAGE_NAME_SIZE, "%s", name);
+        slot_start(timer, timer->count);
+        ++timer->count;
+    }
+    timer->stage_open = true;
+}
+
+void oit_timer_stage_end(oit_stage_timer *timer)
+{
+    if (!timer->stage_open)
+        return;
+    if (!last_slot_running(timer))
+        slot_stop(timer, timer->count - 1);
+    timer->stage_open = false;
+}
+
+void oit_timer_frame_end(oit_stage_timer *timer, oit_stats *stats)
+{
+    oit_timer_stage_end(timer);
+    if (last_slot_running(timer))
+        slot_stop(timer, OIT_MAX_STAGES - 1);
+    glFinish();
+    stats->cpu_ms = oit_now_ms() - timer->cpu_start_ms;
+    stats->stage_count = timer->count;
+    for (int i = 0; i < timer->count; ++i) {
+        snprintf(stats->stages[i].name, OIT_STAGE_NAME_SIZE, "%s", timer->names[i]);
+        if (timer->wall_clock) {
+            stats->stages[i].gpu_ms = timer->wall_ms[i];
+        } else {
+            GLuint64 nanoseconds = 0;
+            if (timer->created)
+                glGetQueryObjectui64v(timer->queries[i], GL_QUERY_RESULT, &nanoseconds);
+            stats->stages[i].gpu_ms = (double)nanoseconds * 1e-6;
+        }
+    }
+}
+
+/* ------------------------------------------------------------- the output */
+
+GLuint oit_gl_texture_2d(GLenum internal_format, int width, int height)
+{
+    GLuint texture = 0;
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, width, height);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return texture;
+}
+
+oit_status oit_gl_output_resize(oit_gl_output *output, int width, int height, oit_error *err)
+{
+    if (width <= 0 || height <= 0)
+        return oit_fail(err, OIT_E_INPUT, "image size %dx%d is not positive", width, height);
+    if (!output->fullscreen_vertex_array)
+        glGenVertexArrays(1, &output->fullscreen_vertex_array);
+    if (output->framebuffer && output->width == width && output->height == height)
+        return OIT_OK;
+    if (output->colour)
+        glDeleteTextures(1, &output->colour);
+    if (!output->framebuffer)
+        glGenFramebuffers(1, &output->framebuffer);
+    output->colour = oit_gl_texture_2d(GL_RGBA8, width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, output->framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, output->colour, 0);
+    GLenum framebuffer_status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    output->width = width;
+    output->height = height;
+    if (framebuffer_status != GL_FRAMEBUFFER_COMPLETE)
+        return oit_fail(err, OIT_E_RUNTIME, "the %dx%d RGBA8 output is incomplete (0x%04x)",
+                        width, height, (unsigned)framebuffer_status);
+    return oit_gl_check("creating the output", err);
+}
+
+void oit_gl_output_release(oit_gl_output *output)
+{
+    if (output->colour)
+        glDeleteTextures(1, &output->colour);
+    if (output->framebuffer)
+        glDeleteFramebuffers(1, &output->framebuffer);
+    if (output->fullscreen_vertex_array)
+        glDeleteVertexArrays(1, &output->fullscreen_vertex_array);
+    memset(output, 0, sizeof *output);
+}
+
+oit_status oit_gl_output_read(const oit_gl_output *output, oit_image *out, oit_error *err)
+{
+    if (!output->framebuffer)
+        return oit_fail(err, OIT_E_RUNTIME, "no image rendered yet");
+    oit_status status = oit_image_alloc(out, output->width, output->height, err);
+    if (status != OIT_OK)
+        return status;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, output->framebuffer);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, output->width, output->height, GL_RGBA, GL_UNSIGNED_BYTE, out->rgba);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    /* GL returns the bottom row first; images are top row first. */
+    size_t row_bytes = (size_t)output->width * 4;
+    unsigned char *swap = malloc(row_bytes);
+    if (!swap) {
+        oit_image_free(out);
+        return oit_fail(err, OIT_E_RUNTIME, "out of memory reading the image");
+    }
+    for (int top = 0, bottom = output->height - 1; top < bottom; ++top, --bottom) {
+        memcpy(swap, out->rgba + (size_t)top * row_bytes, row_bytes);
+        memcpy(out->rgba + (size_t)top * row_bytes, out->rgba + (size_t)bottom * row_bytes,
+               row_bytes);
+        memcpy(out->rgba + (size_t)bottom * row_bytes, swap, row_bytes);
+    }
+    free(swap);
+    status = oit_gl_check("reading the image", err);
+    if (status != OIT_OK)
+        oit_image_free(out);
+    return status;
+}
+
+void oit_gl_draw_fullscreen(const oit_gl_output *output)
+{
+    glBindVertexArray(output->fullscreen_vertex_array);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+}
+
+/* ------------------------------------------------------------- geometry */
+
+/* Uniform names as declared in shaders/common/frame.glsl. A uniform the
+ * program does not use is inactive; setting its location would be
+ * GL_INVALID_OPERATION, hence the lookup by name. */
+static bool uniform_active(GLuint program, const char *name, GLint location)
+{
+    return glGetUniformLocation(program, name) == location;
+}
+
+/* The local modulation of common/local_modulation.glsl (docs/modulation.md). */
+static void set_local_uniforms(GLuint p, const oit_local_modulation *local,
+                               const oit_frame_settings *frame)
+{
+    if (uniform_active(p, "u_local_focus_shape", OIT_UNIFORM_LOCAL_FOCUS_SHAPE))
+        glUniform1i(OIT_UNIFORM_LOCAL_FOCUS_SHAPE, (GLint)local->focus_shape);
+    if (uniform_active(p, "u_local_focus_a", OIT_UNIFORM_LOCAL_FOCUS_A))
+        glUniform4f(OIT_UNIFORM_LOCAL_FOCUS_A, local->focus[0], local->focus[1], local->focus[2],
+                    local->focus_shape == OIT_FOCUS_BOX ? 0.0f : local->focus[3]);
+    if (uniform_active(p, "u_local_focus_b", OIT_UNIFORM_LOCAL_FOCUS_B))
+        glUniform4f(OIT_UNIFORM_LOCAL_FOCUS_B, local->focus[3], local->focus[4], local->focus[5],
+                    0.0f);
+    if (uniform_active(p, "u_local_focus_region", OIT_UNIFORM_LOCAL_FOCUS_REGION))
+        glUniform1f(OIT_UNIFORM_LOCAL_FOCUS_REGION, oit_local_focus_region(frame));
+    if (uniform_active(p, "u_local_contrast", OIT_UNIFORM_LOCAL_CONTRAST))
+        glUniform1f(OIT_UNIFORM_LOCAL_CONTRAST, local->contrast);
+    if (uniform_active(p, "u_local_inverse_modelview", OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW)) {
+        double inverse[16];
+        float inverse_float[16];
+        oit_local_inverse_modelview(frame->modelview, inverse); /* zero if singular */
+        for (int i = 0; i < 16; ++i)
+            inverse_float[i] = (float)inverse[i];
+        glUniformMatrix4fv(OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW, 1, GL_FALSE, inverse_float);
+    }
+    if (uniform_active(p, "u_local_inverse_projection", OIT_UNIFORM_LOCAL_INVERSE_PROJECTION)) {
+        double inverse[16];
+        float inverse_float[16];
+        oit_local_inverse_modelview(frame->projection, inverse); /* any 4x4; zero if singular */
+        for (int i = 0; i < 16; ++i)
+            inverse_float[i] = (float)inverse[i];
+        glUniformMatrix4fv(OIT_UNIFORM_LOCAL_INVERSE_PROJECTION, 1, GL_FALSE, inverse_float);
+    }
+    const oit_modulation *m = &frame->modulation;
+    if (uniform_active(p, "u_distance_mode", OIT_UNIFORM_DISTANCE_MODE))
+        glUniform1i(OIT_UNIFORM_DISTANCE_MODE,
+                    m->mode == OIT_MODULATE_DISTANCE ? (GLint)m->distance : -1);
+    if (uniform_active(p, "u_distance_skip", OIT_UNIFORM_DISTANCE_SKIP))
+        glUniform1i(OIT_UNIFORM_DISTANCE_SKIP, m->distance_skip > 0 ? m->distance_skip : 2);
+    /* auto (0): the algorithm sets the frame's largest distance once it knows it */
+    if (uniform_active(p, "u_distance_norm", OIT_UNIFORM_DISTANCE_NORM))
+        glUniform1f(OIT_UNIFORM_DISTANCE_NORM, m->focus_region > 0.0f ? m->focus_region : 1.0f);
+    bool has_alpha = local->component_alpha && local->component_count > 0;
+    GLint count = has_alpha ? (GLint)(local->component_count < OIT_LOCAL_MAX_COMPONENTS
+                                          ? local->component_count
+                                          : OIT_LOCAL_MAX_COMPONENTS)
+                            : 0;
+    if (uniform_active(p, "u_local_component_count", OIT_UNIFORM_LOCAL_COMPONENT_COUNT))
+        glUniform1i(OIT_UNIFORM_LOCAL_COMPONENT_COUNT, count);
+    if (count > 0 &&
+        uniform_active(p, "u_local_component_alpha", OIT_UNIFORM_LOCAL_COMPONENT_ALPHA)) {
+        float packed[OIT_LOCAL_MAX_COMPONENTS] = {0};
+        memcpy(packed, local->component_alpha, (size_t)count * sizeof packed[0]);
+        glUniform4fv(OIT_UNIFORM_LOCAL_COMPONENT_ALPHA, (count + 3) / 4, packed);
+    }
+}
+
+void oit_gl_set_frame_uniforms(const oit_frame_settings *frame)
+{
+    GLint program = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+    if (!program)
+        return;
+    GLuint p = (GLuint)program;
+    if (uniform_active(p, "u_modelview", OIT_UNIFORM_MODELVIEW))
+        glUniformMatrix4fv(OIT_UNIFORM_MODELVIEW, 1, GL_FALSE, frame->modelview);
+    if (uniform_active(p, "u_projection", OIT_UNIFORM_PROJECTION))
+        glUniformMatrix4fv(OIT_UNIFORM_PROJECTION, 1, GL_FALSE, frame->projection);
+    if (uniform_active(p, "u_normal_matrix", OIT_UNIFORM_NORMAL_MATRIX)) {
+        float normal_matrix[9];
+        if (!oit_mat4_normal_matrix(frame->modelview, normal_matrix)) {
+            /* singular modelview: fall back to its upper 3x3 */
+            for (int col = 0; col < 3; ++col)
+                for (int row = 0; row < 3; ++row)
+                    normal_matrix[col * 3 + row] = frame->modelview[col * 4 + row];
+        }
+        glUniformMatrix3fv(OIT_UNIFORM_NORMAL_MATRIX, 1, GL_FALSE, normal_matrix);
+    }
+    if (uniform_active(p, "u_alpha", OIT_UNIFORM_ALPHA))
+        glUniform1f(OIT_UNIFORM_ALPHA, frame->alpha);
+    if (uniform_active(p, "u_shading", OIT_UNIFORM_SHADING))
+        glUniform1i(OIT_UNIFORM_SHADING,
+                    frame->shading == OIT_SHADE_HEADLIGHT ? OIT_SHADING_HEADLIGHT
+                                                          : OIT_SHADING_FLAT);
+    if (uniform_active(p, "u_background", OIT_UNIFORM_BACKGROUND))
+        glUniform3fv(OIT_UNIFORM_BACKGROUND, 1, frame->background);
+    if (uniform_active(p, "u_viewport", OIT_UNIFORM_VIEWPORT))
+        glUniform2i(OIT_UNIFORM_VIEWPORT, frame->width, frame->height);
+    set_local_uniforms(p, &frame->local, frame);
+}
+
+void oit_gl_draw_scene(const oit_scene *scene)
+{
+    if (!scene->has_gpu || scene->index_count == 0)
+        return;
+    glBindVertexArray(scene->vertex_array);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
+    glDrawElements(GL_TRIANGLES, (GLsizei)scene->index_count, GL_UNSIGNED_INT, NULL);
+    glBindVertexArray(0);
+}

@@ -1,0 +1,172 @@
+/* matrix.c: column-major 4x4 helpers, the default camera and the shared shading formula. */
+#include <math.h>
+#include <string.h>
+
+#include "oit.h"
+#include "oit_shared.h"
+
+void oit_mat4_identity(float m[16])
+{
+    memset(m, 0, 16 * sizeof m[0]);
+    m[0] = m[5] = m[10] = m[15] = 1.0f;
+}
+
+void oit_mat4_multiply(const float a[16], const float b[16], float out[16])
+{
+    float result[16];
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row) {
+            double sum = 0.0;
+            for (int k = 0; k < 4; ++k)
+                sum += (double)a[k * 4 + row] * b[col * 4 + k];
+            result[col * 4 + row] = (float)sum;
+        }
+    memcpy(out, result, sizeof result);
+}
+
+/* Upper 3x3 of a column-major 4x4, as a[row][col] in double. */
+static void upper3x3(const float m[16], double a[3][3])
+{
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col)
+            a[row][col] = m[col * 4 + row];
+}
+
+static double det3(double a[3][3])
+{
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+}
+
+bool oit_mat4_normal_matrix(const float m[16], float out[9])
+{
+    double a[3][3];
+    upper3x3(m, a);
+    double det = det3(a);
+    double scale = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            scale = fmax(scale, fabs(a[i][j]));
+    if (!isfinite(det) || scale == 0.0 || fabs(det) <= 1e-12 * scale * scale * scale)
+        return false;
+    /* inverse transpose = cofactor matrix / det; stored column-major */
+    double cof[3][3];
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) {
+            int r0 = (row + 1) % 3, r1 = (row + 2) % 3;
+            int c0 = (col + 1) % 3, c1 = (col + 2) % 3;
+            cof[row][col] = a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0];
+        }
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col)
+            out[col * 3 + row] = (float)(cof[row][col] / det);
+    return true;
+}
+
+/* Determinant of a column-major 4x4 by cofactor expansion (double). */
+static double det4(const float m[16])
+{
+    double a[4][4];
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            a[row][col] = m[col * 4 + row];
+    double det = 0.0;
+    for (int col = 0; col < 4; ++col) {
+        double minor[3][3];
+        for (int row = 1; row < 4; ++row)
+            for (int c = 0, mc = 0; c < 4; ++c)
+                if (c != col)
+                    minor[row - 1][mc++] = a[row][c];
+        det += ((col % 2) ? -1.0 : 1.0) * a[0][col] * det3(minor);
+    }
+    return det;
+}
+
+oit_status oit_matrices_validate(const float modelview[16], const float projection[16],
+                                 oit_error *err)
+{
+    for (int i = 0; i < 16; ++i) {
+        if (!isfinite(modelview[i]))
+            return oit_fail(err, OIT_E_INPUT, "modelview element %d (row %d, column %d) is not finite",
+                            i, i % 4, i / 4);
+        if (!isfinite(projection[i]))
+            return oit_fail(err, OIT_E_INPUT, "projection element %d (row %d, column %d) is not finite",
+                            i, i % 4, i / 4);
+    }
+    float normal_matrix[9];
+    if (!oit_mat4_normal_matrix(modelview, normal_matrix))
+        return oit_fail(err, OIT_E_INPUT, "modelview is singular (its 3x3 part has no inverse)");
+    double scale = 0.0;
+    for (int i = 0; i < 16; ++i)
+        scale = fmax(scale, fabs(projection[i]));
+    double det = det4(projection);
+    if (scale == 0.0 || !isfinite(det) || fabs(det) <= 1e-12 * pow(scale, 4))
+        return oit_fail(err, OIT_E_INPUT, "projection is singular (determinant %g)", det);
+    return OIT_OK;
+}
+
+void oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
+                        float elevation_degrees, float modelview[16], float projection[16])
+{
+    const double degrees = 3.14159265358979323846 / 180.0;
+    const double fov_y = 40.0 * degrees;
+    double aspect = (width > 0 && height > 0) ? (double)width / height : 1.0;
+    double fov_x = 2.0 * atan(tan(fov_y / 2.0) * aspect);
+    double radius = model->radius > 0.0f ? model->radius : 1.0;
+    /* Distance at which the sphere fits the narrower field of view, with a small margin. */
+    double distance = 1.05 * radius / sin(fmin(fov_y, fov_x) / 2.0);
+    double near_plane = fmax(distance - 1.1 * radius, distance * 1e-3);
+    double far_plane = distance + 1.1 * radius;
+
+    /* modelview = translate(0, 0, -distance) * rotate_x(elevation) * rotate_y(-azimuth) * translate(-centre) */
+    double ca = cos(-azimuth_degrees * degrees), sa = sin(-azimuth_degrees * degrees);
+    double ce = cos(elevation_degrees * degrees), se = sin(elevation_degrees * degrees);
+    double rotation[3][3] = {/* rows of rotate_x(e) * rotate_y(a) */
+                             {ca, 0.0, sa},
+                             {se * sa, ce, -se * ca},
+                             {-ce * sa, se, ce * ca}};
+    oit_mat4_identity(modelview);
+    for (int row = 0; row < 3; ++row) {
+        double moved = 0.0;
+        for (int col = 0; col < 3; ++col) {
+            modelview[col * 4 + row] = (float)rotation[row][col];
+            moved -= rotation[row][col] * model->centre[col];
+        }
+        modelview[12 + row] = (float)(moved - (row == 2 ? distance : 0.0));
+    }
+
+    double f = 1.0 / tan(fov_y / 2.0);
+    memset(projection, 0, 16 * sizeof projection[0]);
+    projection[0] = (float)(f / aspect);
+    projection[5] = (float)f;
+    projection[10] = (float)((far_plane + near_plane) / (near_plane - far_plane));
+    projection[11] = -1.0f;
+    projection[14] = (float)(2.0 * far_plane * near_plane / (near_plane - far_plane));
+}
+
+void oit_shade(const oit_frame_settings *frame, const float colour[3], const float eye_normal[3],
+               const float eye_position[3], float out_rgb[3])
+{
+    float factor = 1.0f;
+    if (frame->shading == OIT_SHADE_HEADLIGHT) {
+        float n_length = sqrtf(eye_normal[0] * eye_normal[0] + eye_normal[1] * eye_normal[1] +
+                               eye_normal[2] * eye_normal[2]);
+        float v_length = sqrtf(eye_position[0] * eye_position[0] +
+                               eye_position[1] * eye_position[1] +
+                               eye_position[2] * eye_position[2]);
+        if (n_length > 0.0f) {
+            float v[3] = {0.0f, 0.0f, 1.0f};
+            if (v_length > 0.0f)
+                for (int i = 0; i < 3; ++i)
+                    v[i] = -eye_position[i] / v_length;
+            float n_dot_v = (eye_normal[0] * v[0] + eye_normal[1] * v[1] + eye_normal[2] * v[2]) /
+                            n_length;
+            const float ambient = OIT_HEADLIGHT_AMBIENT_PERCENT / 100.0f;
+            /* two-sided: through transparent surfaces back faces are seen */
+            factor = ambient + (1.0f - ambient) * fabsf(n_dot_v);
+        }
+    }
+    for (int i = 0; i < 3; ++i)
+        out_rgb[i] = colour[i] * factor;
+}

@@ -1,0 +1,389 @@
+/*
+ * oit.h: the public interface of the oit-workbench core (C11).
+ *
+ * The core takes plain matrices and C structs. Every function that can fail
+ * returns an oit_status and leaves a one-line message in an oit_error; the core
+ * never prints and never exits.
+ *
+ * Conventions
+ * - Matrices are float[16] in OpenGL's column-major order (m[col * 4 + row]),
+ *   column-vector convention: clip = projection * modelview * v.
+ * - Images are RGBA8, top row first (as PNG stores them).
+ * - Window depth is gl_FragCoord.z in [0, 1]; fragments are ordered by
+ *   (depth, triangle index) so equal depths always sort the same way.
+ * - Compositing is front to back in floating point; colour is quantized once.
+ */
+#ifndef OIT_H
+#define OIT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------ status */
+
+typedef enum oit_status {
+    OIT_OK = 0,
+    OIT_E_INPUT = 2,   /* bad usage or input (maps to exit status 2) */
+    OIT_E_RUNTIME = 3  /* GL or runtime failure (maps to exit status 3) */
+} oit_status;
+
+#define OIT_ERROR_MESSAGE_SIZE 512
+
+typedef struct oit_error {
+    char message[OIT_ERROR_MESSAGE_SIZE]; /* one line, no trailing newline */
+} oit_error;
+
+/* Format a one-line message into err (may be NULL) and return status. */
+oit_status oit_fail(oit_error *err, oit_status status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* ------------------------------------------------------------------- model */
+
+#define OIT_NAME_SIZE 128
+
+typedef struct oit_component {
+    char name[OIT_NAME_SIZE]; /* group / mesh name, unique within the model */
+    float colour[3];          /* material diffuse colour (MTL Kd, glTF base colour) */
+    float opacity;            /* material opacity (MTL d, glTF base alpha), 1 if none */
+    uint32_t first_triangle;  /* the component's triangles are contiguous */
+    uint32_t triangle_count;
+} oit_component;
+
+typedef struct oit_model {
+    uint32_t vertex_count;
+    float *positions;           /* 3 per vertex, model space */
+    float *normals;             /* 3 per vertex, unit length (computed if the file has none) */
+    uint32_t *vertex_component; /* per vertex: index of its component */
+    uint32_t *welded_ids;       /* per vertex: vertices at the same position share an id */
+    uint32_t welded_count;      /* number of distinct welded ids */
+
+    uint32_t triangle_count;
+    uint32_t *indices; /* 3 per triangle; triangle index == gl_PrimitiveID */
+
+    uint32_t component_count;
+    oit_component *components;
+
+    float bounds_min[3], bounds_max[3];
+    float centre[3]; /* bounding sphere */
+    float radius;
+} oit_model;
+
+/* Import any format Assimp reads. Bad files give OIT_E_INPUT and a message
+ * naming the file and the problem. */
+oit_status oit_model_load(const char *path, oit_model *out, oit_error *err);
+/* Validate indices and coordinates, compute missing normals, welded ids,
+ * bounds and bounding sphere. Called by oit_model_load; usable for models
+ * built in memory (tests, generators). */
+oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *err);
+void oit_model_free(oit_model *model);
+
+/* ------------------------------------------------------------------- image */
+
+typedef struct oit_image {
+    int width, height;
+    uint8_t *rgba; /* width * height * 4, top row first */
+} oit_image;
+
+oit_status oit_image_alloc(oit_image *image, int width, int height, oit_error *err);
+void oit_image_free(oit_image *image);
+oit_status oit_png_write(const char *path, const oit_image *image, oit_error *err);
+oit_status oit_png_read(const char *path, oit_image *image, oit_error *err);
+
+typedef struct oit_image_diff {
+    int max_channel_diff;        /* largest |a - b| over RGB channels, 0..255 */
+    double mean_diff;            /* mean |a - b| over RGB channels */
+    double psnr_db;              /* INFINITY when identical */
+    double share_over_tolerance; /* share of pixels with any channel diff > tolerance, 0..1 */
+    long pixels_over_tolerance;
+} oit_image_diff;
+
+/* Images of different sizes are OIT_E_INPUT. Alpha is ignored. */
+oit_status oit_image_compare(const oit_image *a, const oit_image *b, int tolerance,
+                             oit_image_diff *out, oit_error *err);
+
+/* ---------------------------------------------------------- frame settings */
+
+typedef enum oit_shading_mode {
+    OIT_SHADE_FLAT = 0,     /* unlit material colour; used for comparisons */
+    OIT_SHADE_HEADLIGHT = 1 /* colour * (0.25 + 0.75 |n . v|), v towards the eye point */
+} oit_shading_mode;
+
+/* Buffer views (what the compose pass shows instead of the colour image). */
+typedef enum oit_view {
+    OIT_VIEW_COLOUR = 0,    /* the composited image */
+    OIT_VIEW_HEATMAP = 1,   /* list length / longest list, blue -> green -> yellow -> red */
+    OIT_VIEW_PEEL_LIMIT = 2, /* composite only the first view_parameter fragments */
+    OIT_VIEW_LAYER = 3,     /* only fragment number view_parameter (0 = nearest) */
+    OIT_VIEW_NEIGHBOURS = 4, /* ib: colour each fragment by its neighbour count */
+    OIT_VIEW_CURVATURE = 5, /* ib: grey = curvature * curvature_effect of fragment view_parameter */
+    OIT_VIEW_DISTANCE = 6,  /* ib: grey = normalised distance of fragment view_parameter */
+    OIT_VIEW_FIELDS = 7     /* ib: rgb = (alpha, beta, gamma) fields of fragment view_parameter */
+} oit_view;
+
+/* Opacity modulation of the Illustration Buffer (ib; docs/illustration-buffer.md).
+ * Every field's zero value means its default, so a zeroed struct is "no modulation". */
+typedef enum oit_modulation_mode {
+    OIT_MODULATE_NONE = 0,      /* the material opacity, as ll */
+    OIT_MODULATE_CURVATURE = 1, /* alpha = saturate(curvature * curvature_effect) */
+    OIT_MODULATE_DISTANCE = 2,  /* alpha = saturate(distance along the ray / focus) */
+    OIT_MODULATE_DIST_CURV = 3, /* the larger of the two */
+    OIT_MODULATE_FIELDS = 4,    /* transparency fields alpha, beta, gamma */
+    OIT_MODULATE_EDGES = 5      /* opaque where a fragment has fewer than four neighbours */
+} oit_modulation_mode;
+
+typedef enum oit_neighbour_search {
+    OIT_NEIGHBOURS_DEFAULT = 0, /* the best by the measurements (welded) */
+    OIT_NEIGHBOURS_INDEX = 1,   /* shares a vertex index (the thesis) */
+    OIT_NEIGHBOURS_WELDED = 2,  /* shares a position-welded vertex id */
+    OIT_NEIGHBOURS_EPSILON = 3  /* Carnecky's depth/normal heuristic, mutual check */
+} oit_neighbour_search;
+
+typedef enum oit_distance_mode {
+    OIT_DISTANCE_ADJACENT = 0, /* to the next fragment on the ray */
+    OIT_DISTANCE_SKIP = 1,     /* to the fragment distance_skip places on (or the last) */
+    OIT_DISTANCE_FAR_END = 2   /* to the last fragment on the ray */
+} oit_distance_mode;
+
+#define OIT_FIELD_ALPHA 1
+#define OIT_FIELD_BETA 2
+#define OIT_FIELD_GAMMA 4
+
+typedef struct oit_modulation {
+    oit_view view;
+    int view_parameter;
+
+    oit_modulation_mode mode;
+    oit_neighbour_search neighbours;
+    int curvature_neighbours;  /* 4 or 8; 0: 4 */
+    float curvature_effect;    /* delta_c; 0: 8 */
+    float focus_region;        /* eye-space distance that is opaque; 0: the frame's largest */
+    oit_distance_mode distance;
+    int distance_skip;         /* k for OIT_DISTANCE_SKIP; 0: 2 */
+    int fields;                /* OIT_FIELD_* mask; 0: all three */
+    int diffusion_iterations;  /* 0: 15; negative: none */
+    int blur_iterations;       /* 0: 1; negative: none */
+    float lambda_alpha, lambda_beta, lambda_gamma; /* 0: auto (1, 0.95 / iterations, 0.45) */
+    bool has_halo_colour;
+    float halo_colour[3];      /* default white */
+    bool last_layer_opaque;
+    float epsilon_max;         /* epsilon search: largest accepted epsilon; 0: 0.05 */
+} oit_modulation;
+
+/* Local opacity modulation, expressible in every algorithm (issue "Opacity
+ * modulation in every algorithm"; extended there). */
+typedef enum oit_focus_shape {
+    OIT_FOCUS_NONE = 0,
+    OIT_FOCUS_POINT = 1, /* alpha *= saturate(|p - f| / focus_region) */
+    OIT_FOCUS_PLANE = 2,
+    OIT_FOCUS_BOX = 3
+} oit_focus_shape;
+
+typedef struct oit_local_modulation {
+    /* per-component opacity multipliers in [0, 1], component_count of them, or
+     * NULL for all 1; 0 hides the part: its fragments are never stored */
+    const float *component_alpha;
+    uint32_t component_count;
+    oit_focus_shape focus_shape;
+    float focus[6];  /* point xyz | plane abcd | box min xyz, max xyz; model coordinates */
+    float contrast;  /* 0 or 1: unchanged */
+    /* The fall-off length of the focus shapes (model units) when
+     * modulation.focus_region is 0; 0 here too: 1 (the CLI sets a quarter of
+     * the model's bounding radius). docs/modulation.md */
+    float focus_default_region;
+} oit_local_modulation;
+
+/* The most components --component-alpha can address (per-frame uniforms,
+ * OIT_LOCAL_MAX_COMPONENTS in oit_shared.h). */
+#define OIT_LOCAL_COMPONENT_LIMIT 1024
+
+typedef struct oit_frame_settings {
+    int width, height;
+    float modelview[16];  /* column-major */
+    float projection[16]; /* column-major */
+    float alpha;          /* uniform opacity multiplier in [0, 1] */
+    oit_shading_mode shading;
+    float background[3];
+    oit_modulation modulation;
+    oit_local_modulation local;
+} oit_frame_settings;
+
+/* Matrix helpers (matrix.c). */
+void oit_mat4_identity(float m[16]);
+void oit_mat4_multiply(const float a[16], const float b[16], float out[16]);
+/* normal matrix: inverse transpose of the upper 3x3 of m, column-major 3x3 */
+bool oit_mat4_normal_matrix(const float m[16], float out[9]);
+/* Reject NaN/inf and singular projections with OIT_E_INPUT. */
+oit_status oit_matrices_validate(const float modelview[16], const float projection[16],
+                                 oit_error *err);
+/* A camera that frames the model's bounding sphere: perspective with a 40
+ * degree vertical field of view, near/far around the sphere. With azimuth and
+ * elevation 0 it looks down -z from +z; azimuth turns the model about the
+ * vertical axis (degrees, positive shows its right side), elevation tilts the
+ * camera up (positive looks down on it). */
+void oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
+                        float elevation_degrees, float modelview[16], float projection[16]);
+/* The per-fragment shading shared by every algorithm and the reference. */
+void oit_shade(const oit_frame_settings *frame, const float colour[3], const float eye_normal[3],
+               const float eye_position[3], float out_rgb[3]);
+
+/* Local modulation (local_modulation.c, twin of shaders/common/local_modulation.glsl).
+ * The focus shapes' fall-off length, in model units. */
+float oit_local_focus_region(const oit_frame_settings *frame);
+/* The inverse of the modelview (model <- eye), column-major; false if singular. */
+bool oit_local_inverse_modelview(const float modelview[16], double out[16]);
+/* alpha times the component's opacity and the focus factor at model position p. */
+double oit_local_alpha(const oit_frame_settings *frame, double alpha, uint32_t component,
+                       const double model_position[3]);
+/* rgb = saturate((rgb - 0.5) * contrast + 0.5), unless contrast is 0 or 1. */
+void oit_local_contrast(const oit_frame_settings *frame, float rgb[3]);
+
+/* -------------------------------------------------------------- statistics */
+
+#define OIT_STAGE_NAME_SIZE 32
+#define OIT_MAX_STAGES 264 /* room for OIT_MAX_PEEL_LAYERS peels plus fixed stages */
+#define OIT_HISTOGRAM_BINS 65 /* list lengths 0..63, and 64 or more */
+
+typedef struct oit_stage_time {
+    char name[OIT_STAGE_NAME_SIZE];
+    double gpu_ms; /* GL_TIME_ELAPSED on a GPU; on llvmpipe (whose timer queries do not
+                      measure the work) glFinish-bracketed wall time; for the reference,
+                      CPU time of the stage */
+} oit_stage_time;
+
+typedef struct oit_stats {
+    double cpu_ms; /* wall time of the whole frame, including waiting for the GPU */
+    int stage_count;
+    oit_stage_time stages[OIT_MAX_STAGES];
+    uint64_t memory_bytes;    /* GPU (or CPU for the reference) memory the algorithm holds */
+    int64_t fragments;        /* fragments stored; -1 where not applicable */
+    int64_t max_list;         /* longest per-pixel list; -1 where not applicable */
+    int64_t layers;           /* layers peeled; -1 where not applicable */
+    int64_t overflow_retries; /* frames rendered again with a larger pool; -1 n/a */
+
+    /* list statistics (ll, ib, reference); negative where not applicable */
+    double mean_list; /* mean list length over non-empty pixels */
+    double psi;       /* share of non-empty pixels whose list is longer than 2/3 of the longest */
+    int histogram_bins; /* 0 when no histogram: bin i counts pixels with list length i, the last bin the rest */
+    uint64_t list_histogram[OIT_HISTOGRAM_BINS];
+    double bytes_per_fragment; /* ib / ll: every per-fragment buffer, ping-pong copies included */
+    double bytes_per_pixel;
+    double neighbours_four_share;           /* ib: fragments with all four neighbours */
+    double neighbours_symmetric_share;      /* ib: links whose partner links back */
+    double neighbours_same_component_share; /* ib: links that stay on the same component */
+} oit_stats;
+
+void oit_stats_reset(oit_stats *stats); /* zeroes, and marks the optional figures n/a (-1) */
+
+/* ------------------------------------------------------ the algorithm table */
+
+typedef enum oit_ll_sort {
+    OIT_LL_SORT_INSERTION = 0, /* in-place insertion sort on the lists, second next buffer */
+    OIT_LL_SORT_LOCAL_ARRAY = 1 /* copy into a fixed local array and sort there */
+} oit_ll_sort;
+
+typedef struct oit_algorithm_config {
+    const char *shader_dir;     /* root of the shader tree (contains common/) */
+    uint64_t max_memory_bytes;  /* budget for buffers that grow (fragment pools) */
+    oit_ll_sort ll_sort;
+    int max_layers;             /* peeling layer limit, 1..OIT_MAX_PEEL_LAYERS */
+    uint64_t initial_fragment_capacity; /* 0: automatic; small values force pool growth (tests) */
+    bool debug;                 /* check GL errors after every stage */
+} oit_algorithm_config;
+
+void oit_algorithm_config_defaults(oit_algorithm_config *config);
+
+/* A model ready to draw: the CPU model and, when a GL context exists, its buffers. */
+typedef struct oit_scene {
+    const oit_model *model;
+    bool has_gpu;
+    unsigned vertex_array;      /* GLuint */
+    unsigned vertex_buffers[4]; /* position, normal, component, welded id */
+    unsigned index_buffer;
+    unsigned component_buffer;  /* SSBO at OIT_SSBO_COMPONENTS */
+    uint32_t index_count;
+    uint64_t gpu_bytes;
+} oit_scene;
+
+/* Upload the model (needs a current GL context). */
+oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error *err);
+/* A scene without GPU buffers, for the reference renderer. */
+void oit_scene_cpu(oit_scene *scene, const oit_model *model);
+void oit_scene_release(oit_scene *scene);
+
+typedef struct oit_algorithm oit_algorithm; /* each algorithm's own state */
+
+typedef struct oit_algorithm_ops {
+    const char *name;    /* as on the command line */
+    const char *summary; /* one line for `oit algorithms` */
+    bool uses_gl;        /* false only for the CPU reference */
+    bool exact;          /* true if it composites every fragment in depth order */
+    oit_status (*create)(const oit_algorithm_config *config, oit_algorithm **out, oit_error *err);
+    oit_status (*resize)(oit_algorithm *alg, int width, int height, oit_error *err);
+    /* Render one frame into the algorithm's RGBA8 output; fills the stage
+     * times and per-frame figures returned by stats(). */
+    oit_status (*render)(oit_algorithm *alg, const oit_scene *scene,
+                         const oit_frame_settings *frame, oit_error *err);
+    oit_status (*read_image)(oit_algorithm *alg, oit_image *out, oit_error *err);
+    void (*stats)(const oit_algorithm *alg, oit_stats *out);
+    void (*destroy)(oit_algorithm *alg);
+} oit_algorithm_ops;
+
+/* The registry, in the order `oit algorithms` lists them. */
+const oit_algorithm_ops *const *oit_algorithm_list(size_t *count);
+const oit_algorithm_ops *oit_algorithm_find(const char *name);
+
+extern const oit_algorithm_ops oit_algorithm_blend;
+extern const oit_algorithm_ops oit_algorithm_dp;
+extern const oit_algorithm_ops oit_algorithm_ddp;
+extern const oit_algorithm_ops oit_algorithm_ll;
+extern const oit_algorithm_ops oit_algorithm_ib;
+extern const oit_algorithm_ops oit_algorithm_wboit;
+extern const oit_algorithm_ops oit_algorithm_reference;
+
+/* ------------------------------------------------------------- GL context */
+
+typedef enum oit_backend { OIT_BACKEND_EGL = 0, OIT_BACKEND_OSMESA = 1 } oit_backend;
+
+typedef struct oit_gl_context oit_gl_context;
+
+/* Create a headless OpenGL 4.3+ core-profile context and make it current.
+ * debug: request a debug context and route KHR_debug output into
+ * oit_gl_debug_messages (errors are also reported by oit_gl_check). */
+oit_status oit_gl_context_create(oit_backend backend, bool debug, oit_gl_context **out,
+                                 oit_error *err);
+void oit_gl_context_destroy(oit_gl_context *context);
+const char *oit_gl_renderer_string(void); /* GL_RENDERER of the current context */
+
+/* ---------------------------------------------------------------- shaders */
+
+/* Find the shader tree: $OIT_SHADER_DIR, next to the executable
+ * (../share/oit-workbench/shaders, then ./shaders), then the source tree.
+ * On failure the message lists every place it looked. */
+oit_status oit_find_shader_dir(const char *argv0, char *out, size_t out_size, oit_error *err);
+
+/* -------------------------------------------------------------- generators */
+
+/* Procedural scenes written as OBJ + MTL (the MTL next to the OBJ). */
+typedef struct oit_scene_generator {
+    const char *name;
+    const char *summary;
+    int default_complexity; /* scene-specific: layers, grid size, subdivisions... */
+} oit_scene_generator;
+
+const oit_scene_generator *oit_scene_generator_list(size_t *count);
+/* complexity <= 0 uses the default */
+oit_status oit_scene_generate(const char *name, int complexity, const char *obj_path,
+                              oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

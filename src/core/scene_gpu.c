@@ -1,0 +1,112 @@
+/* scene_gpu.c: a model's vertex, index and component buffers on the GPU. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_util.h"
+
+void oit_scene_cpu(oit_scene *scene, const oit_model *model)
+{
+    memset(scene, 0, sizeof *scene);
+    scene->model = model;
+    scene->index_count = model ? model->triangle_count * 3 : 0;
+}
+
+static GLuint upload_attribute(GLuint location, const void *data, size_t bytes, int components,
+                               bool integer, uint64_t *total)
+{
+    GLuint buffer = 0;
+    glGenBuffers(1, &buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, data, GL_STATIC_DRAW);
+    if (integer)
+        glVertexAttribIPointer(location, components, GL_UNSIGNED_INT, 0, NULL);
+    else
+        glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, NULL);
+    glEnableVertexAttribArray(location);
+    *total += bytes;
+    return buffer;
+}
+
+oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error *err)
+{
+    oit_scene_cpu(scene, model);
+    if (!model->positions || !model->normals || !model->vertex_component ||
+        (model->triangle_count && !model->indices) ||
+        (model->component_count && !model->components))
+        return oit_fail(err, OIT_E_INPUT,
+                        "model is not finished (positions, normals, components and indices "
+                        "are needed)");
+    const size_t vertices = model->vertex_count;
+
+    /* Models built in memory may lack welded ids: then every vertex is its own. */
+    uint32_t *identity_ids = NULL;
+    const uint32_t *welded_ids = model->welded_ids;
+    if (!welded_ids) {
+        identity_ids = malloc((vertices ? vertices : 1) * sizeof *identity_ids);
+        if (!identity_ids)
+            return oit_fail(err, OIT_E_RUNTIME, "out of memory uploading the model");
+        for (size_t i = 0; i < vertices; ++i)
+            identity_ids[i] = (uint32_t)i;
+        welded_ids = identity_ids;
+    }
+    /* vec4 per component: rgb colour, a opacity (std430 array of vec4) */
+    size_t component_slots = model->component_count ? model->component_count : 1;
+    float *component_data = calloc(component_slots * 4, sizeof *component_data);
+    if (!component_data) {
+        free(identity_ids);
+        return oit_fail(err, OIT_E_RUNTIME, "out of memory uploading the model");
+    }
+    for (uint32_t i = 0; i < model->component_count; ++i) {
+        memcpy(component_data + i * 4, model->components[i].colour, 3 * sizeof(float));
+        component_data[i * 4 + 3] = model->components[i].opacity;
+    }
+
+    glGenVertexArrays(1, &scene->vertex_array);
+    glBindVertexArray(scene->vertex_array);
+    uint64_t bytes = 0;
+    scene->vertex_buffers[0] = upload_attribute(OIT_ATTRIB_POSITION, model->positions,
+                                                vertices * 3 * sizeof(float), 3, false, &bytes);
+    scene->vertex_buffers[1] = upload_attribute(OIT_ATTRIB_NORMAL, model->normals,
+                                                vertices * 3 * sizeof(float), 3, false, &bytes);
+    scene->vertex_buffers[2] = upload_attribute(OIT_ATTRIB_COMPONENT, model->vertex_component,
+                                                vertices * sizeof(uint32_t), 1, true, &bytes);
+    scene->vertex_buffers[3] = upload_attribute(OIT_ATTRIB_WELDED_ID, welded_ids,
+                                                vertices * sizeof(uint32_t), 1, true, &bytes);
+    glGenBuffers(1, &scene->index_buffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, scene->index_buffer); /* recorded in the VAO */
+    size_t index_bytes = (size_t)model->triangle_count * 3 * sizeof(uint32_t);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)index_bytes, model->indices,
+                 GL_STATIC_DRAW);
+    bytes += index_bytes;
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+
+    glGenBuffers(1, &scene->component_buffer);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, scene->component_buffer);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(component_slots * 4 * sizeof(float)),
+                 component_data, GL_STATIC_DRAW);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    bytes += component_slots * 4 * sizeof(float);
+    free(component_data);
+    free(identity_ids);
+
+    scene->has_gpu = true;
+    scene->index_count = model->triangle_count * 3;
+    scene->gpu_bytes = bytes;
+    oit_status status = oit_gl_check("uploading the model", err);
+    if (status != OIT_OK)
+        oit_scene_release(scene);
+    return status;
+}
+
+void oit_scene_release(oit_scene *scene)
+{
+    if (scene->has_gpu) {
+        glDeleteVertexArrays(1, &scene->vertex_array);
+        glDeleteBuffers(4, scene->vertex_buffers);
+        glDeleteBuffers(1, &scene->index_buffer);
+        glDeleteBuffers(1, &scene->component_buffer);
+    }
+    memset(scene, 0, sizeof *scene);
+}
