@@ -1,0 +1,285 @@
+/* local_options.c: the flags of the local opacity modulations every algorithm
+ * supports (docs/modulation.md): --component-alpha, --hide, --focus-point,
+ * --focus-plane, --focus-box, --contrast. Component names are kept as given
+ * and resolved against the model once it is loaded. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "local_options.h"
+
+/* The largest magnitude accepted for a coordinate: keeps float arithmetic finite. */
+#define COORDINATE_LIMIT 1e9
+#define CONTRAST_MIN 0.1
+#define CONTRAST_MAX 10.0
+/* How many component names an "unknown component" message lists. */
+#define NAMES_LISTED 6
+
+typedef struct component_setting {
+    char *name; /* as given: a component name or an index */
+    float alpha;
+    const char *flag; /* for messages */
+} component_setting;
+
+static struct {
+    component_setting *settings;
+    size_t count, capacity;
+    oit_focus_shape focus_shape;
+    const char *focus_flag;
+    float focus[6];
+    float contrast;
+    float *resolved_alpha; /* handed to frame->local */
+    bool registered_free;
+} options;
+
+void oit_cli_local_options_free(void)
+{
+    for (size_t i = 0; i < options.count; ++i)
+        free(options.settings[i].name);
+    free(options.settings);
+    free(options.resolved_alpha);
+    bool registered = options.registered_free;
+    memset(&options, 0, sizeof options);
+    options.registered_free = registered;
+}
+
+static void register_free(void)
+{
+    if (!options.registered_free) {
+        atexit(oit_cli_local_options_free);
+        options.registered_free = true;
+    }
+}
+
+static bool parse_number(const char *text, double low, double high, float *out)
+{
+    char *end = NULL;
+    double value = strtod(text, &end);
+    if (end == text || *end != '\0' || !isfinite(value) || value < low || value > high)
+        return false;
+    *out = (float)value;
+    return true;
+}
+
+/* count comma-separated numbers, each within +-COORDINATE_LIMIT */
+static bool parse_numbers(const char *text, int count, float *out)
+{
+    char buffer[512];
+    if (strlen(text) >= sizeof buffer)
+        return false;
+    strcpy(buffer, text);
+    char *cursor = buffer;
+    for (int k = 0; k < count; ++k) {
+        char *comma = strchr(cursor, ',');
+        if ((k < count - 1) != (comma != NULL))
+            return false;
+        if (comma)
+            *comma = '\0';
+        if (!parse_number(cursor, -COORDINATE_LIMIT, COORDINATE_LIMIT, &out[k]))
+            return false;
+        cursor = comma ? comma + 1 : cursor;
+    }
+    return true;
+}
+
+static int add_setting(const char *name, size_t name_length, float alpha, const char *flag,
+                       oit_error *err, oit_status *status)
+{
+    if (options.count == options.capacity) {
+        size_t capacity = options.capacity ? 2 * options.capacity : 8;
+        component_setting *grown = realloc(options.settings, capacity * sizeof *grown);
+        if (!grown) {
+            *status = oit_fail(err, OIT_E_RUNTIME, "out of memory for %s", flag);
+            return -1;
+        }
+        options.settings = grown;
+        options.capacity = capacity;
+    }
+    char *copy = malloc(name_length + 1);
+    if (!copy) {
+        *status = oit_fail(err, OIT_E_RUNTIME, "out of memory for %s", flag);
+        return -1;
+    }
+    memcpy(copy, name, name_length);
+    copy[name_length] = '\0';
+    register_free();
+    options.settings[options.count++] = (component_setting){copy, alpha, flag};
+    return 1;
+}
+
+static int set_focus(oit_focus_shape shape, const char *flag, const float *values, int count,
+                     oit_error *err, oit_status *status)
+{
+    if (options.focus_shape != OIT_FOCUS_NONE) {
+        *status = oit_fail(err, OIT_E_INPUT, "%s: only one focus shape per frame (%s was given already)",
+                           flag, options.focus_flag);
+        return -1;
+    }
+    options.focus_shape = shape;
+    options.focus_flag = flag;
+    memset(options.focus, 0, sizeof options.focus);
+    memcpy(options.focus, values, (size_t)count * sizeof values[0]);
+    return 1;
+}
+
+int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oit_status *status)
+{
+    static const char *const flags[] = {"--component-alpha", "--hide", "--focus-point",
+                                        "--focus-plane", "--focus-box", "--contrast"};
+    const char *flag = NULL;
+    for (size_t k = 0; k < sizeof flags / sizeof flags[0]; ++k)
+        if (strcmp(argv[*i], flags[k]) == 0)
+            flag = flags[k];
+    if (!flag)
+        return 0;
+    if (*i + 1 >= argc) {
+        *status = oit_fail(err, OIT_E_INPUT, "%s needs a value", flag);
+        return -1;
+    }
+    const char *value = argv[++*i];
+
+#define BAD(...)                                           \
+    do {                                                   \
+        *status = oit_fail(err, OIT_E_INPUT, __VA_ARGS__); \
+        return -1;                                         \
+    } while (0)
+
+    if (strcmp(flag, "--component-alpha") == 0) {
+        const char *equals = strrchr(value, '=');
+        float alpha;
+        if (!equals || equals == value)
+            BAD("--component-alpha must be NAME=A (a component name or index, A in [0, 1]), got '%s'",
+                value);
+        if (!parse_number(equals + 1, 0.0, 1.0, &alpha))
+            BAD("--component-alpha %s: the opacity must be a number in [0, 1], got '%s'", value,
+                equals + 1);
+        return add_setting(value, (size_t)(equals - value), alpha, flag, err, status);
+    }
+    if (strcmp(flag, "--hide") == 0) {
+        if (value[0] == '\0')
+            BAD("--hide needs a component name or index");
+        return add_setting(value, strlen(value), 0.0f, flag, err, status);
+    }
+    if (strcmp(flag, "--focus-point") == 0) {
+        float p[3];
+        if (!parse_numbers(value, 3, p))
+            BAD("--focus-point must be x,y,z in model coordinates (each within +-1e9), got '%s'", value);
+        return set_focus(OIT_FOCUS_POINT, flag, p, 3, err, status);
+    }
+    if (strcmp(flag, "--focus-plane") == 0) {
+        float p[4];
+        if (!parse_numbers(value, 4, p))
+            BAD("--focus-plane must be a,b,c,d (the plane ax+by+cz+d=0, each within +-1e9), got '%s'",
+                value);
+        if (p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f)
+            BAD("--focus-plane %s: the normal (a,b,c) must not be zero", value);
+        return set_focus(OIT_FOCUS_PLANE, flag, p, 4, err, status);
+    }
+    if (strcmp(flag, "--focus-box") == 0) {
+        float p[6];
+        if (!parse_numbers(value, 6, p))
+            BAD("--focus-box must be x0,y0,z0,x1,y1,z1 (two corners, each within +-1e9), got '%s'",
+                value);
+        for (int k = 0; k < 3; ++k)
+            if (p[k] > p[3 + k])
+                BAD("--focus-box %s: the first corner must be the minimum (x0<=x1, y0<=y1, z0<=z1)",
+                    value);
+        return set_focus(OIT_FOCUS_BOX, flag, p, 6, err, status);
+    }
+    /* --contrast */
+    if (!parse_number(value, CONTRAST_MIN, CONTRAST_MAX, &options.contrast))
+        BAD("--contrast must be a number in [%g, %g] (1: unchanged), got '%s'", CONTRAST_MIN,
+            CONTRAST_MAX, value);
+    return 1;
+#undef BAD
+}
+
+/* The component a setting names: an exact name first, then an index. */
+static bool find_component(const oit_model *model, const char *name, uint32_t *out)
+{
+    for (uint32_t c = 0; c < model->component_count; ++c)
+        if (strcmp(model->components[c].name, name) == 0) {
+            *out = c;
+            return true;
+        }
+    char *end = NULL;
+    unsigned long index = strtoul(name, &end, 10);
+    if (name[0] >= '0' && name[0] <= '9' && *end == '\0' && index < model->component_count) {
+        *out = (uint32_t)index;
+        return true;
+    }
+    return false;
+}
+
+oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modulation *local,
+                                         oit_error *err)
+{
+    memset(local, 0, sizeof *local);
+    local->focus_shape = options.focus_shape;
+    memcpy(local->focus, options.focus, sizeof local->focus);
+    local->contrast = options.contrast;
+    /* the focus shapes' fall-off when --focus-region is auto: a quarter of the
+     * bounding radius (docs/modulation.md) */
+    local->focus_default_region = model->radius > 0.0f ? 0.25f * model->radius : 1.0f;
+
+    free(options.resolved_alpha);
+    options.resolved_alpha = NULL;
+    if (options.count == 0)
+        return OIT_OK;
+    if (model->component_count == 0)
+        return oit_fail(err, OIT_E_INPUT, "%s: the model has no components",
+                        options.settings[0].flag);
+    float *alpha = malloc(model->component_count * sizeof *alpha);
+    if (!alpha)
+        return oit_fail(err, OIT_E_RUNTIME, "out of memory for %u component opacities",
+                        model->component_count);
+    for (uint32_t c = 0; c < model->component_count; ++c)
+        alpha[c] = 1.0f;
+    for (size_t s = 0; s < options.count; ++s) {
+        const component_setting *setting = &options.settings[s];
+        uint32_t c;
+        if (!find_component(model, setting->name, &c)) {
+            char known[OIT_ERROR_MESSAGE_SIZE / 2] = "";
+            size_t used = 0;
+            for (uint32_t k = 0; k < model->component_count && k < NAMES_LISTED &&
+                                 used < sizeof known;
+                 ++k)
+                used += (size_t)snprintf(known + used, sizeof known - used, "%s'%s'", k ? ", " : "",
+                                         model->components[k].name);
+            free(alpha);
+            return oit_fail(err, OIT_E_INPUT,
+                            "%s: no component '%s' (the model has %u: %s%s; or give an index 0..%u)",
+                            setting->flag, setting->name, model->component_count, known,
+                            model->component_count > NAMES_LISTED ? ", ..." : "",
+                            model->component_count - 1);
+        }
+        if (c >= OIT_LOCAL_COMPONENT_LIMIT) {
+            free(alpha);
+            return oit_fail(err, OIT_E_INPUT,
+                            "%s %s: component %u is past the %d components the GPU algorithms can "
+                            "address",
+                            setting->flag, setting->name, c, OIT_LOCAL_COMPONENT_LIMIT);
+        }
+        alpha[c] = setting->alpha; /* later flags win */
+    }
+    options.resolved_alpha = alpha;
+    local->component_alpha = alpha;
+    local->component_count = model->component_count;
+    return OIT_OK;
+}
+
+void oit_cli_print_local_help(FILE *out)
+{
+    fputs("Local modulation (every algorithm and the reference; docs/modulation.md):\n"
+          "  --component-alpha NAME=A  opacity of one part, A in [0, 1], times its material's;\n"
+          "                         NAME is a component name (oit info) or index; repeatable\n"
+          "  --hide NAME            the part's fragments are never stored (= NAME=0); repeatable\n"
+          "  --focus-point X,Y,Z    alpha *= saturate(|p - f| / R): transparent at the point\n"
+          "  --focus-plane A,B,C,D  alpha *= saturate(dist(p, plane Ax+By+Cz+D=0) / R)\n"
+          "  --focus-box X0,Y0,Z0,X1,Y1,Z1  alpha *= saturate(dist(p, box) / R): inside invisible\n"
+          "                         (one shape; model coordinates, each within +-1e9; R is\n"
+          "                         --focus-region in model units, auto: 1/4 of the bounding radius)\n"
+          "  --contrast C           colour = saturate((colour - 0.5) C + 0.5) per fragment,\n"
+          "                         C in [0.1, 10] (default 1: unchanged)\n",
+          out);
+}

@@ -1,0 +1,499 @@
+/*
+ * oit.c: the headless command-line tool.
+ *
+ *   oit render     render a model with one algorithm, write a PNG, report timings
+ *   oit compare    compare two PNG images
+ *   oit info       counts, bounds and components of a model
+ *   oit gen        write a procedural test scene (OBJ + MTL)
+ *   oit demo       render the bundled model with every algorithm, print a table
+ *   oit bench      scenes x algorithms x sizes, timings and statistics as CSV/JSON (bench.c)
+ *   oit measure    the source's measuring command line, one result line per run (bench.c)
+ *   oit algorithms list the algorithms
+ *
+ * Exit status: 0 success, 1 comparison outside bounds, 2 bad usage or input,
+ * 3 GL or runtime failure. Every error is one line on stderr.
+ */
+#define _XOPEN_SOURCE 700 /* realpath */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "bench.h"
+#include "local_options.h"
+#include "modulation_options.h"
+#include "render_session.h"
+
+/* --------------------------------------------------------------- JSON */
+
+static void print_render_json(FILE *out, const render_options *o, const session *s,
+                              const render_result *r)
+{
+    const oit_stats *st = &r->stats;
+    fprintf(out, "{\"algorithm\": ");
+    json_string(out, o->algorithm->name);
+    fprintf(out, ", \"model\": ");
+    json_string(out, o->model_path);
+    fprintf(out, ", \"backend\": \"%s\"", o->backend == OIT_BACKEND_EGL ? "egl" : "osmesa");
+    if (o->algorithm->uses_gl) {
+        fprintf(out, ", \"renderer\": ");
+        json_string(out, oit_gl_renderer_string());
+        fprintf(out, ", \"shaders\": ");
+        json_string(out, s->shader_dir);
+    }
+    fprintf(out, ", \"width\": %d, \"height\": %d, \"frames\": %d", o->width, o->height, o->frames);
+    fprintf(out, ", \"triangles\": %u", s->model.triangle_count);
+    /* the camera used, row by row as --modelview/--projection and oit measure take it */
+    oit_frame_settings frame;
+    oit_error ignored;
+    if (render_frame_settings(s, o, &frame, &ignored) == OIT_OK) {
+        const float *matrices[2] = {frame.modelview, frame.projection};
+        const char *keys[2] = {"modelview", "projection"};
+        for (int m = 0; m < 2; ++m) {
+            fprintf(out, ", \"%s\": [", keys[m]);
+            for (int row = 0; row < 4; ++row)
+                for (int col = 0; col < 4; ++col)
+                    fprintf(out, "%s%.9g", row || col ? ", " : "", matrices[m][col * 4 + row]);
+            fprintf(out, "]");
+        }
+    }
+    fprintf(out, ", \"gpu_ms\": %.4f, \"cpu_ms\": %.4f", stages_total(st), st->cpu_ms);
+    fprintf(out, ", \"stages\": [");
+    for (int i = 0; i < st->stage_count; ++i) {
+        fprintf(out, "%s{\"name\": ", i ? ", " : "");
+        json_string(out, st->stages[i].name);
+        fprintf(out, ", \"gpu_ms\": %.4f}", st->stages[i].gpu_ms);
+    }
+    fprintf(out, "], \"memory_bytes\": %llu", (unsigned long long)st->memory_bytes);
+    if (st->fragments >= 0)
+        fprintf(out, ", \"fragments\": %lld", (long long)st->fragments);
+    if (st->max_list >= 0)
+        fprintf(out, ", \"max_list\": %lld", (long long)st->max_list);
+    if (st->layers >= 0)
+        fprintf(out, ", \"layers\": %lld", (long long)st->layers);
+    if (st->overflow_retries >= 0)
+        fprintf(out, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
+    /* list and Illustration Buffer figures, where the algorithm has them */
+    const struct {
+        const char *key;
+        double value;
+    } optional[] = {
+        {"mean_list", st->mean_list},
+        {"psi", st->psi},
+        {"bytes_per_fragment", st->bytes_per_fragment},
+        {"bytes_per_pixel", st->bytes_per_pixel},
+        {"neighbours_four_share", st->neighbours_four_share},
+        {"neighbours_symmetric_share", st->neighbours_symmetric_share},
+        {"neighbours_same_component_share", st->neighbours_same_component_share},
+    };
+    for (size_t k = 0; k < sizeof optional / sizeof optional[0]; ++k)
+        if (optional[k].value >= 0.0)
+            fprintf(out, ", \"%s\": %.6g", optional[k].key, optional[k].value);
+    if (st->histogram_bins > 0) {
+        fprintf(out, ", \"list_histogram\": [");
+        for (int b = 0; b < st->histogram_bins; ++b)
+            fprintf(out, "%s%llu", b ? ", " : "", (unsigned long long)st->list_histogram[b]);
+        fprintf(out, "]");
+    }
+    if (o->out_path) {
+        fprintf(out, ", \"out\": ");
+        json_string(out, o->out_path);
+    }
+    fprintf(out, "}\n");
+}
+
+/* ------------------------------------------------------------ commands */
+
+static const char render_help[] =
+    "usage: oit render --model PATH [--out FILE.png] [options]\n"
+    "  --algorithm NAME       blend, dp, ddp, ll, wboit, reference (default ll)\n"
+    "  --size WxH             image size, 1..16384 per side (default 256x256)\n"
+    "  --modelview M          16 comma-separated numbers, row by row (default: frame the model)\n"
+    "  --projection P         16 comma-separated numbers, row by row; clip = P * MV * v\n"
+    "  --orbit AZ,EL          default camera turned by azimuth and elevation in degrees (default 0,0)\n"
+    "  --alpha A              uniform opacity in [0, 1] (default 0.5), times each material's opacity\n"
+    "  --shading MODE         flat | headlight (default headlight: two-sided diffuse from the eye)\n"
+    "  --background R,G,B     each in [0, 1] (default 1,1,1)\n"
+    "  --backend NAME         egl | osmesa (default egl)\n"
+    "  --max-memory MB        budget for growing buffers such as the fragment pool (default 1024)\n"
+    "  --sort VARIANT         ll: insertion (in place, default) | array (local array of 64)\n"
+    "  --fragment-pool N      ll: initial fragment pool capacity (default: automatic); it grows as needed\n"
+    "  --max-layers N         dp, ddp: peel at most N layers, 1..256 (default 256)\n"
+    "  --frames N             render N frames; figures are medians over frames 2..N (default 1)\n"
+    "  --json                 print one JSON object with timings and statistics on stdout\n"
+    "  --debug                debug GL context: every stage is checked for GL errors\n";
+
+static int command_render(int argc, char **argv)
+{
+    render_options o;
+    render_options_defaults(&o);
+    oit_error err = {{0}};
+    oit_status status = OIT_OK;
+    for (int i = 0; i < argc; ++i) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            fputs(render_help, stdout);
+            oit_cli_print_local_help(stdout);
+            oit_cli_print_modulation_help(stdout);
+            return EXIT_OK;
+        }
+        int parsed = parse_render_option(argc, argv, &i, &o, &err, &status);
+        if (parsed < 0)
+            return report(status, &err);
+        if (parsed == 0)
+            return usage_error("render: unknown option '%s'", argv[i]);
+    }
+    if (!o.model_path)
+        return usage_error("render needs --model PATH%s", "");
+
+    session s;
+    status = session_open(&s, o.model_path, o.backend, o.config.debug, &err);
+    render_result result;
+    memset(&result, 0, sizeof result);
+    if (status == OIT_OK)
+        status = render_frames(&s, &o, &result, &err);
+    if (status == OIT_OK && o.out_path)
+        status = oit_png_write(o.out_path, &result.image, &err);
+    if (status == OIT_OK) {
+        if (o.json)
+            print_render_json(stdout, &o, &s, &result);
+        else
+            fprintf(stdout, "%s: %dx%d, gpu %.3f ms, cpu %.3f ms, memory %.2f MB%s%s\n",
+                    o.algorithm->name, o.width, o.height, stages_total(&result.stats),
+                    result.stats.cpu_ms, result.stats.memory_bytes / (1024.0 * 1024.0),
+                    o.out_path ? ", wrote " : "", o.out_path ? o.out_path : "");
+    }
+    oit_image_free(&result.image);
+    session_close(&s);
+    return report(status, &err);
+}
+
+static int command_compare(int argc, char **argv)
+{
+    const char *paths[2] = {NULL, NULL};
+    int path_count = 0;
+    long tolerance = 0;
+    double max_mismatch_percent = 0.0;
+    bool json = false;
+    const char *diff_path = NULL;
+    for (int i = 0; i < argc; ++i) {
+        if (strcmp(argv[i], "--help") == 0) {
+            fputs("usage: oit compare A.png B.png [--tolerance T] [--max-mismatch PERCENT] [--json]\n"
+                  "  --tolerance T           largest channel difference (0..255) a pixel may have and still\n"
+                  "                          match (default 0)\n"
+                  "  --max-mismatch PERCENT  share of pixels allowed over the tolerance (default 0)\n"
+                  "  --diff FILE.png         write the per-pixel difference, amplified 8x\n"
+                  "exit 0 within bounds, 1 outside, 2 on bad input\n",
+                  stdout);
+            return EXIT_OK;
+        } else if (strcmp(argv[i], "--tolerance") == 0 && i + 1 < argc) {
+            if (!parse_int(argv[++i], 0, 255, &tolerance))
+                return usage_error("--tolerance must be a whole number in [0, 255], got '%s'", argv[i]);
+        } else if (strcmp(argv[i], "--max-mismatch") == 0 && i + 1 < argc) {
+            if (!parse_double(argv[++i], &max_mismatch_percent) ||
+                !(max_mismatch_percent >= 0.0 && max_mismatch_percent <= 100.0))
+                return usage_error("--max-mismatch must be a percentage in [0, 100], got '%s'", argv[i]);
+        } else if (strcmp(argv[i], "--diff") == 0 && i + 1 < argc) {
+            diff_path = argv[++i];
+        } else if (strcmp(argv[i], "--json") == 0) {
+            json = true;
+        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
+            return usage_error("compare: unknown option or missing value '%s'", argv[i]);
+        } else if (path_count < 2) {
+            paths[path_count++] = argv[i];
+        } else {
+            return usage_error("compare takes two images, got a third: '%s'", argv[i]);
+        }
+    }
+    if (path_count != 2)
+        return usage_error("compare needs two PNG files%s", "");
+    oit_error err = {{0}};
+    oit_image a = {0}, b = {0};
+    oit_image_diff diff;
+    oit_status status = oit_png_read(paths[0], &a, &err);
+    if (status == OIT_OK)
+        status = oit_png_read(paths[1], &b, &err);
+    if (status == OIT_OK)
+        status = oit_image_compare(&a, &b, (int)tolerance, &diff, &err);
+    if (status == OIT_OK && diff_path) {
+        oit_image d = {0};
+        status = oit_image_alloc(&d, a.width, a.height, &err);
+        for (size_t p = 0; status == OIT_OK && p < (size_t)a.width * a.height; ++p) {
+            for (int c = 0; c < 3; ++c) {
+                int delta = abs((int)a.rgba[p * 4 + c] - (int)b.rgba[p * 4 + c]) * 8;
+                d.rgba[p * 4 + c] = (uint8_t)(delta > 255 ? 255 : delta);
+            }
+            d.rgba[p * 4 + 3] = 255;
+        }
+        if (status == OIT_OK)
+            status = oit_png_write(diff_path, &d, &err);
+        oit_image_free(&d);
+    }
+    oit_image_free(&a);
+    oit_image_free(&b);
+    if (status != OIT_OK)
+        return report(status, &err);
+    double percent = 100.0 * diff.share_over_tolerance;
+    bool within = percent <= max_mismatch_percent;
+    /* JSON has no infinity: identical images report psnr_db null. */
+    char psnr[32];
+    if (isinf(diff.psnr_db))
+        snprintf(psnr, sizeof psnr, "%s", json ? "null" : "inf");
+    else
+        snprintf(psnr, sizeof psnr, "%.3f", diff.psnr_db);
+    if (json)
+        printf("{\"max_channel_diff\": %d, \"mean_diff\": %.6f, \"psnr_db\": %s, "
+               "\"over_tolerance_percent\": %.4f, \"tolerance\": %ld, \"within\": %s}\n",
+               diff.max_channel_diff, diff.mean_diff, psnr, percent, tolerance, within ? "true" : "false");
+    else
+        printf("max channel diff %d, mean diff %.4f, PSNR %s dB, %.3f%% of pixels over tolerance %ld: %s\n",
+               diff.max_channel_diff, diff.mean_diff, psnr, percent, tolerance, within ? "within" : "OUTSIDE");
+    return within ? EXIT_OK : EXIT_MISMATCH;
+}
+
+static int command_info(int argc, char **argv)
+{
+    const char *model_path = NULL;
+    bool json = false;
+    for (int i = 0; i < argc; ++i) {
+        if (strcmp(argv[i], "--model") == 0 && i + 1 < argc)
+            model_path = argv[++i];
+        else if (strcmp(argv[i], "--json") == 0)
+            json = true;
+        else if (strcmp(argv[i], "--help") == 0) {
+            fputs("usage: oit info --model PATH [--json]\n", stdout);
+            return EXIT_OK;
+        } else
+            return usage_error("info: unknown option or missing value '%s'", argv[i]);
+    }
+    if (!model_path)
+        return usage_error("info needs --model PATH%s", "");
+    oit_model m;
+    oit_error err = {{0}};
+    oit_status status = oit_model_load(model_path, &m, &err);
+    if (status != OIT_OK)
+        return report(status, &err);
+    if (json) {
+        printf("{\"model\": ");
+        json_string(stdout, model_path);
+        printf(", \"vertices\": %u, \"welded_vertices\": %u, \"triangles\": %u, \"components\": %u",
+               m.vertex_count, m.welded_count, m.triangle_count, m.component_count);
+        printf(", \"bounds_min\": [%g, %g, %g], \"bounds_max\": [%g, %g, %g]", m.bounds_min[0],
+               m.bounds_min[1], m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);
+        printf(", \"centre\": [%g, %g, %g], \"radius\": %g, \"parts\": [", m.centre[0], m.centre[1],
+               m.centre[2], m.radius);
+        for (uint32_t c = 0; c < m.component_count; ++c) {
+            const oit_component *p = &m.components[c];
+            printf("%s{\"name\": ", c ? ", " : "");
+            json_string(stdout, p->name);
+            printf(", \"colour\": [%.4g, %.4g, %.4g], \"opacity\": %.4g, \"triangles\": %u}", p->colour[0],
+                   p->colour[1], p->colour[2], p->opacity, p->triangle_count);
+        }
+        printf("]}\n");
+    } else {
+        printf("model       %s\n", model_path);
+        printf("vertices    %u (%u distinct positions)\n", m.vertex_count, m.welded_count);
+        printf("triangles   %u\n", m.triangle_count);
+        printf("components  %u\n", m.component_count);
+        printf("bounds      (%g, %g, %g) .. (%g, %g, %g)\n", m.bounds_min[0], m.bounds_min[1],
+               m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);
+        printf("sphere      centre (%g, %g, %g), radius %g\n", m.centre[0], m.centre[1], m.centre[2],
+               m.radius);
+        for (uint32_t c = 0; c < m.component_count; ++c) {
+            const oit_component *p = &m.components[c];
+            printf("  %-32s colour (%.3f, %.3f, %.3f) opacity %.3f, %u triangles\n", p->name, p->colour[0],
+                   p->colour[1], p->colour[2], p->opacity, p->triangle_count);
+        }
+    }
+    oit_model_free(&m);
+    return EXIT_OK;
+}
+
+static int command_gen(int argc, char **argv)
+{
+    const char *scene = NULL, *out = NULL;
+    long complexity = 0;
+    size_t count;
+    const oit_scene_generator *generators = oit_scene_generator_list(&count);
+    for (int i = 0; i < argc; ++i) {
+        if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
+            out = argv[++i];
+        else if (strcmp(argv[i], "--complexity") == 0 && i + 1 < argc) {
+            if (!parse_int(argv[++i], 1, 1000, &complexity))
+                return usage_error("--complexity must be a whole number in [1, 1000], got '%s'", argv[i]);
+        } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "--list") == 0) {
+            printf("usage: oit gen SCENE --out FILE.obj [--complexity N]   (writes FILE.obj and FILE.mtl)\n");
+            for (size_t g = 0; g < count; ++g)
+                printf("  %-10s %s (default complexity %d)\n", generators[g].name, generators[g].summary,
+                       generators[g].default_complexity);
+            return EXIT_OK;
+        } else if (argv[i][0] != '-' && !scene)
+            scene = argv[i];
+        else
+            return usage_error("gen: unknown option or missing value '%s'", argv[i]);
+    }
+    if (!scene || !out)
+        return usage_error("gen needs SCENE and --out FILE.obj%s", "");
+    oit_error err = {{0}};
+    return report(oit_scene_generate(scene, (int)complexity, out, &err), &err);
+}
+
+static int command_algorithms(void)
+{
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    for (size_t i = 0; i < count; ++i)
+        printf("%-10s %s\n", list[i]->name, list[i]->summary);
+    return EXIT_OK;
+}
+
+/* The bundled default model: resources/models/gearbox.obj next to the shaders. */
+static oit_status find_default_model(char *out, size_t size, oit_error *err)
+{
+    char shader_dir[4096];
+    oit_status status = oit_find_shader_dir(program_path, shader_dir, sizeof shader_dir, err);
+    if (status != OIT_OK)
+        return status;
+    char candidate[4200];
+    int written = snprintf(candidate, sizeof candidate, "%s/../resources/models/gearbox.obj", shader_dir);
+    if (written < 0 || (size_t)written >= sizeof candidate || size < PATH_MAX ||
+        realpath(candidate, out) == NULL)
+        return oit_fail(err, OIT_E_INPUT, "the bundled model is missing: looked for %s", candidate);
+    return OIT_OK;
+}
+
+static int command_demo(int argc, char **argv)
+{
+    render_options o;
+    render_options_defaults(&o);
+    const char *out_dir = "oit-demo";
+    char default_model[PATH_MAX];
+    oit_error err = {{0}};
+    oit_status status = OIT_OK;
+    o.frames = 5;
+    /* a three-quarter view shows the parts behind each other */
+    o.orbit[0] = 30.0f;
+    o.orbit[1] = 20.0f;
+    for (int i = 0; i < argc; ++i) {
+        if (strcmp(argv[i], "--help") == 0) {
+            printf("usage: oit demo [--out DIR] [--model PATH] [render options]\n"
+                   "Renders the model (default: the bundled gearbox) with every algorithm, writes\n"
+                   "DIR/<algorithm>.png and prints frame time, memory and the largest difference\n"
+                   "from the CPU reference.\n");
+            return EXIT_OK;
+        }
+        if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
+            out_dir = argv[++i];
+            continue;
+        }
+        int parsed = parse_render_option(argc, argv, &i, &o, &err, &status);
+        if (parsed < 0)
+            return report(status, &err);
+        if (parsed == 0)
+            return usage_error("demo: unknown option '%s'", argv[i]);
+    }
+    if (!o.model_path) {
+        status = find_default_model(default_model, sizeof default_model, &err);
+        if (status != OIT_OK)
+            return report(status, &err);
+        o.model_path = default_model;
+    }
+    if (mkdir(out_dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "oit: error: cannot create the output directory %s: %s\n", out_dir, strerror(errno));
+        return EXIT_USAGE;
+    }
+    session s;
+    status = session_open(&s, o.model_path, o.backend, o.config.debug, &err);
+    if (status != OIT_OK)
+        return report(status, &err);
+
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    render_result reference;
+    render_options ref_options = o;
+    ref_options.algorithm = oit_algorithm_find("reference");
+    ref_options.frames = 1;
+    status = render_frames(&s, &ref_options, &reference, &err);
+    if (status != OIT_OK) {
+        session_close(&s);
+        return report(status, &err);
+    }
+    printf("model %s, %u triangles, %dx%d, %d frames each (medians of frames 2..%d)\n", o.model_path,
+           s.model.triangle_count, o.width, o.height, o.frames, o.frames);
+    printf("%-10s %10s %10s %10s %12s %10s  %s\n", "algorithm", "cpu ms", "gpu ms", "memory MB", "fragments",
+           "max diff", "image");
+    for (size_t i = 0; i < count && status == OIT_OK; ++i) {
+        render_options run = o;
+        run.algorithm = list[i];
+        if (!list[i]->uses_gl)
+            run.frames = 1;
+        render_result r;
+        status = render_frames(&s, &run, &r, &err);
+        if (status != OIT_OK)
+            break;
+        char path[4400];
+        snprintf(path, sizeof path, "%s/%s.png", out_dir, list[i]->name);
+        status = oit_png_write(path, &r.image, &err);
+        oit_image_diff diff = {0};
+        if (status == OIT_OK)
+            status = oit_image_compare(&r.image, &reference.image, 0, &diff, &err);
+        if (status == OIT_OK) {
+            char fragments[32] = "-";
+            if (r.stats.fragments >= 0)
+                snprintf(fragments, sizeof fragments, "%lld", (long long)r.stats.fragments);
+            printf("%-10s %10.2f %10.2f %10.2f %12s %10d  %s\n", list[i]->name, r.stats.cpu_ms,
+                   list[i]->uses_gl ? stages_total(&r.stats) : 0.0, r.stats.memory_bytes / (1024.0 * 1024.0),
+                   fragments, diff.max_channel_diff, path);
+        }
+        oit_image_free(&r.image);
+    }
+    oit_image_free(&reference.image);
+    session_close(&s);
+    return report(status, &err);
+}
+
+static const char main_help[] =
+    "oit: order-independent transparency workbench, headless\n"
+    "usage: oit COMMAND [options]   (oit COMMAND --help for each)\n"
+    "  render      render a model with one algorithm; write a PNG; report timings (--json)\n"
+    "  compare     compare two PNG images: largest and mean difference, PSNR, share over tolerance\n"
+    "  info        counts, bounds and components of a model\n"
+    "  gen         write a procedural test scene (cyclic, onion, spheres, gearbox, coplanar, menger)\n"
+    "  demo        render the bundled model with every algorithm and print a table\n"
+    "  bench       scenes x algorithms x sizes: frame and stage times, memory, lists; CSV and JSON\n"
+    "  measure     the source's measuring command line: TASK COUNTER NAME PATH m00..m33 p00..p33 [VIEWPORT]\n"
+    "  algorithms  list the algorithms\n"
+    "exit status: 0 success, 1 comparison outside bounds, 2 bad usage or input, 3 GL or runtime failure\n";
+
+int main(int argc, char **argv)
+{
+    program_path = argv[0];
+    if (argc < 2)
+        return usage_error("missing command%s", "");
+    const char *command = argv[1];
+    int rest = argc - 2;
+    char **rest_argv = argv + 2;
+    if (strcmp(command, "--help") == 0 || strcmp(command, "-h") == 0 || strcmp(command, "help") == 0) {
+        fputs(main_help, stdout);
+        return EXIT_OK;
+    }
+    if (strcmp(command, "render") == 0)
+        return command_render(rest, rest_argv);
+    if (strcmp(command, "compare") == 0)
+        return command_compare(rest, rest_argv);
+    if (strcmp(command, "info") == 0)
+        return command_info(rest, rest_argv);
+    if (strcmp(command, "gen") == 0)
+        return command_gen(rest, rest_argv);
+    if (strcmp(command, "demo") == 0)
+        return command_demo(rest, rest_argv);
+    if (strcmp(command, "bench") == 0)
+        return command_bench(rest, rest_argv);
+    if (strcmp(command, "measure") == 0)
+        return command_measure(rest, rest_argv);
+    if (strcmp(command, "algorithms") == 0)
+        return command_algorithms();
+    return usage_error("unknown command '%s'", command);
+}

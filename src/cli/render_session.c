@@ -1,0 +1,500 @@
+/*
+ * render_session.c: argument parsing, render options, the render session and
+ * N-frame rendering shared by the oit commands (render_session.h).
+ */
+#define _XOPEN_SOURCE 700 /* strtok_r */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "local_options.h"
+#include "modulation_options.h"
+#include "render_session.h"
+
+const char *program_path = "oit";
+
+int exit_code(oit_status status)
+{
+    return status == OIT_OK ? EXIT_OK : status == OIT_E_INPUT ? EXIT_USAGE : EXIT_RUNTIME;
+}
+
+int report(oit_status status, const oit_error *err)
+{
+    if (status != OIT_OK)
+        fprintf(stderr, "oit: error: %s\n", err->message);
+    return exit_code(status);
+}
+
+int usage_error(const char *fmt, const char *detail)
+{
+    fprintf(stderr, "oit: error: ");
+    fprintf(stderr, fmt, detail);
+    fprintf(stderr, " (see oit --help)\n");
+    return EXIT_USAGE;
+}
+
+/* ------------------------------------------------------------- parsing */
+
+bool parse_double(const char *text, double *out)
+{
+    char *end = NULL;
+    errno = 0;
+    double value = strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE)
+        return false;
+    *out = value;
+    return true;
+}
+
+bool parse_int(const char *text, long minimum, long maximum, long *out)
+{
+    char *end = NULL;
+    errno = 0;
+    long value = strtol(text, &end, 10);
+    if (end == text || *end != '\0' || errno == ERANGE || value < minimum || value > maximum)
+        return false;
+    *out = value;
+    return true;
+}
+
+/* Comma-separated finite numbers; returns the count parsed or -1 on a bad token. */
+int parse_number_list(const char *text, double *values, int capacity)
+{
+    char buffer[2048];
+    if (strlen(text) >= sizeof buffer)
+        return -1;
+    strcpy(buffer, text);
+    int count = 0;
+    char *save = NULL;
+    for (char *token = strtok_r(buffer, ", ", &save); token; token = strtok_r(NULL, ", ", &save)) {
+        double value;
+        if (!parse_double(token, &value))
+            return -1;
+        if (count < capacity)
+            values[count] = value;
+        ++count;
+    }
+    return count;
+}
+
+/* 16 numbers row by row (as the source's measuring command line) into column-major. */
+oit_status matrix_from_rows(const char *what, const double values[16], float out[16], oit_error *err)
+{
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col) {
+            double value = values[row * 4 + col];
+            if (!isfinite(value) || fabs(value) > 3.0e38)
+                return oit_fail(err, OIT_E_INPUT, "%s: element at row %d, column %d is not a finite number",
+                                what, row, col);
+            out[col * 4 + row] = (float)value;
+        }
+    return OIT_OK;
+}
+
+oit_status parse_matrix(const char *flag, const char *text, float out[16], oit_error *err)
+{
+    double values[16];
+    int count = parse_number_list(text, values, 16);
+    if (count < 0)
+        return oit_fail(err, OIT_E_INPUT, "%s: '%s' is not a list of numbers", flag, text);
+    if (count != 16)
+        return oit_fail(err, OIT_E_INPUT, "%s needs 16 comma-separated numbers (row by row), got %d",
+                        flag, count);
+    return matrix_from_rows(flag, values, out, err);
+}
+
+oit_status parse_size(const char *text, int *width, int *height, oit_error *err)
+{
+    char buffer[64];
+    if (strlen(text) >= sizeof buffer)
+        return oit_fail(err, OIT_E_INPUT, "--size: '%.40s...' is not WxH", text);
+    strcpy(buffer, text);
+    char *x = strchr(buffer, 'x');
+    if (!x)
+        return oit_fail(err, OIT_E_INPUT, "--size: '%s' is not WxH (for example 256x256)", text);
+    *x = '\0';
+    long w, h;
+    if (!parse_int(buffer, 0, 1000000000L, &w) || !parse_int(x + 1, 0, 1000000000L, &h))
+        return oit_fail(err, OIT_E_INPUT, "--size: '%s' is not WxH (for example 256x256)", text);
+    if (w < 1 || h < 1)
+        return oit_fail(err, OIT_E_INPUT, "--size %s: width and height must be at least 1", text);
+    if (w > MAX_IMAGE_SIDE || h > MAX_IMAGE_SIDE)
+        return oit_fail(err, OIT_E_INPUT, "--size %s is too large: at most %d pixels per side", text,
+                        MAX_IMAGE_SIDE);
+    *width = (int)w;
+    *height = (int)h;
+    return OIT_OK;
+}
+
+static oit_status parse_colour(const char *flag, const char *text, float out[3], oit_error *err)
+{
+    double values[3];
+    int count = parse_number_list(text, values, 3);
+    if (count != 3)
+        return oit_fail(err, OIT_E_INPUT, "%s needs R,G,B with each in [0, 1], got '%s'", flag, text);
+    for (int i = 0; i < 3; ++i) {
+        if (!(values[i] >= 0.0 && values[i] <= 1.0))
+            return oit_fail(err, OIT_E_INPUT, "%s: component %d (%g) is outside [0, 1]", flag, i,
+                            values[i]);
+        out[i] = (float)values[i];
+    }
+    return OIT_OK;
+}
+
+/* ----------------------------------------------------- render options */
+
+void render_options_defaults(render_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->algorithm = oit_algorithm_find("ll");
+    o->width = o->height = 256;
+    o->alpha = 0.5f;
+    o->shading = OIT_SHADE_HEADLIGHT;
+    o->background[0] = o->background[1] = o->background[2] = 1.0f;
+    o->backend = OIT_BACKEND_EGL;
+    oit_algorithm_config_defaults(&o->config);
+    o->frames = 1;
+}
+
+/* Parses one render option at argv[*i]; returns 1 if consumed, 0 if unknown, -1 on error. */
+int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_error *err,
+                               oit_status *status)
+{
+    const char *flag = argv[*i];
+    const char *value = NULL;
+#define NEED_VALUE()                                                                      \
+    do {                                                                                  \
+        if (*i + 1 >= argc) {                                                             \
+            *status = oit_fail(err, OIT_E_INPUT, "%s needs a value", flag);              \
+            return -1;                                                                    \
+        }                                                                                 \
+        value = argv[++*i];                                                               \
+    } while (0)
+#define CHECK(call)                                                                       \
+    do {                                                                                  \
+        if ((*status = (call)) != OIT_OK)                                                 \
+            return -1;                                                                    \
+    } while (0)
+
+    if (strcmp(flag, "--model") == 0) {
+        NEED_VALUE();
+        o->model_path = value;
+    } else if (strcmp(flag, "--out") == 0) {
+        NEED_VALUE();
+        o->out_path = value;
+    } else if (strcmp(flag, "--algorithm") == 0) {
+        NEED_VALUE();
+        o->algorithm = oit_algorithm_find(value);
+        if (!o->algorithm) {
+            *status = oit_fail(err, OIT_E_INPUT, "unknown algorithm '%s' (oit algorithms lists them)",
+                               value);
+            return -1;
+        }
+    } else if (strcmp(flag, "--size") == 0) {
+        NEED_VALUE();
+        CHECK(parse_size(value, &o->width, &o->height, err));
+    } else if (strcmp(flag, "--modelview") == 0) {
+        NEED_VALUE();
+        CHECK(parse_matrix("--modelview", value, o->modelview, err));
+        o->has_modelview = true;
+    } else if (strcmp(flag, "--projection") == 0) {
+        NEED_VALUE();
+        CHECK(parse_matrix("--projection", value, o->projection, err));
+        o->has_projection = true;
+    } else if (strcmp(flag, "--orbit") == 0) {
+        NEED_VALUE();
+        double angles[2];
+        if (parse_number_list(value, angles, 2) != 2 || !(fabs(angles[0]) <= 360.0) ||
+            !(fabs(angles[1]) <= 90.0)) {
+            *status = oit_fail(err, OIT_E_INPUT,
+                               "--orbit needs AZIMUTH,ELEVATION in degrees (|azimuth| <= 360, |elevation| <= 90), got '%s'",
+                               value);
+            return -1;
+        }
+        o->orbit[0] = (float)angles[0];
+        o->orbit[1] = (float)angles[1];
+    } else if (strcmp(flag, "--alpha") == 0) {
+        NEED_VALUE();
+        double a;
+        if (!parse_double(value, &a) || !(a >= 0.0 && a <= 1.0)) {
+            *status = oit_fail(err, OIT_E_INPUT, "--alpha must be a number in [0, 1], got '%s'", value);
+            return -1;
+        }
+        o->alpha = (float)a;
+    } else if (strcmp(flag, "--shading") == 0) {
+        NEED_VALUE();
+        if (strcmp(value, "flat") == 0)
+            o->shading = OIT_SHADE_FLAT;
+        else if (strcmp(value, "headlight") == 0)
+            o->shading = OIT_SHADE_HEADLIGHT;
+        else {
+            *status = oit_fail(err, OIT_E_INPUT, "--shading must be flat or headlight, got '%s'", value);
+            return -1;
+        }
+    } else if (strcmp(flag, "--background") == 0) {
+        NEED_VALUE();
+        CHECK(parse_colour("--background", value, o->background, err));
+    } else if (strcmp(flag, "--backend") == 0) {
+        NEED_VALUE();
+        if (strcmp(value, "egl") == 0)
+            o->backend = OIT_BACKEND_EGL;
+        else if (strcmp(value, "osmesa") == 0)
+            o->backend = OIT_BACKEND_OSMESA;
+        else {
+            *status = oit_fail(err, OIT_E_INPUT, "--backend must be egl or osmesa, got '%s'", value);
+            return -1;
+        }
+    } else if (strcmp(flag, "--max-memory") == 0) {
+        NEED_VALUE();
+        long mb;
+        if (!parse_int(value, 1, 1L << 22, &mb)) {
+            *status = oit_fail(err, OIT_E_INPUT,
+                               "--max-memory must be a whole number of MB in [1, 4194304], got '%s'", value);
+            return -1;
+        }
+        o->config.max_memory_bytes = (uint64_t)mb * 1024 * 1024;
+    } else if (strcmp(flag, "--sort") == 0) {
+        NEED_VALUE();
+        if (strcmp(value, "insertion") == 0)
+            o->config.ll_sort = OIT_LL_SORT_INSERTION;
+        else if (strcmp(value, "array") == 0)
+            o->config.ll_sort = OIT_LL_SORT_LOCAL_ARRAY;
+        else {
+            *status = oit_fail(err, OIT_E_INPUT, "--sort must be insertion or array, got '%s'", value);
+            return -1;
+        }
+    } else if (strcmp(flag, "--max-layers") == 0) {
+        NEED_VALUE();
+        long layers;
+        if (!parse_int(value, 1, 256, &layers)) {
+            *status = oit_fail(err, OIT_E_INPUT, "--max-layers must be a whole number in [1, 256], got '%s'",
+                               value);
+            return -1;
+        }
+        o->config.max_layers = (int)layers;
+    } else if (strcmp(flag, "--fragment-pool") == 0) {
+        NEED_VALUE();
+        long capacity;
+        if (!parse_int(value, 1, 1L << 30, &capacity)) {
+            *status = oit_fail(err, OIT_E_INPUT,
+                               "--fragment-pool must be a whole number of fragments in [1, 2^30], got '%s'", value);
+            return -1;
+        }
+        o->config.initial_fragment_capacity = (uint64_t)capacity;
+    } else if (strcmp(flag, "--frames") == 0) {
+        NEED_VALUE();
+        long frames;
+        if (!parse_int(value, 1, MAX_FRAMES, &frames)) {
+            *status = oit_fail(err, OIT_E_INPUT, "--frames must be a whole number in [1, %d], got '%s'",
+                               MAX_FRAMES, value);
+            return -1;
+        }
+        o->frames = (int)frames;
+    } else if (strcmp(flag, "--json") == 0) {
+        o->json = true;
+    } else if (strcmp(flag, "--debug") == 0) {
+        o->config.debug = true;
+    } else {
+        int parsed = oit_cli_parse_local_option(argc, argv, i, err, status);
+        if (parsed != 0)
+            return parsed;
+        return oit_cli_parse_modulation_option(argc, argv, i, &o->modulation, &o->config, err, status);
+    }
+    return 1;
+#undef NEED_VALUE
+#undef CHECK
+}
+
+/* ------------------------------------------------------- render session */
+
+oit_status session_open(session *s, const char *model_path, oit_backend backend, bool debug,
+                        oit_error *err)
+{
+    memset(s, 0, sizeof *s);
+    s->backend = backend;
+    s->debug = debug;
+    oit_status status = oit_model_load(model_path, &s->model, err);
+    if (status != OIT_OK)
+        return status;
+    s->model_loaded = true;
+    oit_scene_cpu(&s->cpu_scene, &s->model);
+    return OIT_OK;
+}
+
+oit_status session_need_gl(session *s, oit_error *err)
+{
+    if (s->gl && s->gpu_scene_uploaded)
+        return OIT_OK;
+    oit_status status = s->shader_dir[0] ? OIT_OK
+                                         : oit_find_shader_dir(program_path, s->shader_dir, sizeof s->shader_dir, err);
+    if (status != OIT_OK)
+        return status;
+    if (!s->gl) {
+        status = oit_gl_context_create(s->backend, s->debug, &s->gl, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    if (s->gpu_scene_uploaded)
+        return OIT_OK;
+    status = oit_scene_upload(&s->gpu_scene, &s->model, err);
+    s->gpu_scene_uploaded = status == OIT_OK;
+    return status;
+}
+
+oit_status session_set_model(session *s, const char *model_path, oit_error *err)
+{
+    if (s->gpu_scene_uploaded) {
+        oit_scene_release(&s->gpu_scene);
+        s->gpu_scene_uploaded = false;
+    }
+    if (s->model_loaded) {
+        oit_model_free(&s->model);
+        s->model_loaded = false;
+    }
+    oit_status status = oit_model_load(model_path, &s->model, err);
+    if (status != OIT_OK)
+        return status;
+    s->model_loaded = true;
+    oit_scene_cpu(&s->cpu_scene, &s->model);
+    return OIT_OK;
+}
+
+void session_close(session *s)
+{
+    if (s->gpu_scene_uploaded)
+        oit_scene_release(&s->gpu_scene);
+    if (s->gl)
+        oit_gl_context_destroy(s->gl);
+    if (s->model_loaded)
+        oit_model_free(&s->model);
+    memset(s, 0, sizeof *s);
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double median(double *values, int count)
+{
+    if (count <= 0)
+        return 0.0;
+    qsort(values, (size_t)count, sizeof values[0], compare_double);
+    return count % 2 ? values[count / 2] : 0.5 * (values[count / 2 - 1] + values[count / 2]);
+}
+
+/* Median of every figure over the measured frames (frame 1 pays for shader
+ * compilation and is left out when there is more than one frame). */
+static void median_stats(const oit_stats *frames, int frame_count, oit_stats *out)
+{
+    int first = frame_count > 1 ? 1 : 0;
+    int measured = frame_count - first;
+    double *values = malloc(sizeof(double) * (size_t)measured);
+    *out = frames[frame_count - 1];
+    if (!values)
+        return;
+    for (int f = 0; f < measured; ++f)
+        values[f] = frames[first + f].cpu_ms;
+    out->cpu_ms = median(values, measured);
+    for (int stage = 0; stage < out->stage_count; ++stage) {
+        int n = 0;
+        for (int f = 0; f < measured; ++f) {
+            const oit_stats *s = &frames[first + f];
+            if (stage < s->stage_count && strcmp(s->stages[stage].name, out->stages[stage].name) == 0)
+                values[n++] = s->stages[stage].gpu_ms;
+        }
+        out->stages[stage].gpu_ms = median(values, n);
+    }
+    free(values);
+}
+
+oit_status render_frame_settings(const session *s, const render_options *o, oit_frame_settings *frame,
+                                 oit_error *err)
+{
+    memset(frame, 0, sizeof *frame);
+    frame->width = o->width;
+    frame->height = o->height;
+    float default_modelview[16], default_projection[16];
+    oit_default_camera(&s->model, o->width, o->height, o->orbit[0], o->orbit[1], default_modelview,
+                       default_projection);
+    memcpy(frame->modelview, o->has_modelview ? o->modelview : default_modelview, sizeof frame->modelview);
+    memcpy(frame->projection, o->has_projection ? o->projection : default_projection,
+           sizeof frame->projection);
+    frame->alpha = o->alpha;
+    frame->shading = o->shading;
+    memcpy(frame->background, o->background, sizeof frame->background);
+    frame->modulation = o->modulation;
+    oit_status status = oit_cli_resolve_local_options(&s->model, &frame->local, err);
+    if (status != OIT_OK)
+        return status;
+    return oit_matrices_validate(frame->modelview, frame->projection, err);
+}
+
+oit_status render_frames(session *s, const render_options *o, render_result *result, oit_error *err)
+{
+    memset(result, 0, sizeof *result);
+    const oit_algorithm_ops *ops = o->algorithm;
+    oit_status status = OIT_OK;
+    if (ops->uses_gl) {
+        status = session_need_gl(s, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    oit_algorithm_config config = o->config;
+    config.shader_dir = s->shader_dir;
+
+    oit_frame_settings frame;
+    status = render_frame_settings(s, o, &frame, err);
+    if (status != OIT_OK)
+        return status;
+
+    oit_stats *per_frame = calloc((size_t)o->frames, sizeof *per_frame);
+    if (!per_frame)
+        return oit_fail(err, OIT_E_RUNTIME, "out of memory for %d frames of statistics", o->frames);
+    oit_algorithm *alg = NULL;
+    status = ops->create(&config, &alg, err);
+    if (status == OIT_OK)
+        status = ops->resize(alg, o->width, o->height, err);
+    const oit_scene *scene = ops->uses_gl ? &s->gpu_scene : &s->cpu_scene;
+    for (int f = 0; status == OIT_OK && f < o->frames; ++f) {
+        status = ops->render(alg, scene, &frame, err);
+        if (status == OIT_OK)
+            ops->stats(alg, &per_frame[f]);
+    }
+    if (status == OIT_OK)
+        status = ops->read_image(alg, &result->image, err);
+    if (status == OIT_OK)
+        median_stats(per_frame, o->frames, &result->stats);
+    if (alg)
+        ops->destroy(alg);
+    free(per_frame);
+    return status;
+}
+
+/* --------------------------------------------------------------- JSON */
+
+void json_string(FILE *out, const char *text)
+{
+    fputc('"', out);
+    for (const unsigned char *c = (const unsigned char *)text; *c; ++c) {
+        if (*c == '"' || *c == '\\')
+            fprintf(out, "\\%c", *c);
+        else if (*c < 0x20)
+            fprintf(out, "\\u%04x", *c);
+        else
+            fputc(*c, out);
+    }
+    fputc('"', out);
+}
+
+double stages_total(const oit_stats *stats)
+{
+    double total = 0.0;
+    for (int i = 0; i < stats->stage_count; ++i)
+        total += stats->stages[i].gpu_ms;
+    return total;
+}

@@ -1,0 +1,106 @@
+/* render_session.h: what the oit commands share: argument parsing, the render
+ * options, a session (one model, one GL context made on first use, the
+ * model's GPU buffers) and rendering N frames with medians. render, demo,
+ * bench and measure all render through render_frames / render_frame_settings. */
+#ifndef OIT_CLI_RENDER_SESSION_H
+#define OIT_CLI_RENDER_SESSION_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "oit.h"
+
+enum { EXIT_OK = 0, EXIT_MISMATCH = 1, EXIT_USAGE = 2, EXIT_RUNTIME = 3 };
+
+#define MAX_IMAGE_SIDE 16384
+#define MAX_FRAMES 10000
+
+extern const char *program_path; /* argv[0], to find the shaders next to the executable */
+
+int exit_code(oit_status status);
+/* Prints err as "oit: error: ..." when status is not OK; returns the exit status. */
+int report(oit_status status, const oit_error *err);
+/* Prints "oit: error: <fmt with detail> (see oit --help)"; returns EXIT_USAGE. */
+int usage_error(const char *fmt, const char *detail);
+
+/* ------------------------------------------------------------- parsing */
+
+bool parse_double(const char *text, double *out);
+bool parse_int(const char *text, long minimum, long maximum, long *out);
+/* Comma-separated finite numbers; returns the count parsed or -1 on a bad token. */
+int parse_number_list(const char *text, double *values, int capacity);
+/* 16 numbers row by row (as the source's measuring command line) into column-major. */
+oit_status parse_matrix(const char *flag, const char *text, float out[16], oit_error *err);
+/* Checks and converts 16 row-by-row numbers (already parsed) into column-major. */
+oit_status matrix_from_rows(const char *what, const double rows[16], float out[16], oit_error *err);
+oit_status parse_size(const char *text, int *width, int *height, oit_error *err);
+
+/* ----------------------------------------------------- render options */
+
+typedef struct render_options {
+    const char *model_path;
+    const char *out_path;
+    const oit_algorithm_ops *algorithm;
+    int width, height;
+    bool has_modelview, has_projection;
+    float orbit[2]; /* default camera: azimuth, elevation in degrees */
+    float modelview[16], projection[16];
+    float alpha;
+    oit_shading_mode shading;
+    float background[3];
+    oit_modulation modulation;
+    oit_backend backend;
+    oit_algorithm_config config;
+    int frames;
+    bool json;
+} render_options;
+
+void render_options_defaults(render_options *o);
+/* Parses one render option at argv[*i]; returns 1 if consumed, 0 if unknown, -1 on error. */
+int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_error *err,
+                        oit_status *status);
+
+/* ------------------------------------------------------- render session */
+
+/* Everything one process needs to render: the model, a GL context made on
+ * first use, and the scene's GPU buffers. */
+typedef struct session {
+    oit_model model;
+    bool model_loaded;
+    oit_gl_context *gl;
+    oit_backend backend;
+    bool debug;
+    oit_scene gpu_scene;
+    bool gpu_scene_uploaded;
+    oit_scene cpu_scene;
+    char shader_dir[4096];
+} session;
+
+oit_status session_open(session *s, const char *model_path, oit_backend backend, bool debug,
+                        oit_error *err);
+/* Replaces the model, keeping the GL context (bench: one context per process,
+ * each model uploaded once). */
+oit_status session_set_model(session *s, const char *model_path, oit_error *err);
+oit_status session_need_gl(session *s, oit_error *err);
+void session_close(session *s);
+
+double median(double *values, int count); /* sorts values */
+
+typedef struct render_result {
+    oit_image image;
+    oit_stats stats; /* medians */
+} render_result;
+
+/* The frame settings o asks for on s's model (default camera unless matrices
+ * are given); validates the matrices. */
+oit_status render_frame_settings(const session *s, const render_options *o, oit_frame_settings *frame,
+                                 oit_error *err);
+/* Renders o->frames frames; figures are medians over frames 2..N. */
+oit_status render_frames(session *s, const render_options *o, render_result *result, oit_error *err);
+
+/* --------------------------------------------------------------- output */
+
+void json_string(FILE *out, const char *text);
+double stages_total(const oit_stats *stats);
+
+#endif
