@@ -1,0 +1,48 @@
+// camera.h: the workbench camera (GLM): a pose (eye position + orientation
+// quaternion) that orbit mode turns about a target with a virtual trackball and
+// walk mode moves with W/A/S/D, Q/E and mouse look; perspective or orthographic.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+struct oit_model;
+
+class Camera {
+public:
+    enum class Mode { Orbit, Walk };
+
+    // Frame the model's bounding sphere like oit_default_camera(azimuth, elevation)
+    // does for this aspect ratio (the same matrices for a perspective camera).
+    void frame(const oit_model &model, int width, int height, float azimuth_degrees = 30.0f,
+               float elevation_degrees = 20.0f);
+
+    // Column-major matrices for a view of width x height pixels.
+    void matrices(int width, int height, float modelview[16], float projection[16]) const;
+
+    // Orbit: virtual trackball between two points in widget pixels.
+    void trackball(glm::vec2 from, glm::vec2 to, int width, int height);
+    // Pan by a pixel delta (both modes): the point under the mouse follows it.
+    void pan(glm::vec2 delta_pixels, int height);
+    // Wheel: orbit moves towards the target, walk moves forwards. steps > 0 is closer.
+    void zoom(float steps);
+    // Walk: move in the camera's frame (x right, y world up, z forwards) by model radii.
+    void walk(glm::vec3 direction);
+    // Walk: mouse look by a pixel delta.
+    void look(glm::vec2 delta_pixels);
+
+    void set_mode(Mode mode);
+    Mode mode() const { return mode_; }
+    bool orthographic = false;
+    float fov_degrees = 40.0f;
+
+    // The pose, for presets and saved views.
+    glm::vec3 eye{0.0f, 0.0f, 1.0f};
+    glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f}; // camera to world
+    glm::vec3 target{0.0f};                       // orbit centre
+    glm::vec3 scene_centre{0.0f};
+    float scene_radius = 1.0f;
+
+private:
+    Mode mode_ = Mode::Orbit;
+};

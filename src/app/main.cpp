@@ -1,0 +1,154 @@
+// main.cpp: oit-workbench, the interactive shell over the core.
+//
+//   oit-workbench [MODEL] [--algorithm NAME] [--preset FILE] [--size WxH]
+//                 [--screenshot FILE] [--help]
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QFileInfo>
+#include <QRegularExpression>
+#include <QScreen>
+#include <QSettings>
+#include <QSurfaceFormat>
+#include <QTimer>
+
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "main_window.h"
+
+namespace {
+
+int fail(const QString &message)
+{
+    std::fprintf(stderr, "oit-workbench: error: %s\n", message.toLocal8Bit().constData());
+    return 2;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    // Qt's contexts are OpenGL 4.3 core, as the core's algorithms need.
+    QSurfaceFormat format;
+    format.setRenderableType(QSurfaceFormat::OpenGL);
+    format.setVersion(4, 3);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    format.setDepthBufferSize(0);
+    format.setStencilBufferSize(0);
+    QSurfaceFormat::setDefaultFormat(format);
+
+    // --help and --version answer without a display
+    bool help_only = false;
+    for (int i = 1; i < argc; ++i)
+        help_only = help_only || !std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h") ||
+                    !std::strcmp(argv[i], "--version") || !std::strcmp(argv[i], "-v");
+    std::unique_ptr<QCoreApplication> application(help_only ? new QCoreApplication(argc, argv)
+                                                            : new QApplication(argc, argv));
+    QCoreApplication &app = *application;
+    QCoreApplication::setOrganizationName("oit-workbench");
+    QCoreApplication::setApplicationName("oit-workbench");
+    QCoreApplication::setApplicationVersion("0.1.0");
+
+    QCommandLineParser parser;
+    parser.setApplicationDescription(
+        "Interactive order-independent transparency workbench: inspect a multi-part model,\n"
+        "compare the OIT algorithms live and export what you see.\n"
+        "Without MODEL it opens the last model, or the bundled gearbox.");
+    parser.addHelpOption();
+    parser.addVersionOption();
+    parser.addPositionalArgument("model", "model file (any format Assimp reads)", "[MODEL]");
+    QCommandLineOption algorithm({"a", "algorithm"}, "algorithm: blend, dp, ddp, ll, ib, wboit, reference", "NAME");
+    QCommandLineOption preset("preset", "settings preset (JSON, keys as `oit render`'s flags)", "FILE");
+    QCommandLineOption size("size", "size of the render view in pixels", "WxH");
+    QCommandLineOption screenshot("screenshot", "render one frame of the whole window to FILE (PNG) and quit", "FILE");
+    QCommandLineOption fresh("fresh", "ignore the saved settings and last model (implied by --screenshot)");
+    QCommandLineOption tab("tab", "show this tab of the settings panel: algorithm, opacity, parts, camera, views, stats",
+                           "NAME");
+    parser.addOptions({algorithm, preset, size, screenshot, fresh, tab});
+    if (!parser.parse(app.arguments()))
+        return fail(parser.errorText() + " (see oit-workbench --help)");
+    if (parser.isSet("help")) {
+        std::fputs(parser.helpText().toLocal8Bit().constData(), stdout);
+        return 0;
+    }
+    if (parser.isSet("version")) {
+        std::printf("oit-workbench %s\n", QCoreApplication::applicationVersion().toLocal8Bit().constData());
+        return 0;
+    }
+
+    QString model_path;
+    if (!parser.positionalArguments().isEmpty())
+        model_path = parser.positionalArguments().first();
+    if (parser.positionalArguments().size() > 1)
+        return fail("one model at a time, got " + parser.positionalArguments().join(' '));
+    if (parser.isSet(algorithm) && !oit_algorithm_find(parser.value(algorithm).toUtf8().constData()))
+        return fail("unknown algorithm '" + parser.value(algorithm) + "' (oit algorithms lists them)");
+    QSize view_size;
+    if (parser.isSet(size)) {
+        QRegularExpressionMatch match = QRegularExpression("^(\\d{1,5})x(\\d{1,5})$").match(parser.value(size));
+        if (!match.hasMatch() || match.captured(1).toInt() < 16 || match.captured(2).toInt() < 16 ||
+            match.captured(1).toInt() > 16384 || match.captured(2).toInt() > 16384)
+            return fail("--size '" + parser.value(size) + "' is not WxH with 16..16384 per side");
+        view_size = QSize(match.captured(1).toInt(), match.captured(2).toInt());
+    }
+    bool automated = parser.isSet(screenshot);
+    bool restore = !automated && !parser.isSet(fresh);
+    if (model_path.isEmpty() && restore)
+        model_path = QSettings().value("last_model").toString();
+    if (model_path.isEmpty() || (!parser.positionalArguments().isEmpty() ? false : !QFileInfo::exists(model_path)))
+        model_path = MainWindow::default_model_path();
+
+    MainWindow window(restore);
+    if (parser.isSet(preset)) {
+        QString error;
+        if (!window.load_preset(parser.value(preset), error))
+            return fail(error);
+    }
+    if (parser.isSet(algorithm))
+        window.set_algorithm(parser.value(algorithm));
+    if (parser.isSet(tab) && !window.show_tab(parser.value(tab)))
+        return fail("--tab must be algorithm, opacity, parts, camera, views or stats, got '" + parser.value(tab) + "'");
+    window.show();
+    if (view_size.isValid()) {
+        // the window grows around the view; interactively the view is then
+        // free to follow the window again
+        window.view()->setFixedSize(view_size);
+        if (!automated)
+            QTimer::singleShot(0, &window, [&window] {
+                window.view()->setMinimumSize(64, 64);
+                window.view()->setMaximumSize(QWIDGETSIZE_MAX, QWIDGETSIZE_MAX);
+            });
+    }
+    window.load_model(model_path);
+
+    int exit_code = 0;
+    if (automated) {
+        QString out = parser.value(screenshot);
+        // once the model is in and a frame has been drawn, grab the window
+        QObject::connect(&window, &MainWindow::model_failed, &app, [&](const QString &message) {
+            exit_code = fail(message);
+            app.quit();
+        });
+        QObject::connect(&window, &MainWindow::model_loaded, &app, [&window, &app, &exit_code, out] {
+            auto grab = [&window, &app, &exit_code, out] {
+                window.view()->repaint();
+                QCoreApplication::processEvents();
+                QImage image = window.grab().toImage();
+                if (image.isNull() || !image.save(out, "PNG")) {
+                    exit_code = fail("cannot write the screenshot " + out);
+                } else if (!window.last_error().isEmpty()) {
+                    // the window shows the failure; the caller learns it too
+                    fail("the frame failed: " + window.last_error());
+                    exit_code = 3;
+                } else {
+                    std::printf("%s\n", out.toLocal8Bit().constData());
+                }
+                app.quit();
+            };
+            QTimer::singleShot(200, &app, grab);
+        });
+    }
+    int status = app.exec();
+    return exit_code ? exit_code : status;
+}

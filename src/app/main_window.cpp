@@ -1,0 +1,1273 @@
+// main_window.cpp: see main_window.h.
+#include "main_window.h"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QButtonGroup>
+#include <QCheckBox>
+#include <QClipboard>
+#include <QCloseEvent>
+#include <QColorDialog>
+#include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDir>
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFile>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFontDatabase>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QPainter>
+#include <QPlainTextEdit>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QRadioButton>
+#include <QScrollArea>
+#include <QSettings>
+#include <QSlider>
+#include <QSpinBox>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QTextStream>
+#include <QTreeWidget>
+#include <QVBoxLayout>
+#include <QtConcurrent/QtConcurrent>
+
+#include <cmath>
+#include <cstring>
+
+struct LoadResult {
+    oit_model model{};
+    bool ok = false;
+    QString path, error;
+};
+
+void ModelDeleter::operator()(oit_model *model) const
+{
+    oit_model_free(model);
+    delete model;
+}
+
+namespace {
+
+// A menu entry with a shortcut that runs a function.
+template <class Function>
+QAction *menu_action(QMenu *menu, const QString &text, const QKeySequence &key, QObject *context, Function f)
+{
+    QAction *action = menu->addAction(text);
+    action->setShortcut(key);
+    QObject::connect(action, &QAction::triggered, context, f);
+    return action;
+}
+
+QString read_text_file(const QString &path, QString &error)
+{
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly)) {
+        error = path + ": " + file.errorString();
+        return QString();
+    }
+    return QString::fromUtf8(file.readAll());
+}
+
+QIcon swatch(const float colour[3])
+{
+    QPixmap pixmap(14, 14);
+    pixmap.fill(QColor::fromRgbF(colour[0], colour[1], colour[2]));
+    QPainter painter(&pixmap);
+    painter.setPen(Qt::black);
+    painter.drawRect(0, 0, 13, 13);
+    return QIcon(pixmap);
+}
+
+QString colour_text(const float c[3])
+{
+    return QString("%1,%2,%3").arg(double(c[0])).arg(double(c[1])).arg(double(c[2]));
+}
+
+} // namespace
+
+// ------------------------------------------------------------ construction
+
+MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent)
+{
+    setWindowTitle("oit-workbench");
+    setAcceptDrops(true);
+    view_ = new RenderView(this);
+    setCentralWidget(view_);
+
+    tabs_ = new QTabWidget;
+    tabs_->addTab(build_algorithm_tab(), "Algorithm");
+    tabs_->addTab(build_opacity_tab(), "Opacity");
+    tabs_->addTab(build_parts_tab(), "Parts");
+    tabs_->addTab(build_camera_tab(), "Camera");
+    tabs_->addTab(build_views_tab(), "Views");
+    tabs_->addTab(build_stats_tab(), "Stats");
+    auto *dock = new QDockWidget("Settings", this);
+    dock->setObjectName("settings");
+    dock->setWidget(tabs_);
+    dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
+                      QDockWidget::DockWidgetClosable);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+
+    progress_ = new QProgressBar;
+    progress_->setRange(0, 0); // busy: Assimp reports no progress
+    progress_->setMaximumWidth(160);
+    progress_->hide();
+    status_label_ = new QLabel;
+    statusBar()->addWidget(status_label_, 1);
+    statusBar()->addPermanentWidget(progress_);
+
+    loader_ = new QFutureWatcher<LoadResult *>(this);
+    connect(loader_, &QFutureWatcher<LoadResult *>::finished, this, &MainWindow::load_finished);
+    connect(view_, &RenderView::frame_rendered, this, &MainWindow::update_stats);
+    connect(view_, &RenderView::render_failed, this, [this](const QString &message) {
+        last_error_ = message;
+        status_label_->setText("render failed: " + message);
+    });
+
+    build_menus();
+    QMenu *view_menu = nullptr;
+    for (QAction *a : menuBar()->actions())
+        if (a->text() == "&View")
+            view_menu = a->menu();
+    if (view_menu)
+        view_menu->addAction(dock->toggleViewAction());
+
+    resize(1200, 760);
+    QSettings settings;
+    recent_ = settings.value("recent").toStringList();
+    rebuild_recent_menu();
+    if (restore_state) {
+        restoreGeometry(settings.value("geometry").toByteArray());
+        restoreState(settings.value("window").toByteArray());
+        pending_preset_ = settings.value("settings").toString().toStdString();
+        pending_preset_name_ = "saved settings";
+        if (!pending_preset_.empty()) {
+            Camera ignored = view_->camera;
+            bool has_camera;
+            std::string error;
+            RenderSettings restored = view_->settings;
+            if (preset_from_json("saved settings", pending_preset_, restored, ignored, has_camera, nullptr, error))
+                view_->settings = restored;
+        }
+    }
+    sync_panel_from_settings();
+}
+
+MainWindow::~MainWindow()
+{
+    if (loader_->isRunning()) {
+        loader_->waitForFinished();
+        delete loader_->result();
+    }
+    delete view_; // its GL resources go before the model they came from
+    view_ = nullptr;
+}
+
+void MainWindow::closeEvent(QCloseEvent *event)
+{
+    QSettings settings;
+    settings.setValue("geometry", saveGeometry());
+    settings.setValue("window", saveState());
+    settings.setValue("recent", recent_);
+    if (!model_path_.isEmpty())
+        settings.setValue("last_model", model_path_);
+    settings.setValue("settings", QString::fromStdString(preset_to_json(view_->settings, view_->camera, model_.get())));
+    QMainWindow::closeEvent(event);
+}
+
+void MainWindow::render_now()
+{
+    if (view_)
+        view_->update();
+}
+
+// ------------------------------------------------------------------ menus
+
+void MainWindow::build_menus()
+{
+    QMenu *file = menuBar()->addMenu("&File");
+    file->addAction("&Open model…", this, &MainWindow::open_model_dialog, QKeySequence::Open);
+    recent_menu_ = file->addMenu("Open &recent");
+    QMenu *models = file->addMenu("&Models");
+    QString list_path = source_root() + "/config/models.json";
+    QString error;
+    QString text = read_text_file(list_path, error);
+    std::vector<ModelEntry> entries;
+    std::string list_error;
+    if (text.isEmpty() || !read_model_list(list_path.toStdString(), text.toStdString(), source_root().toStdString(),
+                                           entries, list_error)) {
+        models->addAction(error.isEmpty() ? QString::fromStdString(list_error) : error)->setEnabled(false);
+    }
+    for (const ModelEntry &entry : entries) {
+        QString path = QString::fromStdString(entry.path);
+        QAction *action = models->addAction(QString::fromStdString(entry.name), this, [this, path] { load_model(path); });
+        action->setToolTip(path);
+        action->setEnabled(QFileInfo::exists(path));
+    }
+    file->addSeparator();
+    file->addAction("&Export PNG…", this, &MainWindow::export_dialog, QKeySequence("Ctrl+E"));
+    file->addAction("&Copy as command", this, &MainWindow::copy_command, QKeySequence("Ctrl+Shift+C"));
+    file->addSeparator();
+    menu_action(file, "&Save settings preset…", QKeySequence::Save, this, [this] {
+        QString path = QFileDialog::getSaveFileName(this, "Save settings preset", QString(), "Presets (*.json)");
+        QString error;
+        if (!path.isEmpty() && !save_preset(path, error))
+            show_error("Save preset", error);
+    });
+    menu_action(file, "&Load settings preset…", QKeySequence("Ctrl+L"), this, [this] {
+        QString path = QFileDialog::getOpenFileName(this, "Load settings preset", QString(), "Presets (*.json)");
+        QString error;
+        if (!path.isEmpty() && !load_preset(path, error))
+            show_error("Load preset", error);
+    });
+    file->addSeparator();
+    file->addAction("&Quit", this, &QWidget::close, QKeySequence::Quit);
+
+    QMenu *view = menuBar()->addMenu("&View");
+    menu_action(view, "&Reset camera", QKeySequence("Home"), this, [this] { view_->reset_camera(); });
+    QAction *ortho = view->addAction("&Orthographic");
+    ortho->setShortcut(QKeySequence("O"));
+    ortho->setCheckable(true);
+    connect(ortho, &QAction::toggled, this, [this](bool on) { set_camera_mode(view_->camera.mode(), on); });
+    menu_action(view, "&Walk mode on/off (W/A/S/D, Q/E)", QKeySequence("V"), this, [this] {
+        set_camera_mode(view_->camera.mode() == Camera::Mode::Walk ? Camera::Mode::Orbit : Camera::Mode::Walk,
+                        view_->camera.orthographic);
+    });
+    menu_action(view, "&Heatmap on/off", QKeySequence("H"), this, [this] {
+        oit_modulation &m = view_->settings.modulation;
+        m.view = m.view == OIT_VIEW_HEATMAP ? OIT_VIEW_COLOUR : OIT_VIEW_HEATMAP;
+        settings_changed();
+    });
+    QAction *continuous = view->addAction("&Continuous rendering (measure FPS)");
+    continuous->setShortcut(QKeySequence("F"));
+    continuous->setCheckable(true);
+    connect(continuous, &QAction::toggled, view_, &RenderView::set_continuous);
+    QAction *fast = view->addAction("Half &resolution while dragging");
+    fast->setCheckable(true);
+    fast->setChecked(true);
+    connect(fast, &QAction::toggled, view_, &RenderView::set_fast_interaction);
+    view->addSeparator();
+    QMenu *algorithms = view->addMenu("&Algorithm");
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    for (size_t i = 0; i < count; ++i) {
+        QString name = list[i]->name;
+        algorithms->addAction(name, this, [this, name] { set_algorithm(name); },
+                              QKeySequence(QString("Ctrl+%1").arg(i + 1)));
+    }
+    view->addSeparator();
+
+    QMenu *help = menuBar()->addMenu("&Help");
+    help->addAction("&Keyboard and mouse", this, [this] {
+        QMessageBox::information(this, "Keyboard and mouse",
+                                 "Orbit: left drag turns (virtual trackball), right or middle drag (or Shift) pans,\n"
+                                 "wheel zooms. Walk (V): W/A/S/D move, Q/E down/up, left drag looks around.\n"
+                                 "Home resets the camera, O toggles orthographic, H the heatmap,\n"
+                                 "Ctrl+1..7 choose the algorithm, Ctrl+E exports a PNG,\n"
+                                 "Ctrl+Shift+C copies the equivalent `oit render` command.");
+    });
+    help->addAction("&About", this, [this] {
+        QMessageBox::about(this, "About oit-workbench",
+                           QString("<b>oit-workbench</b> %1<br>Order-independent transparency for multi-part "
+                                   "models: compare the algorithms live on the same scene.<br>Renderer: %2")
+                               .arg(QApplication::applicationVersion(),
+                                    QString::fromStdString(view_->renderer()).toHtmlEscaped()));
+    });
+}
+
+void MainWindow::rebuild_recent_menu()
+{
+    recent_menu_->clear();
+    for (const QString &path : recent_)
+        recent_menu_->addAction(path, this, [this, path] { load_model(path); });
+    recent_menu_->setEnabled(!recent_.isEmpty());
+}
+
+void MainWindow::add_recent(const QString &path)
+{
+    recent_.removeAll(path);
+    recent_.prepend(path);
+    while (recent_.size() > 8)
+        recent_.removeLast();
+    rebuild_recent_menu();
+    QSettings().setValue("recent", recent_);
+}
+
+void MainWindow::show_error(const QString &title, const QString &message)
+{
+    last_error_ = message;
+    status_label_->setText(message);
+    // window-modal but not blocking, so the event loop (and tests) go on
+    if (error_box_)
+        error_box_->close();
+    error_box_ = new QMessageBox(QMessageBox::Warning, title, message, QMessageBox::Ok, this);
+    error_box_->setAttribute(Qt::WA_DeleteOnClose);
+    error_box_->open();
+}
+
+// ----------------------------------------------------------- small controls
+
+namespace {
+
+// A slider with a numeric field, both bound to one float.
+QWidget *slider_row(double low, double high, int decimals, std::function<float()> get,
+                    std::function<void(float)> set, std::vector<std::function<void()>> &sync, bool &syncing,
+                    QSlider **slider_out = nullptr)
+{
+    auto *row = new QWidget;
+    auto *layout = new QHBoxLayout(row);
+    layout->setContentsMargins(0, 0, 0, 0);
+    auto *slider = new QSlider(Qt::Horizontal);
+    slider->setRange(0, 1000);
+    auto *spin = new QDoubleSpinBox;
+    spin->setRange(low, high);
+    spin->setDecimals(decimals);
+    spin->setSingleStep(std::pow(10.0, -decimals) * 5);
+    layout->addWidget(slider, 1);
+    layout->addWidget(spin);
+    auto to_slider = [=](double v) { return int(std::lround((v - low) / (high - low) * 1000.0)); };
+    QObject::connect(slider, &QSlider::valueChanged, spin, [=, &syncing](int v) {
+        if (syncing)
+            return;
+        double value = low + (high - low) * v / 1000.0;
+        spin->blockSignals(true);
+        spin->setValue(value);
+        spin->blockSignals(false);
+        set(float(spin->value()));
+    });
+    QObject::connect(spin, QOverload<double>::of(&QDoubleSpinBox::valueChanged), slider, [=, &syncing](double v) {
+        if (syncing)
+            return;
+        slider->blockSignals(true);
+        slider->setValue(to_slider(v));
+        slider->blockSignals(false);
+        set(float(v));
+    });
+    sync.push_back([=] {
+        spin->setValue(double(get()));
+        slider->setValue(to_slider(double(get())));
+    });
+    if (slider_out)
+        *slider_out = slider;
+    return row;
+}
+
+QComboBox *combo(const QStringList &items, std::function<int()> get, std::function<void(int)> set,
+                 std::vector<std::function<void()>> &sync, bool &syncing)
+{
+    auto *box = new QComboBox;
+    box->addItems(items);
+    QObject::connect(box, QOverload<int>::of(&QComboBox::currentIndexChanged), box, [=, &syncing](int i) {
+        if (!syncing && i >= 0)
+            set(i);
+    });
+    sync.push_back([=] { box->setCurrentIndex(get()); });
+    return box;
+}
+
+QSpinBox *spin_box(int low, int high, std::function<int()> get, std::function<void(int)> set,
+                   std::vector<std::function<void()>> &sync, bool &syncing)
+{
+    auto *box = new QSpinBox;
+    box->setRange(low, high);
+    QObject::connect(box, QOverload<int>::of(&QSpinBox::valueChanged), box, [=, &syncing](int v) {
+        if (!syncing)
+            set(v);
+    });
+    sync.push_back([=] { box->setValue(get()); });
+    return box;
+}
+
+QCheckBox *check_box(const QString &text, std::function<bool()> get, std::function<void(bool)> set,
+                     std::vector<std::function<void()>> &sync, bool &syncing)
+{
+    auto *box = new QCheckBox(text);
+    QObject::connect(box, &QCheckBox::toggled, box, [=, &syncing](bool on) {
+        if (!syncing)
+            set(on);
+    });
+    sync.push_back([=] { box->setChecked(get()); });
+    return box;
+}
+
+QWidget *scrolled(QWidget *content)
+{
+    auto *area = new QScrollArea;
+    area->setWidget(content);
+    area->setWidgetResizable(true);
+    area->setFrameShape(QFrame::NoFrame);
+    return area;
+}
+
+} // namespace
+
+void MainWindow::settings_changed()
+{
+    sync_panel_from_settings();
+    render_now();
+}
+
+void MainWindow::sync_panel_from_settings()
+{
+    syncing_ = true;
+    for (auto &action : sync_actions_)
+        action();
+    syncing_ = false;
+}
+
+// ------------------------------------------------------------------- tabs
+
+QWidget *MainWindow::build_algorithm_tab()
+{
+    RenderSettings &s = view_->settings;
+    auto *page = new QWidget;
+    auto *form = new QFormLayout(page);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    QStringList names;
+    for (size_t i = 0; i < count; ++i)
+        names << list[i]->name;
+    auto *summary = new QLabel;
+    summary->setWordWrap(true);
+    algorithm_combo_ = combo(
+        names,
+        [&s, names] { return std::max(0, int(names.indexOf(QString::fromStdString(s.algorithm)))); },
+        [this, names](int i) { set_algorithm(names[i]); }, sync_actions_, syncing_);
+    for (size_t i = 0; i < count; ++i)
+        algorithm_combo_->setItemData(int(i), QString(list[i]->summary), Qt::ToolTipRole);
+    sync_actions_.push_back([&s, summary] {
+        const oit_algorithm_ops *ops = oit_algorithm_find(s.algorithm.c_str());
+        summary->setText(ops ? QString("%1%2").arg(ops->summary, ops->exact ? " (exact)" : " (approximate)") : "");
+    });
+    form->addRow("algorithm (--algorithm)", algorithm_combo_);
+    form->addRow(summary);
+    form->addRow("sort (--sort, ll)", combo({"insertion", "array"}, [&s] { return int(s.config.ll_sort); },
+                                            [this, &s](int i) {
+                                                s.config.ll_sort = oit_ll_sort(i);
+                                                render_now();
+                                            },
+                                            sync_actions_, syncing_));
+    form->addRow("neighbours (--neighbours, ib)",
+                 combo({"default (welded)", "index", "welded", "epsilon"}, [&s] { return int(s.modulation.neighbours); },
+                       [this, &s](int i) {
+                           s.modulation.neighbours = oit_neighbour_search(i);
+                           render_now();
+                       },
+                       sync_actions_, syncing_));
+    auto *memory = spin_box(1, 1 << 22, [&s] { return int(s.config.max_memory_bytes / (1024 * 1024)); },
+                            [this, &s](int mb) {
+                                s.config.max_memory_bytes = uint64_t(mb) * 1024 * 1024;
+                                render_now();
+                            },
+                            sync_actions_, syncing_);
+    memory->setSuffix(" MB");
+    form->addRow("memory budget (--max-memory)", memory);
+    form->addRow("layer limit (--max-layers, dp/ddp)", spin_box(1, 256, [&s] { return s.config.max_layers; },
+                                                                [this, &s](int n) {
+                                                                    s.config.max_layers = n;
+                                                                    render_now();
+                                                                },
+                                                                sync_actions_, syncing_));
+    form->addRow("shading (--shading)", combo({"flat", "headlight"}, [&s] { return int(s.shading); },
+                                              [this, &s](int i) {
+                                                  s.shading = oit_shading_mode(i);
+                                                  render_now();
+                                              },
+                                              sync_actions_, syncing_));
+    auto *background = new QPushButton;
+    connect(background, &QPushButton::clicked, this, [this, &s] {
+        QColor c = QColorDialog::getColor(QColor::fromRgbF(s.background[0], s.background[1], s.background[2]), this,
+                                          "Background (--background)");
+        if (!c.isValid())
+            return;
+        s.background[0] = float(c.redF());
+        s.background[1] = float(c.greenF());
+        s.background[2] = float(c.blueF());
+        settings_changed();
+    });
+    sync_actions_.push_back([&s, background] {
+        background->setIcon(swatch(s.background));
+        background->setText(colour_text(s.background));
+    });
+    form->addRow("background (--background)", background);
+    return scrolled(page);
+}
+
+QWidget *MainWindow::build_opacity_tab()
+{
+    RenderSettings &s = view_->settings;
+    oit_modulation &m = s.modulation;
+    auto *page = new QWidget;
+    auto *layout = new QVBoxLayout(page);
+    auto changed = [this] { render_now(); };
+    auto *global = new QGroupBox("Every algorithm");
+    auto *gform = new QFormLayout(global);
+    gform->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    gform->addRow("alpha (--alpha)", slider_row(0, 1, 3, [&s] { return s.alpha; },
+                                                [&s, changed](float v) {
+                                                    s.alpha = v;
+                                                    changed();
+                                                },
+                                                sync_actions_, syncing_, &alpha_slider_));
+    gform->addRow("contrast (--contrast)", slider_row(0.1, 10, 2, [&s] { return s.contrast == 0.0f ? 1.0f : s.contrast; },
+                                                      [&s, changed](float v) {
+                                                          s.contrast = v;
+                                                          changed();
+                                                      },
+                                                      sync_actions_, syncing_));
+    gform->addRow("focus shape", combo({"none", "point (--focus-point)", "plane (--focus-plane)", "box (--focus-box)"},
+                                       [&s] { return int(s.focus_shape); },
+                                       [this, &s](int i) {
+                                           s.focus_shape = oit_focus_shape(i);
+                                           if (model_ && i != OIT_FOCUS_NONE) {
+                                               // start from something visible: the model's centre / bounds
+                                               const oit_model &mo = *model_;
+                                               float defaults[4][6] = {
+                                                   {0, 0, 0, 0, 0, 0},
+                                                   {mo.centre[0], mo.centre[1], mo.centre[2], 0, 0, 0},
+                                                   {0, 0, 1, -mo.centre[2], 0, 0},
+                                                   {mo.bounds_min[0], mo.bounds_min[1], mo.bounds_min[2], mo.centre[0],
+                                                    mo.centre[1], mo.centre[2]}};
+                                               std::copy(defaults[i], defaults[i] + 6, s.focus);
+                                           }
+                                           settings_changed();
+                                       },
+                                       sync_actions_, syncing_));
+    auto *focus_row = new QWidget;
+    auto *focus_layout = new QGridLayout(focus_row); // three per row: x y z (a b c d, min max)
+    focus_layout->setContentsMargins(0, 0, 0, 0);
+    for (int i = 0; i < 6; ++i) {
+        auto *value = new QDoubleSpinBox;
+        value->setRange(-1e6, 1e6);
+        value->setDecimals(3);
+        value->setSingleStep(0.05);
+        value->setMaximumWidth(110);
+        connect(value, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this, &s, i](double v) {
+            if (!syncing_) {
+                s.focus[i] = float(v);
+                render_now();
+            }
+        });
+        sync_actions_.push_back([&s, value, i] {
+            int used = s.focus_shape == OIT_FOCUS_POINT ? 3 : s.focus_shape == OIT_FOCUS_PLANE ? 4
+                       : s.focus_shape == OIT_FOCUS_BOX ? 6 : 0;
+            value->setValue(double(s.focus[i]));
+            value->setVisible(i < used);
+        });
+        focus_layout->addWidget(value, i / 3, i % 3);
+    }
+    gform->addRow("focus (model units)", focus_row);
+    // shared: the focus shapes' fall-off (model units) and ib's distance modulation (eye space)
+    gform->addRow("focus region (--focus-region, 0 = auto)",
+                  slider_row(0, double(1000), 3, [&m] { return m.focus_region; },
+                             [&m, changed](float v) {
+                                 m.focus_region = v;
+                                 changed();
+                             },
+                             sync_actions_, syncing_));
+    layout->addWidget(global);
+
+    auto *ib = new QGroupBox("Illustration Buffer (--algorithm ib)");
+    auto *form = new QFormLayout(ib);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    form->addRow("modulation (--modulation)",
+                 combo({"none", "curvature", "distance", "dist-curv", "fields", "edges"}, [&m] { return int(m.mode); },
+                       [&m, changed](int i) {
+                           m.mode = oit_modulation_mode(i);
+                           changed();
+                       },
+                       sync_actions_, syncing_));
+    form->addRow("curvature effect (--curvature-effect)",
+                 slider_row(0.1, 64, 2, [&m] { return m.curvature_effect > 0 ? m.curvature_effect : 8.0f; },
+                            [&m, changed](float v) {
+                                m.curvature_effect = v;
+                                changed();
+                            },
+                            sync_actions_, syncing_));
+    form->addRow("curvature neighbours", combo({"4", "8"}, [&m] { return m.curvature_neighbours == 8 ? 1 : 0; },
+                                               [&m, changed](int i) {
+                                                   m.curvature_neighbours = i ? 8 : 4;
+                                                   changed();
+                                               },
+                                               sync_actions_, syncing_));
+    form->addRow("distance (--distance)", combo({"adjacent", "skip:K", "far"}, [&m] { return int(m.distance); },
+                                                [&m, changed](int i) {
+                                                    m.distance = oit_distance_mode(i);
+                                                    changed();
+                                                },
+                                                sync_actions_, syncing_));
+    form->addRow("skip K", spin_box(1, 64, [&m] { return m.distance_skip > 0 ? m.distance_skip : 2; },
+                                    [&m, changed](int k) {
+                                        m.distance_skip = k;
+                                        changed();
+                                    },
+                                    sync_actions_, syncing_));
+    auto *fields = new QWidget;
+    auto *fields_layout = new QHBoxLayout(fields);
+    fields_layout->setContentsMargins(0, 0, 0, 0);
+    const char *field_names[] = {"alpha", "beta", "gamma"};
+    for (int f = 0; f < 3; ++f)
+        fields_layout->addWidget(check_box(field_names[f], [&m, f] { return ((m.fields ? m.fields : 7) >> f) & 1; },
+                                           [&m, f, changed](bool on) {
+                                               int mask = m.fields ? m.fields : 7;
+                                               mask = on ? mask | (1 << f) : mask & ~(1 << f);
+                                               m.fields = mask == 7 || mask == 0 ? 0 : mask;
+                                               changed();
+                                           },
+                                           sync_actions_, syncing_));
+    form->addRow("fields (--fields)", fields);
+    form->addRow("diffusion iterations", spin_box(0, 1000, [&m] { return m.diffusion_iterations == 0 ? 15 : std::max(0, m.diffusion_iterations); },
+                                                  [&m, changed](int n) {
+                                                      m.diffusion_iterations = n == 0 ? -1 : n;
+                                                      changed();
+                                                  },
+                                                  sync_actions_, syncing_));
+    form->addRow("blur iterations", spin_box(0, 1000, [&m] { return m.blur_iterations == 0 ? 1 : std::max(0, m.blur_iterations); },
+                                             [&m, changed](int n) {
+                                                 m.blur_iterations = n == 0 ? -1 : n;
+                                                 changed();
+                                             },
+                                             sync_actions_, syncing_));
+    float *lambdas[] = {&m.lambda_alpha, &m.lambda_beta, &m.lambda_gamma};
+    const char *lambda_names[] = {"lambda alpha (0 = auto)", "lambda beta (0 = auto)", "lambda gamma (0 = auto)"};
+    for (int l = 0; l < 3; ++l) {
+        float *lambda = lambdas[l];
+        form->addRow(lambda_names[l], slider_row(0, 2, 3, [lambda] { return *lambda; },
+                                                 [lambda, changed](float v) {
+                                                     *lambda = v;
+                                                     changed();
+                                                 },
+                                                 sync_actions_, syncing_));
+    }
+    form->addRow("epsilon max (--epsilon-max)",
+                 slider_row(0.001, 1, 3, [&m] { return m.epsilon_max > 0 ? m.epsilon_max : 0.05f; },
+                            [&m, changed](float v) {
+                                m.epsilon_max = v;
+                                changed();
+                            },
+                            sync_actions_, syncing_));
+    auto *halo = new QPushButton;
+    connect(halo, &QPushButton::clicked, this, [this, &m] {
+        QColor start = m.has_halo_colour ? QColor::fromRgbF(m.halo_colour[0], m.halo_colour[1], m.halo_colour[2])
+                                         : QColor(Qt::white);
+        QColor c = QColorDialog::getColor(start, this, "Halo colour (--halo-colour)");
+        if (!c.isValid())
+            return;
+        m.has_halo_colour = true;
+        m.halo_colour[0] = float(c.redF());
+        m.halo_colour[1] = float(c.greenF());
+        m.halo_colour[2] = float(c.blueF());
+        settings_changed();
+    });
+    sync_actions_.push_back([&m, halo] {
+        float white[3] = {1, 1, 1};
+        const float *c = m.has_halo_colour ? m.halo_colour : white;
+        halo->setIcon(swatch(c));
+        halo->setText(colour_text(c));
+    });
+    form->addRow("halo colour (--halo-colour)", halo);
+    form->addRow(check_box("last layer opaque (--last-layer-opaque)", [&m] { return m.last_layer_opaque; },
+                           [&m, changed](bool on) {
+                               m.last_layer_opaque = on;
+                               changed();
+                           },
+                           sync_actions_, syncing_));
+    layout->addWidget(ib);
+    layout->addStretch(1);
+    return scrolled(page);
+}
+
+QWidget *MainWindow::build_parts_tab()
+{
+    auto *page = new QWidget;
+    auto *layout = new QVBoxLayout(page);
+    parts_filter_ = new QLineEdit;
+    parts_filter_->setPlaceholderText("filter parts by name");
+    parts_filter_->setClearButtonEnabled(true);
+    connect(parts_filter_, &QLineEdit::textChanged, this, &MainWindow::filter_parts);
+    layout->addWidget(parts_filter_);
+    parts_ = new QTreeWidget;
+    parts_->setColumnCount(3);
+    parts_->setHeaderLabels({"part", "opacity", ""});
+    parts_->setRootIsDecorated(false);
+    parts_->setUniformRowHeights(true);
+    parts_->header()->setSectionResizeMode(0, QHeaderView::Stretch);
+    parts_->header()->setSectionResizeMode(1, QHeaderView::Fixed);
+    parts_->header()->resizeSection(1, 130);
+    parts_->header()->setSectionResizeMode(2, QHeaderView::ResizeToContents);
+    parts_->header()->setStretchLastSection(false);
+    connect(parts_, &QTreeWidget::itemChanged, this, [this](QTreeWidgetItem *item, int column) {
+        if (syncing_ || column != 0)
+            return;
+        int index = item->data(0, Qt::UserRole).toInt();
+        set_part_visible(index, item->checkState(0) == Qt::Checked);
+    });
+    layout->addWidget(parts_, 1);
+    parts_note_ = new QLabel;
+    parts_note_->setWordWrap(true);
+    layout->addWidget(parts_note_);
+    auto *buttons = new QHBoxLayout;
+    auto *reset = new QPushButton("Reset");
+    reset->setToolTip("every part visible and at full opacity");
+    connect(reset, &QPushButton::clicked, this, [this] {
+        if (model_)
+            view_->settings.reset_parts(*model_);
+        rebuild_parts();
+        render_now();
+    });
+    auto *isolate = new QPushButton("Isolate selected");
+    connect(isolate, &QPushButton::clicked, this, [this] {
+        if (!model_ || parts_->selectedItems().isEmpty())
+            return;
+        for (size_t i = 0; i < view_->settings.part_visible.size(); ++i)
+            view_->settings.part_visible[i] = 0;
+        for (QTreeWidgetItem *item : parts_->selectedItems())
+            view_->settings.part_visible[size_t(item->data(0, Qt::UserRole).toInt())] = 1;
+        rebuild_parts();
+        render_now();
+    });
+    buttons->addWidget(reset);
+    buttons->addWidget(isolate);
+    buttons->addStretch(1);
+    layout->addLayout(buttons);
+    return page;
+}
+
+void MainWindow::rebuild_parts()
+{
+    syncing_ = true;
+    parts_->clear();
+    RenderSettings &s = view_->settings;
+    if (model_) {
+        for (uint32_t i = 0; i < model_->component_count; ++i) {
+            const oit_component &c = model_->components[i];
+            auto *item = new QTreeWidgetItem(parts_);
+            item->setText(0, QString::fromUtf8(c.name));
+            item->setIcon(0, swatch(c.colour));
+            item->setToolTip(0, QString("%1: colour %2, material opacity %3, %4 triangles")
+                                    .arg(QString::fromUtf8(c.name), colour_text(c.colour))
+                                    .arg(double(c.opacity))
+                                    .arg(c.triangle_count));
+            item->setData(0, Qt::UserRole, int(i));
+            item->setFlags(item->flags() | Qt::ItemIsUserCheckable);
+            item->setCheckState(0, s.part_visible[i] ? Qt::Checked : Qt::Unchecked);
+            auto *slider = new QSlider(Qt::Horizontal);
+            slider->setRange(0, 100);
+            slider->setValue(int(std::lround(s.part_alpha[i] * 100.0f)));
+            slider->setObjectName(QString("part_alpha_%1").arg(i));
+            item->setText(2, QString("%1%").arg(slider->value()));
+            connect(slider, &QSlider::valueChanged, this, [this, i, item](int v) {
+                item->setText(2, QString("%1%").arg(v));
+                if (!syncing_)
+                    set_part_alpha(int(i), float(v) / 100.0f);
+            });
+            parts_->setItemWidget(item, 1, slider);
+        }
+    }
+    parts_note_->setText(model_ && model_->component_count > OIT_LOCAL_COMPONENT_LIMIT
+                             ? QString("Per-part opacity reaches the first %1 parts (--component-alpha's limit).")
+                                   .arg(OIT_LOCAL_COMPONENT_LIMIT)
+                             : QString("%1 parts; checkbox: visible, slider: opacity (--component-alpha).")
+                                   .arg(model_ ? model_->component_count : 0));
+    syncing_ = false;
+    filter_parts(parts_filter_->text());
+}
+
+void MainWindow::filter_parts(const QString &text)
+{
+    for (int i = 0; i < parts_->topLevelItemCount(); ++i) {
+        QTreeWidgetItem *item = parts_->topLevelItem(i);
+        item->setHidden(!text.isEmpty() && !item->text(0).contains(text, Qt::CaseInsensitive));
+    }
+}
+
+void MainWindow::set_part_visible(int index, bool visible)
+{
+    RenderSettings &s = view_->settings;
+    if (index < 0 || size_t(index) >= s.part_visible.size())
+        return;
+    s.part_visible[size_t(index)] = visible;
+    if (QTreeWidgetItem *item = parts_->topLevelItem(index)) {
+        syncing_ = true;
+        item->setCheckState(0, visible ? Qt::Checked : Qt::Unchecked);
+        syncing_ = false;
+    }
+    render_now();
+}
+
+void MainWindow::set_part_alpha(int index, float alpha)
+{
+    RenderSettings &s = view_->settings;
+    if (index < 0 || size_t(index) >= s.part_alpha.size())
+        return;
+    s.part_alpha[size_t(index)] = std::min(1.0f, std::max(0.0f, alpha));
+    if (QTreeWidgetItem *item = parts_->topLevelItem(index))
+        if (auto *slider = qobject_cast<QSlider *>(parts_->itemWidget(item, 1))) {
+            syncing_ = true;
+            slider->setValue(int(std::lround(alpha * 100.0f)));
+            syncing_ = false;
+        }
+    render_now();
+}
+
+QWidget *MainWindow::build_camera_tab()
+{
+    Camera &camera = view_->camera;
+    auto *page = new QWidget;
+    auto *form = new QFormLayout(page);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    form->addRow("mode", combo({"orbit (trackball, wheel zoom, right-drag pan)", "walk (W/A/S/D, Q/E, mouse look)"},
+                               [&camera] { return camera.mode() == Camera::Mode::Walk ? 1 : 0; },
+                               [this, &camera](int i) {
+                                   set_camera_mode(i ? Camera::Mode::Walk : Camera::Mode::Orbit, camera.orthographic);
+                               },
+                               sync_actions_, syncing_));
+    form->addRow("projection", combo({"perspective", "orthographic"}, [&camera] { return camera.orthographic ? 1 : 0; },
+                                     [this, &camera](int i) { set_camera_mode(camera.mode(), i == 1); },
+                                     sync_actions_, syncing_));
+    form->addRow("field of view (degrees)", slider_row(5, 120, 1, [&camera] { return camera.fov_degrees; },
+                                                       [this, &camera](float v) {
+                                                           camera.fov_degrees = v;
+                                                           render_now();
+                                                       },
+                                                       sync_actions_, syncing_));
+    auto *reset = new QPushButton("Reset camera (Home)");
+    connect(reset, &QPushButton::clicked, this, [this] { view_->reset_camera(); });
+    form->addRow(reset);
+    saved_views_ = new QListWidget;
+    auto *save = new QPushButton("Save view");
+    auto *restore = new QPushButton("Go to view");
+    connect(save, &QPushButton::clicked, this, [this] {
+        saved_cameras_.push_back(view_->camera);
+        saved_views_->addItem(QString("view %1").arg(saved_cameras_.size()));
+    });
+    auto go = [this] {
+        int row = saved_views_->currentRow();
+        if (row >= 0 && size_t(row) < saved_cameras_.size()) {
+            view_->camera = saved_cameras_[size_t(row)];
+            settings_changed();
+        }
+    };
+    connect(restore, &QPushButton::clicked, this, go);
+    connect(saved_views_, &QListWidget::itemDoubleClicked, this, go);
+    auto *row = new QHBoxLayout;
+    row->addWidget(save);
+    row->addWidget(restore);
+    form->addRow("saved views", row);
+    form->addRow(saved_views_);
+    connect(view_, &RenderView::camera_changed, this, [this] { sync_panel_from_settings(); });
+    return scrolled(page);
+}
+
+void MainWindow::set_camera_mode(Camera::Mode mode, bool orthographic)
+{
+    view_->camera.set_mode(mode);
+    view_->camera.orthographic = orthographic;
+    settings_changed();
+}
+
+QWidget *MainWindow::build_views_tab()
+{
+    oit_modulation &m = view_->settings.modulation;
+    auto *page = new QWidget;
+    auto *form = new QFormLayout(page);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    QStringList views = {"colour", "heatmap", "peel-limit:N", "layer:L", "neighbours (ib)",
+                         "curvature:L (ib)", "distance:L (ib)", "fields:L (ib)"};
+    form->addRow("view (--view)", combo(views, [&m] { return int(m.view); },
+                                        [this, &m](int i) {
+                                            m.view = oit_view(i);
+                                            if ((m.view == OIT_VIEW_PEEL_LIMIT) && m.view_parameter < 1)
+                                                m.view_parameter = 1;
+                                            settings_changed();
+                                        },
+                                        sync_actions_, syncing_));
+    auto *parameter = spin_box(0, 1000, [&m] { return m.view_parameter; },
+                               [this, &m](int n) {
+                                   m.view_parameter = n;
+                                   render_now();
+                               },
+                               sync_actions_, syncing_);
+    auto *previous = new QPushButton("◀ nearer");
+    auto *next = new QPushButton("farther ▶");
+    connect(previous, &QPushButton::clicked, parameter, [parameter] { parameter->setValue(parameter->value() - 1); });
+    connect(next, &QPushButton::clicked, parameter, [parameter] { parameter->setValue(parameter->value() + 1); });
+    auto *row = new QHBoxLayout;
+    row->addWidget(parameter);
+    row->addWidget(previous);
+    row->addWidget(next);
+    form->addRow("N / layer L", row);
+    form->addRow(new QLabel("Layer by layer: choose layer:L and step with the buttons.\n"
+                            "heatmap and peel-limit: ll and ib; the others: ib."));
+    form->addRow(check_box("edge view (ib: --modulation edges)", [&m] { return m.mode == OIT_MODULATE_EDGES; },
+                           [this, &m](bool on) {
+                               m.mode = on ? OIT_MODULATE_EDGES : OIT_MODULATE_NONE;
+                               if (on && view_->settings.algorithm != "ib")
+                                   set_algorithm("ib");
+                               settings_changed();
+                           },
+                           sync_actions_, syncing_));
+    return scrolled(page);
+}
+
+QWidget *MainWindow::build_stats_tab()
+{
+    stats_text_ = new QPlainTextEdit;
+    stats_text_->setReadOnly(true);
+    stats_text_->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+    return stats_text_;
+}
+
+void MainWindow::update_stats()
+{
+    const oit_stats &st = view_->last_stats();
+    QString text;
+    QTextStream out(&text);
+    double gpu_total = 0.0;
+    for (int i = 0; i < st.stage_count; ++i)
+        gpu_total += st.stages[i].gpu_ms;
+    QSize size = view_->render_size();
+    out << QString("%1, %2x%3\n").arg(QString::fromStdString(view_->settings.algorithm)).arg(size.width()).arg(size.height());
+    out << QString("%1 frame time (CPU)   %2 ms\n").arg("", 0).arg(st.cpu_ms, 0, 'f', 2);
+    out << QString("frames per second   %1%2\n")
+               .arg(view_->measured_fps(), 0, 'f', 1)
+               .arg(QString("")); // continuous rendering (F) measures it; otherwise 1 / frame time
+    out << QString("stages (GPU)        %1 ms\n").arg(gpu_total, 0, 'f', 2);
+    for (int i = 0; i < st.stage_count && i < 40; ++i)
+        out << QString("  %1 %2 ms\n").arg(QString(st.stages[i].name), -18).arg(st.stages[i].gpu_ms, 8, 'f', 3);
+    if (st.stage_count > 40)
+        out << QString("  ... %1 stages in all\n").arg(st.stage_count);
+    out << QString("memory              %1 MB\n").arg(double(st.memory_bytes) / (1024.0 * 1024.0), 0, 'f', 2);
+    auto optional = [&out](const char *name, int64_t value) {
+        if (value >= 0)
+            out << QString("%1 %2\n").arg(name, -19).arg(qlonglong(value));
+    };
+    optional("fragments", st.fragments);
+    optional("longest list", st.max_list);
+    optional("layers", st.layers);
+    if (st.mean_list >= 0)
+        out << QString("mean list           %1\n").arg(st.mean_list, 0, 'f', 2);
+    if (st.psi >= 0)
+        out << QString("psi (lists > 2/3 max) %1\n").arg(st.psi, 0, 'f', 4);
+    if (st.overflow_retries >= 0)
+        out << QString("overflow events     %1 this frame, %2 in all\n")
+                   .arg(qlonglong(st.overflow_retries))
+                   .arg(view_->total_overflow_retries());
+    if (st.bytes_per_fragment > 0)
+        out << QString("bytes / fragment    %1\n").arg(st.bytes_per_fragment, 0, 'f', 1);
+    if (st.neighbours_four_share >= 0)
+        out << QString("four neighbours     %1\n").arg(st.neighbours_four_share, 0, 'f', 3);
+    if (model_)
+        out << QString("model               %1 triangles, %2 parts\n").arg(model_->triangle_count).arg(model_->component_count);
+    out << QString("renderer            %1\n").arg(QString::fromStdString(view_->renderer()));
+    stats_text_->setPlainText(text);
+    status_label_->setText(QString("%1: %2 ms CPU, %3 ms GPU stages, %4 MB")
+                               .arg(QString::fromStdString(view_->settings.algorithm))
+                               .arg(st.cpu_ms, 0, 'f', 1)
+                               .arg(gpu_total, 0, 'f', 1)
+                               .arg(double(st.memory_bytes) / (1024.0 * 1024.0), 0, 'f', 1));
+}
+
+bool MainWindow::show_tab(const QString &name)
+{
+    for (int i = 0; i < tabs_->count(); ++i)
+        if (tabs_->tabText(i).compare(name, Qt::CaseInsensitive) == 0) {
+            tabs_->setCurrentIndex(i);
+            return true;
+        }
+    return false;
+}
+
+void MainWindow::set_algorithm(const QString &name)
+{
+    if (!oit_algorithm_find(name.toUtf8().constData()))
+        return;
+    view_->settings.algorithm = name.toStdString();
+    settings_changed();
+}
+
+// --------------------------------------------------------------- loading
+
+bool MainWindow::loading() const
+{
+    return loader_->isRunning();
+}
+
+void MainWindow::load_model(const QString &path)
+{
+    if (loader_->isRunning()) {
+        status_label_->setText("still loading " + loading_path_);
+        return;
+    }
+    loading_path_ = QFileInfo(path).absoluteFilePath();
+    progress_->show();
+    status_label_->setText("loading " + loading_path_ + "…");
+    QString target = loading_path_;
+    loader_->setFuture(QtConcurrent::run([target] {
+        auto *result = new LoadResult;
+        result->path = target;
+        oit_error err{};
+        QByteArray bytes = QFile::encodeName(target);
+        result->ok = oit_model_load(bytes.constData(), &result->model, &err) == OIT_OK;
+        result->error = QString::fromUtf8(err.message);
+        return result;
+    }));
+}
+
+void MainWindow::load_finished()
+{
+    progress_->hide();
+    std::unique_ptr<LoadResult> result(loader_->result());
+    if (!result->ok) {
+        show_error("Cannot open model", result->error);
+        emit model_failed(result->error);
+        return;
+    }
+    ModelPointer loaded(new oit_model(result->model));
+    std::string error;
+    if (!view_->set_model(loaded.get(), error)) {
+        // the previous model goes back on the GPU
+        std::string again;
+        if (model_)
+            view_->set_model(model_.get(), again);
+        show_error("Cannot upload model", result->path + ": " + QString::fromStdString(error));
+        emit model_failed(QString::fromStdString(error));
+        return;
+    }
+    model_ = std::move(loaded);
+    model_path_ = result->path;
+    view_->settings.reset_parts(*model_);
+    QSize size = view_->pixel_size();
+    view_->camera.frame(*model_, size.width(), size.height());
+    view_->camera.set_mode(Camera::Mode::Orbit);
+    if (!pending_preset_.empty()) {
+        bool has_camera;
+        Camera camera = view_->camera;
+        std::string preset_error;
+        RenderSettings s = view_->settings;
+        // the rest of the preset was applied when it was loaded (and may have
+        // been changed since, by --algorithm for one): only parts and camera
+        // needed the model
+        if (preset_from_json(pending_preset_name_.toStdString(), pending_preset_, s, camera, has_camera, model_.get(),
+                             preset_error)) {
+            view_->settings.part_alpha = s.part_alpha;
+            view_->settings.part_visible = s.part_visible;
+            // a camera saved with another model would show nothing useful
+            if (has_camera && pending_preset_name_ != "saved settings")
+                view_->camera = camera;
+        }
+        pending_preset_.clear();
+    }
+    saved_cameras_.clear();
+    saved_views_->clear();
+    setWindowTitle(QString("%1 — oit-workbench").arg(QFileInfo(model_path_).fileName()));
+    add_recent(model_path_);
+    QSettings().setValue("last_model", model_path_);
+    rebuild_parts();
+    settings_changed();
+    status_label_->setText(QString("loaded %1: %2 triangles, %3 parts")
+                               .arg(model_path_)
+                               .arg(model_->triangle_count)
+                               .arg(model_->component_count));
+    last_error_.clear();
+    emit model_loaded(model_path_);
+}
+
+void MainWindow::open_model_dialog()
+{
+    QString path = QFileDialog::getOpenFileName(this, "Open model", QFileInfo(model_path_).absolutePath(),
+                                                "Models (*.obj *.gltf *.glb *.stl *.ply *.fbx *.dae *.3ds *.off);;All files (*)");
+    if (!path.isEmpty())
+        load_model(path);
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent *event)
+{
+    if (event->mimeData()->hasUrls() && event->mimeData()->urls().first().isLocalFile())
+        event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent *event)
+{
+    const QList<QUrl> urls = event->mimeData()->urls();
+    if (!urls.isEmpty() && urls.first().isLocalFile()) {
+        QString path = urls.first().toLocalFile();
+        if (path.endsWith(".json", Qt::CaseInsensitive)) {
+            QString error;
+            if (!load_preset(path, error))
+                show_error("Load preset", error);
+        } else {
+            load_model(path);
+        }
+        event->acceptProposedAction();
+    }
+}
+
+// ------------------------------------------------- presets, export, command
+
+bool MainWindow::load_preset(const QString &path, QString &error)
+{
+    QString text = read_text_file(path, error);
+    if (!error.isEmpty())
+        return false;
+    RenderSettings s = view_->settings;
+    Camera camera = view_->camera;
+    bool has_camera = false;
+    std::string message;
+    if (!preset_from_json(path.toStdString(), text.toStdString(), s, camera, has_camera, model_.get(), message)) {
+        error = QString::fromStdString(message);
+        return false;
+    }
+    view_->settings = s;
+    if (has_camera)
+        view_->camera = camera;
+    // a model still loading gets the preset's parts and camera when it arrives
+    pending_preset_ = loading() || !model_ ? text.toStdString() : std::string();
+    pending_preset_name_ = path;
+    if (model_)
+        rebuild_parts();
+    settings_changed();
+    return true;
+}
+
+bool MainWindow::save_preset(const QString &path, QString &error)
+{
+    QFile file(path);
+    if (!file.open(QIODevice::WriteOnly | QIODevice::Truncate)) {
+        error = path + ": " + file.errorString();
+        return false;
+    }
+    file.write(QByteArray::fromStdString(preset_to_json(view_->settings, view_->camera, model_.get())));
+    return true;
+}
+
+bool MainWindow::export_png(const QString &path, int width, int height, QString &error)
+{
+    oit_image image{};
+    oit_frame_settings frame;
+    std::string message;
+    if (!view_->render_offscreen(width, height, image, frame, message)) {
+        error = QString::fromStdString(message);
+        return false;
+    }
+    oit_error err{};
+    QByteArray bytes = QFile::encodeName(path);
+    bool ok = oit_png_write(bytes.constData(), &image, &err) == OIT_OK;
+    oit_image_free(&image);
+    if (!ok)
+        error = QString::fromUtf8(err.message);
+    return ok;
+}
+
+QString MainWindow::oit_program() const
+{
+    QString dir = QCoreApplication::applicationDirPath();
+    for (const QString &candidate : {dir + "/oit", dir + "/../cli/oit", dir + "/../../src/cli/oit"})
+        if (QFileInfo(candidate).isExecutable())
+            return QFileInfo(candidate).canonicalFilePath();
+    return "oit";
+}
+
+QString MainWindow::render_command_for_view(const QString &out_path) const
+{
+    if (!model_)
+        return QString();
+    std::vector<float> storage;
+    oit_frame_settings frame = view_->current_frame(storage);
+    return QString::fromStdString(render_command(oit_program().toStdString(), model_path_.toStdString(),
+                                                 view_->settings, frame, out_path.toStdString()));
+}
+
+void MainWindow::copy_command()
+{
+    QString command = render_command_for_view("view.png");
+    if (command.isEmpty())
+        return;
+    QApplication::clipboard()->setText(command);
+    auto *box = new QMessageBox(QMessageBox::Information, "Copied as command",
+                                "This `oit render` command (now on the clipboard) renders the current view:", QMessageBox::Ok, this);
+    box->setDetailedText(command);
+    box->setInformativeText(command);
+    box->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->open();
+    status_label_->setText("copied: " + command);
+}
+
+void MainWindow::export_dialog()
+{
+    if (!model_)
+        return;
+    QDialog dialog(this);
+    dialog.setWindowTitle("Export PNG");
+    auto *form = new QFormLayout(&dialog);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    QSize size = view_->pixel_size();
+    auto *view_size = new QRadioButton(QString("view size (%1x%2)").arg(size.width()).arg(size.height()));
+    auto *custom = new QRadioButton("chosen size");
+    view_size->setChecked(true);
+    auto *w = new QSpinBox, *h = new QSpinBox;
+    w->setRange(1, 16384);
+    h->setRange(1, 16384);
+    w->setValue(size.width());
+    h->setValue(size.height());
+    auto *size_row = new QHBoxLayout;
+    size_row->addWidget(w);
+    size_row->addWidget(new QLabel("x"));
+    size_row->addWidget(h);
+    form->addRow(view_size);
+    form->addRow(custom, size_row);
+    auto *buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    form->addRow(buttons);
+    if (dialog.exec() != QDialog::Accepted)
+        return;
+    QString path = QFileDialog::getSaveFileName(this, "Export PNG", QFileInfo(model_path_).completeBaseName() + ".png",
+                                                "PNG images (*.png)");
+    if (path.isEmpty())
+        return;
+    int width = custom->isChecked() ? w->value() : size.width();
+    int height = custom->isChecked() ? h->value() : size.height();
+    QString error;
+    if (!export_png(path, width, height, error))
+        show_error("Export PNG", error);
+    else
+        status_label_->setText(QString("wrote %1 (%2x%3)").arg(path).arg(width).arg(height));
+}
+
+// ----------------------------------------------------------------- paths
+
+QString MainWindow::source_root()
+{
+    // the shader tree's parent: the source tree, or the install's share/oit-workbench
+    char dir[4096];
+    oit_error err{};
+    QByteArray argv0 = QCoreApplication::applicationFilePath().toLocal8Bit();
+    if (oit_find_shader_dir(argv0.constData(), dir, sizeof dir, &err) != OIT_OK)
+        return QDir::currentPath();
+    return QDir(QString::fromLocal8Bit(dir) + "/..").canonicalPath();
+}
+
+QString MainWindow::default_model_path()
+{
+    return source_root() + "/resources/models/gearbox.obj";
+}

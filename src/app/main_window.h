@@ -1,0 +1,138 @@
+// main_window.h: the workbench window: the render view, the settings panel
+// (Algorithm, Opacity, Parts, Camera, Views, Stats), menus, model loading off
+// the GUI thread, Export PNG, "Copy as command", presets and QSettings.
+#pragma once
+
+#include <QFutureWatcher>
+#include <QMainWindow>
+#include <QPointer>
+#include <QStringList>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "oit.h"
+#include "render_view.h"
+#include "settings.h"
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QLineEdit;
+class QMenu;
+class QMessageBox;
+class QPlainTextEdit;
+class QProgressBar;
+class QSlider;
+class QSpinBox;
+class QTabWidget;
+class QTreeWidget;
+class QTreeWidgetItem;
+class QListWidget;
+class QPushButton;
+class QRadioButton;
+
+struct LoadResult; // the worker thread's answer
+
+struct ModelDeleter {
+    void operator()(oit_model *model) const;
+};
+using ModelPointer = std::unique_ptr<oit_model, ModelDeleter>;
+
+class MainWindow : public QMainWindow {
+    Q_OBJECT
+public:
+    // restore_state: reload the last model and settings from QSettings
+    explicit MainWindow(bool restore_state = true, QWidget *parent = nullptr);
+    ~MainWindow() override;
+
+    RenderView *view() const { return view_; }
+    const oit_model *model() const { return model_.get(); }
+    QString model_path() const { return model_path_; }
+    bool loading() const;
+    QString last_error() const { return last_error_; }
+
+    // Start loading a model off the GUI thread (the previous one stays until it succeeds).
+    void load_model(const QString &path);
+    // Apply a preset file now (and its parts again when the next model arrives).
+    bool load_preset(const QString &path, QString &error);
+    bool save_preset(const QString &path, QString &error);
+    bool export_png(const QString &path, int width, int height, QString &error);
+    // The `oit render` command for the current view (what "Copy as command" copies).
+    QString render_command_for_view(const QString &out_path) const;
+    QString oit_program() const;
+
+    // Settings changed by code (tests, presets): refresh the panel and render.
+    void settings_changed();
+    void set_algorithm(const QString &name);
+    void set_part_visible(int index, bool visible);
+    void set_part_alpha(int index, float alpha);
+    QSlider *alpha_slider() const { return alpha_slider_; }
+    void set_camera_mode(Camera::Mode mode, bool orthographic);
+    // Bring a settings tab to the front by its name (case-insensitive).
+    bool show_tab(const QString &name);
+
+    // The path of the bundled default model (resources/models/gearbox.obj).
+    static QString default_model_path();
+    static QString source_root();
+
+signals:
+    void model_loaded(const QString &path);
+    void model_failed(const QString &message);
+
+protected:
+    void dragEnterEvent(QDragEnterEvent *event) override;
+    void dropEvent(QDropEvent *event) override;
+    void closeEvent(QCloseEvent *event) override;
+
+private:
+    void build_menus();
+    QWidget *build_algorithm_tab();
+    QWidget *build_opacity_tab();
+    QWidget *build_parts_tab();
+    QWidget *build_camera_tab();
+    QWidget *build_views_tab();
+    QWidget *build_stats_tab();
+    void sync_panel_from_settings();
+    void rebuild_parts();
+    void filter_parts(const QString &text);
+    void update_stats();
+    void load_finished();
+    void add_recent(const QString &path);
+    void rebuild_recent_menu();
+    void show_error(const QString &title, const QString &message);
+    void open_model_dialog();
+    void export_dialog();
+    void copy_command();
+    void render_now();
+
+    RenderView *view_ = nullptr;
+    ModelPointer model_;
+    QString model_path_;
+    QString last_error_;
+    QFutureWatcher<LoadResult *> *loader_ = nullptr;
+    QString loading_path_;
+    std::string pending_preset_; // applied again once the next model is loaded
+    QString pending_preset_name_;
+
+    QTabWidget *tabs_ = nullptr;
+    QProgressBar *progress_ = nullptr;
+    QLabel *status_label_ = nullptr;
+    QMenu *recent_menu_ = nullptr;
+    QStringList recent_;
+    bool syncing_ = false; // true while the panel is being set from the settings
+    std::vector<std::function<void()>> sync_actions_; // refresh each control from the settings
+
+    QComboBox *algorithm_combo_ = nullptr;
+    QSlider *alpha_slider_ = nullptr;
+    QTreeWidget *parts_ = nullptr;
+    QLineEdit *parts_filter_ = nullptr;
+    QLabel *parts_note_ = nullptr;
+    QPlainTextEdit *stats_text_ = nullptr;
+    QListWidget *saved_views_ = nullptr;
+    std::vector<Camera> saved_cameras_;
+    QPointer<QMessageBox> error_box_;
+};

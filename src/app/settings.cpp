@@ -1,0 +1,627 @@
+// settings.cpp: see settings.h.
+#include "settings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cctype>
+#include <cstring>
+#include <sstream>
+
+#include <rapidjson/document.h>
+#include <rapidjson/error/en.h>
+#include <rapidjson/prettywriter.h>
+#include <rapidjson/stringbuffer.h>
+
+RenderSettings::RenderSettings()
+{
+    oit_algorithm_config_defaults(&config);
+}
+
+void RenderSettings::reset_parts(const oit_model &model)
+{
+    part_alpha.assign(model.component_count, 1.0f);
+    part_visible.assign(model.component_count, 1);
+}
+
+bool RenderSettings::parts_modified() const
+{
+    for (size_t i = 0; i < part_alpha.size(); ++i)
+        if (part_alpha[i] != 1.0f || !part_visible[i])
+            return true;
+    return false;
+}
+
+oit_frame_settings make_frame(const RenderSettings &s, const oit_model &model, const Camera &camera, int width,
+                              int height, std::vector<float> &storage)
+{
+    oit_frame_settings frame;
+    std::memset(&frame, 0, sizeof frame);
+    frame.width = width;
+    frame.height = height;
+    camera.matrices(width, height, frame.modelview, frame.projection);
+    frame.alpha = s.alpha;
+    frame.shading = s.shading;
+    std::copy(s.background, s.background + 3, frame.background);
+    frame.modulation = s.modulation;
+    storage.clear();
+    if (s.part_alpha.size() == model.component_count && s.parts_modified()) {
+        for (size_t i = 0; i < s.part_alpha.size(); ++i)
+            storage.push_back(s.part_visible[i] ? s.part_alpha[i] : 0.0f);
+        frame.local.component_alpha = storage.data();
+        frame.local.component_count = model.component_count;
+    }
+    frame.local.focus_shape = s.focus_shape;
+    std::copy(s.focus, s.focus + 6, frame.local.focus);
+    frame.local.contrast = s.contrast;
+    frame.local.focus_default_region = model.radius / 4.0f; // as the command line
+    return frame;
+}
+
+namespace {
+
+struct ViewName {
+    const char *name;
+    oit_view view;
+    bool parameter;
+};
+const ViewName view_names[] = {
+    {"colour", OIT_VIEW_COLOUR, false},         {"heatmap", OIT_VIEW_HEATMAP, false},
+    {"peel-limit", OIT_VIEW_PEEL_LIMIT, true},  {"layer", OIT_VIEW_LAYER, true},
+    {"neighbours", OIT_VIEW_NEIGHBOURS, false}, {"curvature", OIT_VIEW_CURVATURE, true},
+    {"distance", OIT_VIEW_DISTANCE, true},      {"fields", OIT_VIEW_FIELDS, true},
+};
+
+const char *const mode_names[] = {"none", "curvature", "distance", "dist-curv", "fields", "edges"};
+const char *const neighbour_names[] = {"default", "index", "welded", "epsilon"};
+
+// %.9g: every float survives text and back
+std::string number(double value)
+{
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.9g", value);
+    return buffer;
+}
+
+std::string shell_quote(const std::string &text)
+{
+    bool plain = !text.empty();
+    for (char c : text)
+        plain = plain && (std::isalnum((unsigned char)c) || std::strchr("/._-+=,:@%", c));
+    if (plain)
+        return text;
+    std::string out = "'";
+    for (char c : text)
+        out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string distance_name(const oit_modulation &m)
+{
+    if (m.distance == OIT_DISTANCE_FAR_END)
+        return "far";
+    if (m.distance == OIT_DISTANCE_SKIP)
+        return "skip:" + std::to_string(m.distance_skip > 0 ? m.distance_skip : 2);
+    return "adjacent";
+}
+
+std::string fields_name(int mask)
+{
+    std::string out;
+    const char *names[] = {"alpha", "beta", "gamma"};
+    for (int f = 0; f < 3; ++f)
+        if (mask & (1 << f))
+            out += (out.empty() ? "" : ",") + std::string(names[f]);
+    return out;
+}
+
+} // namespace
+
+std::string view_name(const oit_modulation &m)
+{
+    for (const ViewName &v : view_names)
+        if (v.view == m.view)
+            return v.parameter ? std::string(v.name) + ":" + std::to_string(m.view_parameter) : v.name;
+    return "colour";
+}
+
+bool parse_view(const std::string &text, oit_modulation &m)
+{
+    size_t colon = text.find(':');
+    std::string name = text.substr(0, colon);
+    int parameter = 0;
+    if (colon != std::string::npos) {
+        char *end = nullptr;
+        long value = std::strtol(text.c_str() + colon + 1, &end, 10);
+        if (end == text.c_str() + colon + 1 || *end || value < 0 || value > 1000000)
+            return false;
+        parameter = int(value);
+    }
+    for (const ViewName &v : view_names)
+        if (name == v.name && (v.parameter || colon == std::string::npos)) {
+            m.view = v.view;
+            m.view_parameter = parameter;
+            return true;
+        }
+    return false;
+}
+
+const char *modulation_mode_name(oit_modulation_mode mode)
+{
+    return mode >= 0 && mode < 6 ? mode_names[mode] : "none";
+}
+
+std::string render_command(const std::string &oit_program, const std::string &model_path,
+                           const RenderSettings &s, const oit_frame_settings &frame, const std::string &out_path)
+{
+    std::ostringstream c;
+    c << shell_quote(oit_program) << " render --model " << shell_quote(model_path) << " --algorithm "
+      << s.algorithm << " --size " << frame.width << "x" << frame.height;
+    for (int which = 0; which < 2; ++which) {
+        const float *m = which == 0 ? frame.modelview : frame.projection;
+        c << (which == 0 ? " --modelview " : " --projection ");
+        for (int row = 0; row < 4; ++row)
+            for (int col = 0; col < 4; ++col)
+                c << (row || col ? "," : "") << number(m[col * 4 + row]);
+    }
+    c << " --alpha " << number(s.alpha) << " --shading " << (s.shading == OIT_SHADE_FLAT ? "flat" : "headlight");
+    c << " --background " << number(s.background[0]) << "," << number(s.background[1]) << ","
+      << number(s.background[2]);
+    oit_algorithm_config defaults;
+    oit_algorithm_config_defaults(&defaults);
+    if (s.config.max_memory_bytes != defaults.max_memory_bytes)
+        c << " --max-memory " << s.config.max_memory_bytes / (1024 * 1024);
+    if (s.config.ll_sort != defaults.ll_sort)
+        c << " --sort " << (s.config.ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "array" : "insertion");
+    if (s.config.max_layers != defaults.max_layers)
+        c << " --max-layers " << s.config.max_layers;
+    const oit_modulation &m = s.modulation;
+    if (m.view != OIT_VIEW_COLOUR)
+        c << " --view " << view_name(m);
+    if (m.mode != OIT_MODULATE_NONE)
+        c << " --modulation " << modulation_mode_name(m.mode);
+    if (m.neighbours != OIT_NEIGHBOURS_DEFAULT)
+        c << " --neighbours " << neighbour_names[m.neighbours];
+    if (m.epsilon_max > 0.0f)
+        c << " --epsilon-max " << number(m.epsilon_max);
+    if (m.curvature_effect > 0.0f)
+        c << " --curvature-effect " << number(m.curvature_effect);
+    if (m.curvature_neighbours == 8)
+        c << " --curvature-neighbours 8";
+    if (m.distance != OIT_DISTANCE_ADJACENT)
+        c << " --distance " << distance_name(m);
+    if (m.focus_region > 0.0f)
+        c << " --focus-region " << number(m.focus_region);
+    if (m.fields != 0)
+        c << " --fields " << fields_name(m.fields);
+    if (m.diffusion_iterations != 0)
+        c << " --diffusion-iterations " << std::max(0, m.diffusion_iterations);
+    if (m.blur_iterations != 0)
+        c << " --blur-iterations " << std::max(0, m.blur_iterations);
+    if (m.lambda_alpha > 0.0f)
+        c << " --lambda-alpha " << number(m.lambda_alpha);
+    if (m.lambda_beta > 0.0f)
+        c << " --lambda-beta " << number(m.lambda_beta);
+    if (m.lambda_gamma > 0.0f)
+        c << " --lambda-gamma " << number(m.lambda_gamma);
+    if (m.has_halo_colour)
+        c << " --halo-colour " << number(m.halo_colour[0]) << "," << number(m.halo_colour[1]) << ","
+          << number(m.halo_colour[2]);
+    if (m.last_layer_opaque)
+        c << " --last-layer-opaque";
+    // local modulation (issue 4's flags): parts by index, which is unambiguous
+    if (frame.local.component_alpha)
+        for (uint32_t i = 0; i < frame.local.component_count; ++i)
+            if (frame.local.component_alpha[i] != 1.0f)
+                c << " --component-alpha " << i << "=" << number(frame.local.component_alpha[i]);
+    const float *f = s.focus;
+    if (s.focus_shape == OIT_FOCUS_POINT)
+        c << " --focus-point " << number(f[0]) << "," << number(f[1]) << "," << number(f[2]);
+    else if (s.focus_shape == OIT_FOCUS_PLANE)
+        c << " --focus-plane " << number(f[0]) << "," << number(f[1]) << "," << number(f[2]) << ","
+          << number(f[3]);
+    else if (s.focus_shape == OIT_FOCUS_BOX)
+        c << " --focus-box " << number(f[0]) << "," << number(f[1]) << "," << number(f[2]) << ","
+          << number(f[3]) << "," << number(f[4]) << "," << number(f[5]);
+    if (s.contrast != 0.0f && s.contrast != 1.0f)
+        c << " --contrast " << number(s.contrast);
+    if (!out_path.empty())
+        c << " --out " << shell_quote(out_path);
+    return c.str();
+}
+
+// ------------------------------------------------------------------ presets
+
+namespace {
+
+using rapidjson::Value;
+
+void add(Value &object, const char *key, Value value, rapidjson::Document::AllocatorType &a)
+{
+    object.AddMember(Value(key, a), value, a);
+}
+
+Value string_value(const std::string &text, rapidjson::Document::AllocatorType &a)
+{
+    return Value(text.c_str(), rapidjson::SizeType(text.size()), a);
+}
+
+Value array_value(const float *values, int count, rapidjson::Document::AllocatorType &a)
+{
+    Value array(rapidjson::kArrayType);
+    for (int i = 0; i < count; ++i)
+        array.PushBack(Value(double(values[i])), a);
+    return array;
+}
+
+// 1-based line of the first occurrence of "key" in the text (for messages
+// about a value the parser accepted but the workbench does not)
+int line_of_key(const std::string &text, const char *key)
+{
+    size_t at = text.find("\"" + std::string(key) + "\"");
+    if (at == std::string::npos)
+        return 1;
+    return 1 + int(std::count(text.begin(), text.begin() + long(at), '\n'));
+}
+
+struct PresetReader {
+    const std::string &file, &text;
+    std::string &error;
+
+    bool fail(const char *key, const std::string &problem)
+    {
+        error = file + ":" + std::to_string(line_of_key(text, key)) + ": \"" + key + "\": " + problem;
+        return false;
+    }
+    bool number(const Value &object, const char *key, double low, double high, float &out, bool &present)
+    {
+        present = object.HasMember(key);
+        if (!present)
+            return true;
+        const Value &v = object[key];
+        if (!v.IsNumber() || !(v.GetDouble() >= low && v.GetDouble() <= high))
+            return fail(key, "must be a number in [" + ::number(low) + ", " + ::number(high) + "]");
+        out = float(v.GetDouble());
+        return true;
+    }
+    bool number(const Value &object, const char *key, double low, double high, float &out)
+    {
+        bool present;
+        return number(object, key, low, high, out, present);
+    }
+    bool whole(const Value &object, const char *key, int low, int high, int &out)
+    {
+        if (!object.HasMember(key))
+            return true;
+        const Value &v = object[key];
+        if (!v.IsInt() || v.GetInt() < low || v.GetInt() > high)
+            return fail(key, "must be a whole number in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
+        out = v.GetInt();
+        return true;
+    }
+    bool numbers(const Value &object, const char *key, int count, float *out, bool &present)
+    {
+        present = object.HasMember(key);
+        if (!present)
+            return true;
+        const Value &v = object[key];
+        if (!v.IsArray() || int(v.Size()) != count)
+            return fail(key, "must be an array of " + std::to_string(count) + " numbers");
+        for (int i = 0; i < count; ++i) {
+            if (!v[i].IsNumber() || !std::isfinite(v[i].GetDouble()))
+                return fail(key, "element " + std::to_string(i) + " is not a finite number");
+            out[i] = float(v[i].GetDouble());
+        }
+        return true;
+    }
+    // one of names[0..count); returns the index through out
+    bool choice(const Value &object, const char *key, const char *const *names, int count, int &out)
+    {
+        if (!object.HasMember(key))
+            return true;
+        const Value &v = object[key];
+        std::string all;
+        for (int i = 0; i < count; ++i) {
+            if (v.IsString() && v.GetString() == std::string(names[i])) {
+                out = i;
+                return true;
+            }
+            all += (i ? ", " : "") + std::string(names[i]);
+        }
+        return fail(key, "must be one of " + all);
+    }
+    // a number or "auto" (0)
+    bool number_or_auto(const Value &object, const char *key, double low, double high, float &out)
+    {
+        if (object.HasMember(key) && object[key].IsString() && object[key].GetString() == std::string("auto")) {
+            out = 0.0f;
+            return true;
+        }
+        if (object.HasMember(key) && !object[key].IsNumber())
+            return fail(key, "must be \"auto\" or a number");
+        return number(object, key, low, high, out);
+    }
+};
+
+} // namespace
+
+std::string preset_to_json(const RenderSettings &s, const Camera &camera, const oit_model *model)
+{
+    rapidjson::Document d(rapidjson::kObjectType);
+    auto &a = d.GetAllocator();
+    add(d, "algorithm", string_value(s.algorithm, a), a);
+    add(d, "sort", Value(rapidjson::StringRef(s.config.ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "array" : "insertion")), a);
+    add(d, "max-memory", Value(uint64_t(s.config.max_memory_bytes / (1024 * 1024))), a);
+    add(d, "max-layers", Value(s.config.max_layers), a);
+    add(d, "alpha", Value(double(s.alpha)), a);
+    add(d, "shading", Value(rapidjson::StringRef(s.shading == OIT_SHADE_FLAT ? "flat" : "headlight")), a);
+    add(d, "background", array_value(s.background, 3, a), a);
+    const oit_modulation &m = s.modulation;
+    add(d, "view", string_value(view_name(m), a), a);
+    add(d, "modulation", Value(rapidjson::StringRef(modulation_mode_name(m.mode))), a);
+    add(d, "neighbours", Value(rapidjson::StringRef(neighbour_names[m.neighbours])), a);
+    add(d, "curvature-neighbours", Value(m.curvature_neighbours == 8 ? 8 : 4), a);
+    add(d, "curvature-effect", Value(double(m.curvature_effect > 0 ? m.curvature_effect : 8.0f)), a);
+    add(d, "epsilon-max", Value(double(m.epsilon_max > 0 ? m.epsilon_max : 0.05f)), a);
+    add(d, "distance", string_value(distance_name(m), a), a);
+    add(d, "focus-region", m.focus_region > 0 ? Value(double(m.focus_region)) : Value(rapidjson::StringRef("auto")), a);
+    add(d, "fields", string_value(fields_name(m.fields ? m.fields : 7), a), a);
+    add(d, "diffusion-iterations", Value(m.diffusion_iterations == 0 ? 15 : std::max(0, m.diffusion_iterations)), a);
+    add(d, "blur-iterations", Value(m.blur_iterations == 0 ? 1 : std::max(0, m.blur_iterations)), a);
+    add(d, "lambda-alpha", m.lambda_alpha > 0 ? Value(double(m.lambda_alpha)) : Value(rapidjson::StringRef("auto")), a);
+    add(d, "lambda-beta", m.lambda_beta > 0 ? Value(double(m.lambda_beta)) : Value(rapidjson::StringRef("auto")), a);
+    add(d, "lambda-gamma", m.lambda_gamma > 0 ? Value(double(m.lambda_gamma)) : Value(rapidjson::StringRef("auto")), a);
+    if (m.has_halo_colour)
+        add(d, "halo-colour", array_value(m.halo_colour, 3, a), a);
+    add(d, "last-layer-opaque", Value(m.last_layer_opaque), a);
+    if (s.focus_shape == OIT_FOCUS_POINT)
+        add(d, "focus-point", array_value(s.focus, 3, a), a);
+    else if (s.focus_shape == OIT_FOCUS_PLANE)
+        add(d, "focus-plane", array_value(s.focus, 4, a), a);
+    else if (s.focus_shape == OIT_FOCUS_BOX)
+        add(d, "focus-box", array_value(s.focus, 6, a), a);
+    add(d, "contrast", Value(double(s.contrast == 0.0f ? 1.0f : s.contrast)), a);
+    if (model && s.part_alpha.size() == model->component_count) {
+        Value alphas(rapidjson::kObjectType), hidden(rapidjson::kArrayType);
+        for (uint32_t i = 0; i < model->component_count; ++i) {
+            if (s.part_alpha[i] != 1.0f)
+                alphas.AddMember(Value(model->components[i].name, a), Value(double(s.part_alpha[i])), a);
+            if (!s.part_visible[i])
+                hidden.PushBack(Value(model->components[i].name, a), a);
+        }
+        add(d, "component-alpha", std::move(alphas), a);
+        add(d, "hide", std::move(hidden), a);
+    }
+    Value cam(rapidjson::kObjectType);
+    add(cam, "mode", Value(rapidjson::StringRef(camera.mode() == Camera::Mode::Walk ? "walk" : "orbit")), a);
+    add(cam, "projection", Value(rapidjson::StringRef(camera.orthographic ? "orthographic" : "perspective")), a);
+    add(cam, "fov", Value(double(camera.fov_degrees)), a);
+    add(cam, "eye", array_value(&camera.eye.x, 3, a), a);
+    const float q[4] = {camera.orientation.w, camera.orientation.x, camera.orientation.y, camera.orientation.z};
+    add(cam, "orientation", array_value(q, 4, a), a);
+    add(cam, "target", array_value(&camera.target.x, 3, a), a);
+    add(d, "camera", std::move(cam), a);
+
+    rapidjson::StringBuffer buffer;
+    rapidjson::PrettyWriter<rapidjson::StringBuffer> writer(buffer);
+    writer.SetIndent(' ', 2);
+    d.Accept(writer);
+    return std::string(buffer.GetString()) + "\n";
+}
+
+bool preset_from_json(const std::string &file, const std::string &text, RenderSettings &out, Camera &camera,
+                      bool &has_camera, const oit_model *model, std::string &error)
+{
+    has_camera = false;
+    rapidjson::Document d;
+    d.Parse<rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag>(text.c_str(), text.size());
+    if (d.HasParseError()) {
+        size_t offset = std::min(d.GetErrorOffset(), text.size());
+        int line = 1 + int(std::count(text.begin(), text.begin() + long(offset), '\n'));
+        error = file + ":" + std::to_string(line) + ": " + rapidjson::GetParseError_En(d.GetParseError());
+        return false;
+    }
+    if (!d.IsObject()) {
+        error = file + ":1: a preset is a JSON object";
+        return false;
+    }
+    PresetReader r{file, text, error};
+    RenderSettings s = out; // applied only if the whole file is good
+    static const char *const known[] = {
+        "algorithm", "sort", "max-memory", "max-layers", "alpha", "shading", "background", "view", "modulation",
+        "neighbours", "curvature-neighbours", "curvature-effect", "epsilon-max", "distance", "focus-region",
+        "fields", "diffusion-iterations", "blur-iterations", "lambda-alpha", "lambda-beta", "lambda-gamma",
+        "halo-colour", "last-layer-opaque", "focus-point", "focus-plane", "focus-box", "contrast",
+        "component-alpha", "hide", "camera"};
+    for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
+        std::string key = it->name.GetString();
+        if (std::find(std::begin(known), std::end(known), key) == std::end(known))
+            return r.fail(key.c_str(), "unknown key (the keys are `oit render`'s flag names)");
+    }
+    if (d.HasMember("algorithm")) {
+        if (!d["algorithm"].IsString() || !oit_algorithm_find(d["algorithm"].GetString()))
+            return r.fail("algorithm", "unknown algorithm (oit algorithms lists them)");
+        s.algorithm = d["algorithm"].GetString();
+    }
+    static const char *const sorts[] = {"insertion", "array"};
+    int sort = s.config.ll_sort;
+    if (!r.choice(d, "sort", sorts, 2, sort))
+        return false;
+    s.config.ll_sort = oit_ll_sort(sort);
+    int megabytes = int(s.config.max_memory_bytes / (1024 * 1024));
+    if (!r.whole(d, "max-memory", 1, 1 << 22, megabytes) || !r.whole(d, "max-layers", 1, 256, s.config.max_layers))
+        return false;
+    s.config.max_memory_bytes = uint64_t(megabytes) * 1024 * 1024;
+    if (!r.number(d, "alpha", 0.0, 1.0, s.alpha))
+        return false;
+    static const char *const shadings[] = {"flat", "headlight"};
+    int shading = s.shading;
+    if (!r.choice(d, "shading", shadings, 2, shading))
+        return false;
+    s.shading = oit_shading_mode(shading);
+    bool present;
+    if (!r.numbers(d, "background", 3, s.background, present))
+        return false;
+    for (float c : s.background)
+        if (!(c >= 0.0f && c <= 1.0f))
+            return r.fail("background", "each component must be in [0, 1]");
+    oit_modulation &m = s.modulation;
+    if (d.HasMember("view") && (!d["view"].IsString() || !parse_view(d["view"].GetString(), m)))
+        return r.fail("view", "must be colour, heatmap, peel-limit:N, layer:L, neighbours, curvature[:L], "
+                              "distance[:L] or fields[:L]");
+    int mode = m.mode, neighbours = m.neighbours;
+    if (!r.choice(d, "modulation", mode_names, 6, mode) || !r.choice(d, "neighbours", neighbour_names, 4, neighbours))
+        return false;
+    m.mode = oit_modulation_mode(mode);
+    m.neighbours = oit_neighbour_search(neighbours);
+    if (!r.whole(d, "curvature-neighbours", 4, 8, m.curvature_neighbours) ||
+        !r.number(d, "curvature-effect", 1e-6, 1e6, m.curvature_effect) ||
+        !r.number(d, "epsilon-max", 1e-6, 1e6, m.epsilon_max) ||
+        !r.number_or_auto(d, "focus-region", 1e-9, 1e9, m.focus_region))
+        return false;
+    if (m.curvature_neighbours != 4 && m.curvature_neighbours != 8 && m.curvature_neighbours != 0)
+        return r.fail("curvature-neighbours", "must be 4 or 8");
+    if (d.HasMember("distance")) {
+        std::string v = d["distance"].IsString() ? d["distance"].GetString() : "";
+        if (v == "adjacent")
+            m.distance = OIT_DISTANCE_ADJACENT;
+        else if (v == "far")
+            m.distance = OIT_DISTANCE_FAR_END;
+        else if (v.rfind("skip:", 0) == 0 && std::atoi(v.c_str() + 5) >= 1) {
+            m.distance = OIT_DISTANCE_SKIP;
+            m.distance_skip = std::atoi(v.c_str() + 5);
+        } else
+            return r.fail("distance", "must be adjacent, far or skip:K (K >= 1)");
+    }
+    if (d.HasMember("fields")) {
+        std::string v = d["fields"].IsString() ? d["fields"].GetString() : "";
+        int mask = 0;
+        std::stringstream items(v);
+        std::string item;
+        while (std::getline(items, item, ','))
+            mask |= item == "alpha" ? OIT_FIELD_ALPHA : item == "beta" ? OIT_FIELD_BETA : item == "gamma" ? OIT_FIELD_GAMMA : 64;
+        if (mask == 0 || mask >= 64)
+            return r.fail("fields", "must be a comma-separated list of alpha, beta, gamma");
+        m.fields = mask == 7 ? 0 : mask;
+    }
+    int diffusion = m.diffusion_iterations == 0 ? 15 : std::max(0, m.diffusion_iterations);
+    int blur = m.blur_iterations == 0 ? 1 : std::max(0, m.blur_iterations);
+    if (!r.whole(d, "diffusion-iterations", 0, 1000, diffusion) || !r.whole(d, "blur-iterations", 0, 1000, blur))
+        return false;
+    m.diffusion_iterations = diffusion == 0 ? -1 : diffusion;
+    m.blur_iterations = blur == 0 ? -1 : blur;
+    if (!r.number_or_auto(d, "lambda-alpha", 1e-6, 100, m.lambda_alpha) ||
+        !r.number_or_auto(d, "lambda-beta", 1e-6, 100, m.lambda_beta) ||
+        !r.number_or_auto(d, "lambda-gamma", 1e-6, 100, m.lambda_gamma))
+        return false;
+    if (!r.numbers(d, "halo-colour", 3, m.halo_colour, present))
+        return false;
+    m.has_halo_colour = m.has_halo_colour || present;
+    if (d.HasMember("last-layer-opaque")) {
+        if (!d["last-layer-opaque"].IsBool())
+            return r.fail("last-layer-opaque", "must be true or false");
+        m.last_layer_opaque = d["last-layer-opaque"].GetBool();
+    }
+    const struct {
+        const char *key;
+        oit_focus_shape shape;
+        int count;
+    } shapes[] = {{"focus-point", OIT_FOCUS_POINT, 3}, {"focus-plane", OIT_FOCUS_PLANE, 4}, {"focus-box", OIT_FOCUS_BOX, 6}};
+    for (const auto &shape : shapes) {
+        float values[6] = {0, 0, 0, 0, 0, 0};
+        if (!r.numbers(d, shape.key, shape.count, values, present))
+            return false;
+        if (present) {
+            s.focus_shape = shape.shape;
+            std::copy(values, values + 6, s.focus);
+        }
+    }
+    if (!r.number(d, "contrast", 0.1, 10.0, s.contrast))
+        return false;
+    if (model) {
+        s.reset_parts(*model);
+        auto find_part = [&](const char *name) -> int {
+            for (uint32_t i = 0; i < model->component_count; ++i)
+                if (std::strcmp(model->components[i].name, name) == 0)
+                    return int(i);
+            return -1;
+        };
+        if (d.HasMember("component-alpha")) {
+            const Value &parts = d["component-alpha"];
+            if (!parts.IsObject())
+                return r.fail("component-alpha", "must be an object {\"part name\": opacity}");
+            for (auto it = parts.MemberBegin(); it != parts.MemberEnd(); ++it) {
+                int index = find_part(it->name.GetString());
+                if (!it->value.IsNumber() || !(it->value.GetDouble() >= 0.0 && it->value.GetDouble() <= 1.0))
+                    return r.fail("component-alpha", std::string("\"") + it->name.GetString() + "\" needs an opacity in [0, 1]");
+                if (index >= 0) // parts the model does not have are ignored: presets travel between models
+                    s.part_alpha[size_t(index)] = float(it->value.GetDouble());
+            }
+        }
+        if (d.HasMember("hide")) {
+            const Value &hide = d["hide"];
+            if (!hide.IsArray())
+                return r.fail("hide", "must be an array of part names");
+            for (const Value &name : hide.GetArray()) {
+                if (!name.IsString())
+                    return r.fail("hide", "must be an array of part names");
+                int index = find_part(name.GetString());
+                if (index >= 0)
+                    s.part_visible[size_t(index)] = 0;
+            }
+        }
+    }
+    Camera c = camera;
+    if (d.HasMember("camera")) {
+        const Value &cam = d["camera"];
+        if (!cam.IsObject())
+            return r.fail("camera", "must be an object");
+        static const char *const modes[] = {"orbit", "walk"};
+        static const char *const projections[] = {"perspective", "orthographic"};
+        int cam_mode = c.mode() == Camera::Mode::Walk, projection = c.orthographic;
+        float q[4] = {c.orientation.w, c.orientation.x, c.orientation.y, c.orientation.z};
+        if (!r.choice(cam, "mode", modes, 2, cam_mode) || !r.choice(cam, "projection", projections, 2, projection) ||
+            !r.number(cam, "fov", 1.0, 170.0, c.fov_degrees) || !r.numbers(cam, "eye", 3, &c.eye.x, present) ||
+            !r.numbers(cam, "orientation", 4, q, present) || !r.numbers(cam, "target", 3, &c.target.x, present))
+            return false;
+        glm::quat orientation(q[0], q[1], q[2], q[3]);
+        if (!(glm::length(orientation) > 1e-6f))
+            return r.fail("orientation", "must be a non-zero quaternion w, x, y, z");
+        // renormalised only if needed, so a saved view comes back bit for bit
+        c.orientation = std::fabs(glm::length(orientation) - 1.0f) > 1e-5f ? glm::normalize(orientation) : orientation;
+        c.orthographic = projection == 1;
+        c.set_mode(cam_mode ? Camera::Mode::Walk : Camera::Mode::Orbit);
+        has_camera = true;
+    }
+    out = s;
+    camera = c;
+    return true;
+}
+
+bool read_model_list(const std::string &file, const std::string &text, const std::string &base_dir,
+                     std::vector<ModelEntry> &out, std::string &error)
+{
+    rapidjson::Document d;
+    d.Parse<rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag>(text.c_str(), text.size());
+    if (d.HasParseError()) {
+        size_t offset = std::min(d.GetErrorOffset(), text.size());
+        int line = 1 + int(std::count(text.begin(), text.begin() + long(offset), '\n'));
+        error = file + ":" + std::to_string(line) + ": " + rapidjson::GetParseError_En(d.GetParseError());
+        return false;
+    }
+    if (!d.IsObject() || !d.HasMember("models") || !d["models"].IsArray()) {
+        error = file + ":1: expected an object with a \"models\" array";
+        return false;
+    }
+    PresetReader r{file, text, error};
+    for (const Value &entry : d["models"].GetArray()) {
+        if (!entry.IsObject() || !entry.HasMember("name") || !entry["name"].IsString() || !entry.HasMember("path") ||
+            !entry["path"].IsString())
+            return r.fail("models", "every entry needs \"name\" and \"path\" strings");
+        std::string path = entry["path"].GetString();
+        if (!path.empty() && path[0] != '/')
+            path = base_dir + "/" + path;
+        out.push_back({entry["name"].GetString(), path});
+    }
+    return true;
+}

@@ -1,0 +1,60 @@
+// settings.h: everything that decides a frame besides the model: the algorithm
+// and its configuration, opacity, modulations, per-part opacity, the camera.
+// Turns into oit_frame_settings, into the equivalent `oit render` command, and
+// into / out of preset JSON (RapidJSON). Names follow the command line's flags.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "camera.h"
+#include "oit.h"
+
+struct RenderSettings {
+    std::string algorithm = "ll";
+    oit_algorithm_config config{}; // shader_dir is set by the view
+    float alpha = 0.5f;
+    oit_shading_mode shading = OIT_SHADE_HEADLIGHT;
+    float background[3] = {1.0f, 1.0f, 1.0f};
+    oit_modulation modulation{};
+    oit_focus_shape focus_shape = OIT_FOCUS_NONE;
+    float focus[6] = {0, 0, 0, 0, 0, 0};
+    float contrast = 1.0f;
+    // per component of the loaded model; opacity used = visible ? part_alpha : 0
+    std::vector<float> part_alpha;
+    std::vector<char> part_visible;
+
+    RenderSettings();
+    void reset_parts(const oit_model &model);
+    bool parts_modified() const;
+};
+
+// The frame for width x height with the camera's matrices; component_alpha
+// points into storage, which must outlive the frame.
+oit_frame_settings make_frame(const RenderSettings &settings, const oit_model &model, const Camera &camera,
+                              int width, int height, std::vector<float> &storage);
+
+// --view value ("heatmap", "peel-limit:4", ...) and back.
+std::string view_name(const oit_modulation &modulation);
+bool parse_view(const std::string &text, oit_modulation &modulation);
+const char *modulation_mode_name(oit_modulation_mode mode);
+
+// The `oit render` command that reproduces a frame (matrices row by row, with
+// enough digits that every float survives the round trip).
+std::string render_command(const std::string &oit_program, const std::string &model_path,
+                           const RenderSettings &settings, const oit_frame_settings &frame,
+                           const std::string &out_path);
+
+// Presets: a JSON object whose keys are the command line's flag names.
+std::string preset_to_json(const RenderSettings &settings, const Camera &camera, const oit_model *model);
+// On failure returns false with "FILE:LINE: problem" in error. The camera is
+// changed only if the preset has one; parts are matched by name against model.
+bool preset_from_json(const std::string &file_name, const std::string &text, RenderSettings &settings,
+                      Camera &camera, bool &has_camera, const oit_model *model, std::string &error);
+
+// config/models.json: [{"name", "path"}]; relative paths are taken from base_dir.
+struct ModelEntry {
+    std::string name, path;
+};
+bool read_model_list(const std::string &file_name, const std::string &text, const std::string &base_dir,
+                     std::vector<ModelEntry> &out, std::string &error);
