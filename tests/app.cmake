@@ -1,0 +1,32 @@
+# Qt workbench tests (tests/app.cmake), included by tests/CMakeLists.txt.
+# They need the workbench (built when Qt 5 is found) and Xvfb (xvfb-run, from
+# Debian's xvfb + xauth): each test starts its own X server on a free display.
+# RESOURCE_LOCK keeps two xvfb-run from racing for the same display number.
+if(NOT TARGET test_workbench)
+  return()
+endif()
+find_program(XVFB_RUN xvfb-run)
+if(NOT XVFB_RUN)
+  message(WARNING "xvfb-run not found (Debian: xvfb, xauth): the workbench tests are not registered")
+  return()
+endif()
+set(APP_WORK ${CMAKE_CURRENT_BINARY_DIR}/work/app)
+set(APP_XVFB ${XVFB_RUN} -a -s "-screen 0 1280x1024x24")
+# QSettings and Qt's runtime files stay inside the build tree; Xvfb has no
+# D-Bus session bus, and libdbus leaks what Qt's attempt to reach one allocates
+set(APP_ENVIRONMENT
+  "DBUS_SESSION_BUS_ADDRESS=disabled:"
+  "OIT_CLI=$<TARGET_FILE:oit>"
+  "OIT_TEST_WORK=${APP_WORK}/cases"
+  "XDG_CONFIG_HOME=${APP_WORK}/config"
+  "XDG_RUNTIME_DIR=${APP_WORK}/runtime"
+  "QT_QPA_PLATFORM=xcb")
+
+# Qt Test cases on the real window (tests/app/test_workbench.cpp).
+add_test(NAME app_workbench COMMAND ${APP_XVFB} $<TARGET_FILE:test_workbench>)
+# The command line: --help, --screenshot, bad input.
+add_test(NAME app_command_line
+  COMMAND ${APP_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/app/command_line.sh $<TARGET_FILE:oit-workbench>
+          ${APP_WORK}/command_line)
+set_tests_properties(app_workbench app_command_line PROPERTIES
+  ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 900)

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# command_line.sh WORKBENCH WORK: the workbench's command line, run inside one
+# xvfb-run (tests/app.cmake) so every start finds $DISPLAY.
+set -euo pipefail
+workbench=$1 work=$2
+rm -rf "$work" && mkdir -p "$work" "$XDG_RUNTIME_DIR" && chmod 700 "$XDG_RUNTIME_DIR"
+run() { "$workbench" "$@"; }
+fail() { echo "FAIL: $*" >&2; exit 1; }
+[ -n "${DISPLAY:-}" ] || fail "no DISPLAY: run this under xvfb-run"
+
+env -u DISPLAY -u WAYLAND_DISPLAY "$workbench" --help | grep -q -- "--screenshot" \
+  || fail "--help (without a display) does not list --screenshot"
+
+# one frame of the whole window, on the default model, view at the size asked for
+run --algorithm ll --size 200x150 --screenshot "$work/window.png" > "$work/out.txt"
+grep -q "window.png" "$work/out.txt" || fail "no screenshot path printed"
+head -c 8 "$work/window.png" | od -An -c | grep -q "P   N   G" || fail "window.png is not a PNG"
+width=$(od -An -tu1 -j16 -N4 "$work/window.png" | awk '{print $1*16777216+$2*65536+$3*256+$4}')
+height=$(od -An -tu1 -j20 -N4 "$work/window.png" | awk '{print $1*16777216+$2*65536+$3*256+$4}')
+[ "$width" -gt 200 ] && [ "$height" -gt 150 ] || fail "window.png is ${width}x${height}, smaller than its view"
+
+# a preset on the command line
+cat > "$work/preset.json" <<'JSON'
+{"algorithm": "dp", "alpha": 0.8, "shading": "flat"}
+JSON
+run --preset "$work/preset.json" --size 120x90 --screenshot "$work/preset.png" > /dev/null \
+  || fail "a good preset was refused"
+
+# bad input: exit 2 (3 for a frame that fails) and a one-line reason
+expect_error() {
+  local expected=2
+  if [ "$1" = "--status" ]; then expected=$2; shift 2; fi
+  local pattern=$1; shift
+  set +e
+  run "$@" > "$work/stdout.txt" 2> "$work/stderr.txt"
+  local status=$?
+  set -e
+  [ "$status" -eq "$expected" ] || fail "$* exited $status, expected $expected"
+  grep -q "oit-workbench: error: .*$pattern" "$work/stderr.txt" || { cat "$work/stderr.txt" >&2; fail "$*: no message naming '$pattern'"; }
+}
+printf 'not a model\n' > "$work/bad.obj"
+expect_error "bad.obj" "$work/bad.obj" --screenshot "$work/never.png"
+expect_error "unknown algorithm" --algorithm nonesuch --screenshot "$work/never.png"
+expect_error "--size" --size 12 --screenshot "$work/never.png"
+printf '{\n  "alpha": 2\n}\n' > "$work/bad-preset.json"
+expect_error "bad-preset.json:2:" --preset "$work/bad-preset.json" --screenshot "$work/never.png"
+[ ! -e "$work/never.png" ] || fail "a screenshot was written after an error"
+# a frame the algorithm refuses (dp has no heatmap): the window shows it, the exit status too
+printf '{"view": "heatmap"}\n' > "$work/heatmap.json"
+expect_error --status 3 "frame failed: dp:" --algorithm dp --preset "$work/heatmap.json" --size 64x64 \
+  --screenshot "$work/failed-frame.png"
+echo "command line: ok"

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# cli_errors.sh OIT WORKDIR SCENES: every kind of bad input gets its exit status
+# and a one-line message naming the problem; nothing crashes or hangs.
+source "$(dirname "$0")/lib.sh"
+oit=$1 work=$2 scenes=$3
+rm -rf "$work"; mkdir -p "$work"
+model=$scenes/onion.obj
+good_mv=1,0,0,0,0,1,0,0,0,0,1,-3,0,0,0,1
+good_p=1.8,0,0,0,0,1.8,0,0,0,0,-1.2,-2.2,0,0,-1,0
+
+# --- bad model files (exit 2) ---
+expect_exit 2 "missing.obj" -- "$oit" render --model "$work/missing.obj" --out "$work/x.png"
+: >"$work/empty.obj"
+expect_exit 2 "empty" -- "$oit" render --model "$work/empty.obj" --out "$work/x.png"
+head -c 4096 /dev/urandom >"$work/garbage.obj"
+expect_exit 2 "garbage.obj" -- "$oit" render --model "$work/garbage.obj" --out "$work/x.png"
+head -c 4096 /dev/urandom >"$work/garbage.bin"
+expect_exit 2 "garbage.bin" -- "$oit" info --model "$work/garbage.bin"
+mkdir -p "$work/adirectory.obj"
+expect_exit 2 "director" -- "$oit" render --model "$work/adirectory.obj" --out "$work/x.png"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\np 3\n' >"$work/notriangles.obj"
+expect_exit 2 "triangle" -- "$oit" render --model "$work/notriangles.obj" --out "$work/x.png"
+printf 'v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$work/nan.obj"
+expect_exit 2 "nan.obj" -- "$oit" render --model "$work/nan.obj" --out "$work/x.png"
+printf 'v inf 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$work/inf.obj"
+expect_exit 2 "inf.obj" -- "$oit" info --model "$work/inf.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n' >"$work/badindex.obj"
+expect_exit 2 "badindex.obj" -- "$oit" render --model "$work/badindex.obj" --out "$work/x.png"
+
+# --- bad matrices (exit 2) ---
+expect_exit 2 "16" -- "$oit" render --model "$model" --out "$work/x.png" --modelview 1,0,0,0,0,1,0,0,0,0,1,0,0,0,0
+expect_exit 2 "not a (finite )?number|finite" -- "$oit" render --model "$model" --out "$work/x.png" --modelview 1,0,0,0,0,nan,0,0,0,0,1,0,0,0,0,1
+expect_exit 2 "list of numbers" -- "$oit" render --model "$model" --out "$work/x.png" --projection 1,0,0,0,0,1,0,0,0,0,1,0,0,0,x,1
+expect_exit 2 "singular" -- "$oit" render --model "$model" --out "$work/x.png" --modelview "$good_mv" --projection 0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0
+expect_exit 2 "singular" -- "$oit" render --model "$model" --out "$work/x.png" --modelview 0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,1 --projection "$good_p"
+
+# --- absurd sizes and values (exit 2) ---
+expect_exit 2 "at least 1" -- "$oit" render --model "$model" --out "$work/x.png" --size 0x0
+expect_exit 2 "too large" -- "$oit" render --model "$model" --out "$work/x.png" --size 100000x100000
+expect_exit 2 "WxH" -- "$oit" render --model "$model" --out "$work/x.png" --size banana
+expect_exit 2 "alpha" -- "$oit" render --model "$model" --out "$work/x.png" --alpha 1.5
+expect_exit 2 "unknown algorithm" -- "$oit" render --model "$model" --out "$work/x.png" --algorithm nosuch
+expect_exit 2 "backend" -- "$oit" render --model "$model" --out "$work/x.png" --backend vulkan
+expect_exit 2 "unknown option" -- "$oit" render --model "$model" --out "$work/x.png" --frobnicate
+expect_exit 2 "unknown command" -- "$oit" frobnicate
+expect_exit 2 "unknown" -- "$oit" gen nosuchscene --out "$work/n.obj"
+
+# --- an exhausted memory budget (exit 3), for the growing fragment pool ---
+expect_exit 3 "budget" -- "$oit" render --model "$scenes/menger.obj" --algorithm ll --size 256x256 --max-memory 1 --out "$work/x.png"
+
+# --- compare: bad input (2) and outside bounds (1) ---
+"$oit" render --model "$model" --algorithm reference --size 32x32 --out "$work/a.png" >/dev/null || fail "render a"
+"$oit" render --model "$model" --algorithm reference --size 32x32 --background 0,0,0 --out "$work/b.png" >/dev/null || fail "render b"
+"$oit" render --model "$model" --algorithm reference --size 16x16 --out "$work/small.png" >/dev/null || fail "render small"
+expect_exit 0 "" -- "$oit" compare "$work/a.png" "$work/a.png"
+expect_exit 1 "" -- "$oit" compare "$work/a.png" "$work/b.png" --tolerance 2
+expect_exit 2 "size|32x32" -- "$oit" compare "$work/a.png" "$work/small.png"
+expect_exit 2 "PNG" -- "$oit" compare "$work/a.png" "$work/garbage.bin"
+expect_exit 2 "missing.png" -- "$oit" compare "$work/a.png" "$work/missing.png"
+echo "all error cases behaved"

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# run-all.sh: the whole test suite. Builds and tests the project twice:
+# a release build, then an AddressSanitizer + UndefinedBehaviorSanitizer build.
+# Both run every test on both headless back ends (EGL surfaceless, OSMesa).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+jobs=$(nproc)
+
+echo "== release build"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build build -j "$jobs"
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+echo "== sanitizer build (ASan + UBSan)"
+cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DOIT_SANITIZE=ON >/dev/null
+cmake --build build-sanitize -j "$jobs"
+# Leaks inside Mesa's own libraries (llvmpipe, LLVM, the EGL/OSMesa drivers)
+# are suppressed, and only those: see tests/lsan.supp.
+export LSAN_OPTIONS="suppressions=$root/tests/lsan.supp:print_suppressions=0"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
