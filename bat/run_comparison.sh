@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# run_comparison.sh: the whole benchmark on a freshly set-up checkout, in one command.
+#   1. builds oit (Release) into BUILD if it is not there
+#   2. installs the models and writes the scene lists (bat/setup.py, config/bench-scenes.json)
+#   3. oit bench: every scene x blend, dp, ddp, ll, ll-array, ib, wboit at 600x600
+#      -> BUILD/bench/results/bench.csv (+ .json); then every scene at 128x128, one frame,
+#      against the CPU reference -> accuracy.csv
+#   4. the source's six measurements (bat/measure_*.sh) -> BUILD/bench/results/*.txt
+#   5. a perf profile of ll and ib on one scene (bat/profile.sh; skipped without perf)
+#   6. bat/report.py -> docs/benchmarks.md and docs/images/bench-*.png
+# Options:
+#   --build DIR   build directory (default build)
+#   --quick       4 models, 256x256, fewer frames, measurements at 300x300, resolution sweep
+#                 400..500; the report goes
+#                 to BUILD/bench/quick-docs/ instead of docs/ (a smoke test, minutes not hours)
+#   --skip-measure  only oit bench and the report
+# The full run takes about 1.5 hours on a quiet 2-core machine with llvmpipe (estimated from
+# single-frame runs of every scene; menger4 alone, with dp and ddp at 80-90 s a frame, is a quarter);
+# --quick about 10 minutes.
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUILD=$ROOT/build
+QUICK=0
+MEASURE=1
+while [ $# -gt 0 ]; do
+    case $1 in
+    --build) BUILD=$2; shift 2 ;;
+    --quick) QUICK=1; shift ;;
+    --skip-measure) MEASURE=0; shift ;;
+    -h | --help) sed -n '2,/^$/p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run_comparison.sh: unknown option '$1' (--build DIR, --quick, --skip-measure)" >&2; exit 2 ;;
+    esac
+done
+case $BUILD in /*) ;; *) BUILD=$ROOT/$BUILD ;; esac
+OIT=$BUILD/src/cli/oit
+started=$(date +%s)
+step() { echo "== $(date -u +%H:%M:%S) $*" >&2; }
+
+if [ ! -x "$OIT" ]; then
+    step "building oit into $BUILD"
+    cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+ninja -C "$BUILD" oit >/dev/null
+
+quick=()
+suffix=
+if [ "$QUICK" = 1 ]; then
+    quick=(--quick)
+    suffix=-quick
+fi
+step "models and scene lists"
+python3 "$ROOT/bat/setup.py" --build "$BUILD" "${quick[@]}"
+RESULTS=$BUILD/bench/results$suffix
+mkdir -p "$RESULTS"
+SCENES=$BUILD/bench/scenes$suffix.txt
+
+if [ "$QUICK" = 1 ]; then
+    bench_flags=(--sizes 256 --frames 3 --warmup 1)
+    accuracy_size=96
+    measure_flags=(--quick --frames 2 --viewport 300)
+    resolution_sizes="400 450 500"
+    docs=$BUILD/bench/quick-docs
+else
+    # heavy scenes (menger4: dp takes ~30 s a frame) stop after 3 frames past 20 s
+    bench_flags=(--sizes 600 --frames 10 --warmup 1 --time-budget 20)
+    accuracy_size=128
+    measure_flags=(--frames 2)
+    resolution_sizes=
+    docs=$ROOT/docs
+fi
+
+step "oit bench (progress on stderr)"
+set +e
+"$OIT" bench --scene-list "$SCENES" --algorithms blend,dp,ddp,ll,ll-array,ib,wboit "${bench_flags[@]}" \
+    --reference-max-pixels 0 --csv "$RESULTS/bench.csv" --json "$RESULTS/bench.json"
+bench_status=$?
+step "accuracy against the reference at ${accuracy_size}x${accuracy_size}"
+"$OIT" bench --scene-list "$SCENES" --algorithms blend,dp,ddp,ll,ib,wboit --sizes $accuracy_size \
+    --frames 1 --warmup 0 --reference-max-pixels $((accuracy_size * accuracy_size)) --quiet \
+    --csv "$RESULTS/accuracy.csv"
+accuracy_status=$?
+set -e
+[ $bench_status -eq 0 ] || echo "run_comparison.sh: some bench runs failed (rows with an error in bench.csv)" >&2
+[ $accuracy_status -eq 0 ] || echo "run_comparison.sh: some accuracy runs failed (accuracy.csv)" >&2
+
+if [ "$MEASURE" = 1 ]; then
+    for script in linked_lists construction diffusion diffusion_gauss view_distance; do
+        step "bat/measure_$script.sh"
+        bash "$ROOT/bat/measure_$script.sh" --build "$BUILD" "${measure_flags[@]}"
+    done
+    step "bat/measure_resolutions.sh"
+    if [ -n "$resolution_sizes" ]; then
+        OIT_RESOLUTION_SIZES=$resolution_sizes bash "$ROOT/bat/measure_resolutions.sh" --build "$BUILD" "${measure_flags[@]}"
+    else
+        bash "$ROOT/bat/measure_resolutions.sh" --build "$BUILD" "${measure_flags[@]}"
+    fi
+fi
+
+step "bat/profile.sh (perf; skipped without it)"
+if [ "$QUICK" = 1 ]; then
+    bash "$ROOT/bat/profile.sh" --build "$BUILD" --quick --size 256 || true
+else
+    bash "$ROOT/bat/profile.sh" --build "$BUILD" || true
+fi
+
+step "report"
+elapsed=$(( $(date +%s) - started ))
+python3 "$ROOT/bat/report.py" --results "$RESULTS" --docs "$docs" --elapsed "$elapsed" \
+    --command "bat/run_comparison.sh ${quick[*]}"
+step "done in $((elapsed / 60)) min: $docs/benchmarks.md"

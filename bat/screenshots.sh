@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# screenshots.sh [BUILD_DIR]: the workbench screenshots in docs/images/workbench/,
+# each one `oit-workbench --screenshot` (one frame of the whole window) on a real
+# model with an algorithm, a preset and a settings tab. Runs under xvfb-run when
+# there is no display. From the repository root, after a build:
+#
+#     bash bat/screenshots.sh build
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-$root/build}
+workbench=$build/src/app/oit-workbench
+out=$root/docs/images/workbench
+presets=$(mktemp -d)
+trap 'rm -rf "$presets"' EXIT
+mkdir -p "$out"
+[ -x "$workbench" ] || { echo "screenshots.sh: $workbench is not built" >&2; exit 2; }
+
+gearbox=$root/resources/models/gearbox.obj
+spider=/usr/share/assimp/models/OBJ/spider.obj
+engine=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb
+
+# settings presets: the keys are `oit render`'s flag names
+cat > "$presets/spider-parts.json" <<'JSON'
+{"alpha": 0.6, "component-alpha": {"HLeib01": 0.15, "OK": 0.15, "Brust": 0.2},
+ "hide": ["Bein1Li", "Bein1Re"]}
+JSON
+cat > "$presets/engine-heatmap.json" <<'JSON'
+{"view": "heatmap"}
+JSON
+cat > "$presets/engine-focus.json" <<'JSON'
+{"alpha": 0.7, "focus-point": [0, -44, -6], "focus-region": 160}
+JSON
+cat > "$presets/gearbox-blend.json" <<'JSON'
+{"alpha": 0.6}
+JSON
+cat > "$presets/gearbox-ib.json" <<'JSON'
+{"alpha": 0.8, "modulation": "curvature", "curvature-effect": 6}
+JSON
+
+run() {
+  local name=$1; shift
+  local command=("$workbench" --size 600x600 --screenshot "$out/$name.png" "$@")
+  if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
+    command=(xvfb-run -a -s "-screen 0 1400x1000x24" "${command[@]}")
+  fi
+  echo "== $name: ${*}"
+  "${command[@]}" > /dev/null
+}
+
+run gearbox-ll-stats "$gearbox" --algorithm ll --tab stats
+run gearbox-blend-opacity "$gearbox" --algorithm blend --preset "$presets/gearbox-blend.json" --tab opacity
+run gearbox-ib-curvature "$gearbox" --algorithm ib --preset "$presets/gearbox-ib.json" --tab opacity
+run spider-dp-parts "$spider" --algorithm dp --preset "$presets/spider-parts.json" --tab parts
+run engine-ll-heatmap "$engine" --algorithm ll --preset "$presets/engine-heatmap.json" --tab views
+run engine-wboit-focus "$engine" --algorithm wboit --preset "$presets/engine-focus.json" --tab opacity
+echo "wrote $(ls "$out"/*.png | wc -l) screenshots to $out"
