@@ -367,7 +367,7 @@ class Report:
                   self.save(fig, "ratios"), "")
 
     def ib_stages(self):
-        names = ["clear", "fill", "sort", "neighbours", "neighbour_stats", "compose"]
+        names = ["clear", "fill", "sort", "neighbours", "compose"]
         rows, data = [], []
         for s in self.scenes:
             r = self.row(s, "ib")
@@ -413,8 +413,8 @@ class Report:
                                spread_text([100 * x[k] for x in shares], 0) + " %"])
         self.emit("## Illustration Buffer: stage breakdown", "",
                   "Median ms per stage of `ib` (no modulation: the construction and the compose). "
-                  "`neighbour_stats` counts link quality and Ψ for the statistics and is not part of the "
-                  "construction the thesis timed.", "",
+                  "`oit bench` leaves out the `neighbour_stats` pass (link quality, a diagnostic of "
+                  "`oit render --stats`), as the thesis's timings did.", "",
                   self.save(fig, "ib-stages"), "",
                   *table(["scene"] + names + ["total", "neighbours share"], rows), "",
                   "Share of each stage in the construction, ours beside the thesis's table 5.1 (which lists "

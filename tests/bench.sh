@@ -36,6 +36,13 @@ for r in rows:
         assert int(r["fragments"]) > 0 and int(r["max_list"]) == 8 and 0 <= float(r["psi"]) <= 1, r
     if r["algorithm"] == "ib":
         assert {"fill", "sort", "neighbours", "compose"} <= set(stages), stages
+        # the neighbour-quality pass is a diagnostic: not in timed frames
+        assert "neighbour_stats" not in stages, stages
+    same = [q for q in rows if q["algorithm"] == "ll" and q["width"] == r["width"] and q["height"] == r["height"]]
+    if r["algorithm"] in ("ll-array", "ib") and same:
+        # the same lists, counted by different passes
+        for k in ("fragments", "max_list", "psi"):
+            assert r[k] == same[0][k], (k, r[k], same[0][k])
     if r["algorithm"] == "dp":
         assert int(r["layers"]) == 8 and "peel_0" in stages, r
     # 32x32 = 1024 pixels: compared with the reference; 40x24 = 960 too

@@ -5,6 +5,7 @@
 // finally C += T background. The RGBA8 output is written once.
 // Views show the buffer instead (heatmap, peel limit, layer, neighbour count,
 // curvature, distance, fields). ib_pass = the fields' current copy.
+// Also counts Psi's pixels.
 #extension GL_ARB_ES3_1_compatibility : enable
 #include "common/oit_shared.h"
 #include "common/shade.glsl"
@@ -50,6 +51,9 @@ void main()
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint start = ib_run_start(pixel);
     uint run_length = ib_run_length(pixel);
+    // Psi's numerator: pixels whose list is longer than 2/3 of the longest (as ll's compose)
+    if (3u * run_length > 2u * ib_counters[OIT_FRAME_COUNTER_MAX_LIST])
+        atomicAdd(ib_counters[OIT_IB_COUNTER_PSI_PIXELS], 1u);
 
     if (ib_view == OIT_IB_VIEW_HEATMAP) {
         uint longest = max(ib_counters[OIT_FRAME_COUNTER_MAX_LIST], 1u);

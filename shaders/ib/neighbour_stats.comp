@@ -1,8 +1,9 @@
 // neighbour_stats.comp: the per-frame quality of the neighbour links, summed
 // on the GPU with atomics (one add per pixel and counter): fragments with all
 // four neighbours, links, links whose partner links back (g is f's right
-// neighbour and f is g's left one), links that stay on the same component;
-// and Psi's numerator (pixels whose list is longer than 2/3 of the longest).
+// neighbour and f is g's left one), links that stay on the same component.
+// Diagnostics: runs only with oit_algorithm_config.neighbour_quality (Psi is
+// counted by compose.frag).
 // Compute pass, one invocation per pixel; reads through the buffer textures,
 // the neighbouring runs' starts are loaded once per pixel.
 #include "common/oit_shared.h"
@@ -50,6 +51,4 @@ void main()
     atomicAdd(ib_counters[OIT_IB_COUNTER_LINKS], links);
     atomicAdd(ib_counters[OIT_IB_COUNTER_SYMMETRIC_LINKS], symmetric);
     atomicAdd(ib_counters[OIT_IB_COUNTER_SAME_COMPONENT_LINKS], same_component);
-    if (3u * run_length > 2u * ib_counters[OIT_FRAME_COUNTER_MAX_LIST])
-        atomicAdd(ib_counters[OIT_IB_COUNTER_PSI_PIXELS], 1u);
 }

@@ -344,6 +344,8 @@ static oit_status run_algorithm(session *s, const render_options *o, int warmup,
     }
     oit_algorithm_config config = o->config;
     config.shader_dir = s->shader_dir;
+    /* timed frames are the image's work only: ib's neighbour-quality pass is a diagnostic */
+    config.neighbour_quality = false;
     oit_frame_settings frame;
     status = render_frame_settings(s, o, &frame, err);
     if (status != OIT_OK)

@@ -20,7 +20,7 @@
  *   fill        geometry pass into linked lists (as ll); overflow: grow, fill again
  *   sort        each list becomes a contiguous run sorted front to back
  *   neighbours  the four surface neighbours of every fragment (--neighbours)
- *   neighbour_stats  link quality and Psi, summed on the GPU
+ *   neighbour_stats  link quality, summed on the GPU (config.neighbour_quality)
  *   fields, diffusion, blur   transparency fields (modulation fields / view fields)
  *   curvature_distance        (curvature, distance, dist-curv / their views)
  *   compose     composite front to back in float, or show a view
@@ -591,6 +591,8 @@ static void ib_fill_stats(const ib_state *s, const GLuint *counters, int retries
     stats->histogram_bins = OIT_HISTOGRAM_BINS;
     for (int b = 0; b < OIT_HISTOGRAM_BINS; ++b)
         stats->list_histogram[b] = counters[OIT_IB_COUNTER_HISTOGRAM + b];
+    if (!s->config.neighbour_quality)
+        return; /* the neighbours_* figures stay n/a */
     GLuint fragments = counters[OIT_FRAME_COUNTER_FRAGMENTS];
     GLuint links = counters[OIT_IB_COUNTER_LINKS];
     stats->neighbours_four_share =
@@ -673,8 +675,11 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     ib_pass(s, IB_NEIGHBOURS, frame, 0);
     if (plan.params.search != OIT_NEIGHBOURS_INDEX)
         ib_item_pass(s, IB_NEIGHBOURS_EPSILON, frame, needed);
-    oit_timer_stage_begin(&s->timer, "neighbour_stats");
-    ib_pass(s, IB_NEIGHBOUR_STATS, frame, 0);
+    if (s->config.neighbour_quality) {
+        /* diagnostics, not part of the frame: oit bench and oit measure turn it off */
+        oit_timer_stage_begin(&s->timer, "neighbour_stats");
+        ib_pass(s, IB_NEIGHBOUR_STATS, frame, 0);
+    }
     status = ib_check(s, "ib neighbours", err);
     if (status != OIT_OK)
         goto failed;

@@ -44,4 +44,5 @@ void oit_algorithm_config_defaults(oit_algorithm_config *config)
     config->ll_sort = OIT_LL_SORT_INSERTION;
     config->max_layers = OIT_MAX_PEEL_LAYERS;
     config->debug = false;
+    config->neighbour_quality = true;
 }

@@ -296,6 +296,8 @@ typedef struct oit_algorithm_config {
     int max_layers;             /* peeling layer limit, 1..OIT_MAX_PEEL_LAYERS */
     uint64_t initial_fragment_capacity; /* 0: automatic; small values force pool growth (tests) */
     bool debug;                 /* check GL errors after every stage */
+    bool neighbour_quality;     /* ib: measure the neighbour links every frame (a pass of its
+                                   own; the neighbours_* stats are n/a without it) */
 } oit_algorithm_config;
 
 void oit_algorithm_config_defaults(oit_algorithm_config *config);
