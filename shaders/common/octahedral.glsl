@@ -1,6 +1,6 @@
-// octahedral.glsl: unit normals in 32 bits (octahedral, 2 x snorm16), the same
-// encoding as ib_pack_normal / ib_unpack_normal in ib/ib_common.glsl, so that
-// an algorithm comparing normals with ib's sees the very same quantised values.
+// octahedral.glsl: unit normals in 32 bits (octahedral, 2 x snorm16): ib's
+// fragment normals, and dp's curvature approximation, which thereby sees the
+// very same quantised values as ib.
 #ifndef OIT_OCTAHEDRAL_GLSL
 #define OIT_OCTAHEDRAL_GLSL
 

@@ -93,7 +93,7 @@ void main()
         float depth = uintBitsToFloat(core.x);
         vec4 material = ib_component_material(ib_triangle_component(core.y));
         float alpha = clamp(u_alpha * material.a, 0.0, 1.0);
-        vec3 normal = ib_unpack_normal(core.z);
+        vec3 normal = oit_unpack_normal(core.z);
         vec3 eye_position = ib_eye_position(gl_FragCoord.xy, depth);
         vec3 rgb = oit_shade_rgb(material.rgb, normal, eye_position);
         if (ib_view == OIT_IB_VIEW_NEIGHBOURS)

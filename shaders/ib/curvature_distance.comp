@@ -25,13 +25,13 @@ void main()
     for (uint i = 0u; i < run_length; ++i) {
         ib_fragment f = ib_fragment(pixel, start + i, i);
         uvec4 core = ib_core[f.slot];
-        vec3 n = ib_unpack_normal(core.z);
+        vec3 n = oit_unpack_normal(core.z);
         float sum = 0.0;
         int count = 0;
         for (int d = 0; d < 4; ++d) {
             ib_fragment g;
             if (ib_neighbour(f, d, g)) {
-                sum += length(n - ib_unpack_normal(ib_core[g.slot].z));
+                sum += length(n - oit_unpack_normal(ib_core[g.slot].z));
                 ++count;
             }
         }
@@ -39,7 +39,7 @@ void main()
             for (int k = 0; k < 4; ++k) {
                 ib_fragment g;
                 if (ib_diagonal(f, DIAGONALS[k].x, DIAGONALS[k].y, g)) {
-                    sum += length(n - ib_unpack_normal(ib_core[g.slot].z));
+                    sum += length(n - oit_unpack_normal(ib_core[g.slot].z));
                     ++count;
                 }
             }

@@ -24,5 +24,5 @@ void main()
         return;
     uint next = imageAtomicExchange(ib_heads, ivec2(gl_FragCoord.xy), node);
     ib_nodes[node] = uvec4(floatBitsToUint(gl_FragCoord.z), uint(gl_PrimitiveID),
-                           ib_pack_normal(v_eye_normal), next);
+                           oit_pack_normal(v_eye_normal), next);
 }

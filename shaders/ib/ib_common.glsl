@@ -6,6 +6,8 @@
 
 #include "common/oit_shared.h"
 #include "common/frame.glsl"
+// normals: octahedral, 2 x snorm16 (oit_pack_normal / oit_unpack_normal), shared with dp
+#include "common/octahedral.glsl"
 
 // Helper invocations (2x2-quad lanes off the primitive) must not write memory,
 // but Mesa llvmpipe 22.3 lets their stores through (see shaders/ll/ll_nodes.glsl).
@@ -110,37 +112,6 @@ layout(binding = OIT_IMAGE_LIST_COUNT, r32ui) uniform uimage2D ib_counts;
 
 const ivec2 IB_DIRECTIONS[4] = ivec2[4](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
 const uint IB_NONE = uint(OIT_IB_NO_NEIGHBOUR);
-
-// ---- normals: octahedral, 2 x snorm16; IB_NO_NORMAL for a zero-length normal
-
-const uint IB_NO_NORMAL = 0x80008000u; // packSnorm2x16 never yields -32768
-
-vec2 ib_sign_not_zero(vec2 v)
-{
-    return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0);
-}
-
-uint ib_pack_normal(vec3 n)
-{
-    float l1 = abs(n.x) + abs(n.y) + abs(n.z);
-    if (!(l1 > 0.0))
-        return IB_NO_NORMAL;
-    n /= l1;
-    vec2 p = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * ib_sign_not_zero(n.xy);
-    return packSnorm2x16(p);
-}
-
-// Unit normal, or vec3(0) where the fragment had none.
-vec3 ib_unpack_normal(uint bits)
-{
-    if (bits == IB_NO_NORMAL)
-        return vec3(0.0);
-    vec2 p = unpackSnorm2x16(bits);
-    vec3 n = vec3(p, 1.0 - abs(p.x) - abs(p.y));
-    if (n.z < 0.0)
-        n.xy = (1.0 - abs(n.yx)) * ib_sign_not_zero(n.xy);
-    return normalize(n);
-}
 
 // ---- eye space from pixel and window depth
 

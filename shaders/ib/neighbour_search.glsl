@@ -38,7 +38,7 @@ described_fragment describe(uvec4 f)
     vec4 plane = ib_triangle_plane(f.y);
     d.plane_normal = plane.xyz;
     d.plane_offset = plane.w;
-    d.normal = ib_unpack_normal(f.z);
+    d.normal = oit_unpack_normal(f.z);
     d.component = row.w;
     d.ids = row.xyz;
     d.triangle = f.y;
@@ -72,7 +72,7 @@ float epsilon(described_fragment from, float predicted, vec2 to_pixel_centre, uv
         return 1e30;
     float actual = ib_eye_depth(to_pixel_centre, uintBitsToFloat(to.x));
     float eps_z = abs(predicted - actual) / ib_radius_eye;
-    vec3 n_to = ib_unpack_normal(to.z);
+    vec3 n_to = oit_unpack_normal(to.z);
     float eps_n = 1.0 - dot(from.normal, n_to);
     return eps_z + eps_n;
 }

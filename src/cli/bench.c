@@ -336,21 +336,6 @@ static oit_status run_algorithm(session *s, const render_options *o, int warmup,
                                 void *progress_data, oit_error *err)
 {
     const oit_algorithm_ops *ops = o->algorithm;
-    oit_status status = OIT_OK;
-    if (ops->uses_gl) {
-        status = session_need_gl(s, err);
-        if (status != OIT_OK)
-            return status;
-    }
-    oit_algorithm_config config = o->config;
-    config.shader_dir = s->shader_dir;
-    /* timed frames are the image's work only: ib's neighbour-quality pass is a diagnostic */
-    config.neighbour_quality = false;
-    oit_frame_settings frame;
-    status = render_frame_settings(s, o, &frame, err);
-    if (status != OIT_OK)
-        return status;
-
     oit_stats *per_frame = calloc((size_t)frames, sizeof *per_frame);
     double *values = malloc(sizeof(double) * (size_t)frames);
     if (!per_frame || !values) {
@@ -358,11 +343,10 @@ static oit_status run_algorithm(session *s, const render_options *o, int warmup,
         free(values);
         return oit_fail(err, OIT_E_RUNTIME, "out of memory for %d frames of statistics", frames);
     }
-    oit_algorithm *alg = NULL;
-    status = ops->create(&config, &alg, err);
-    if (status == OIT_OK)
-        status = ops->resize(alg, o->width, o->height, err);
-    const oit_scene *scene = ops->uses_gl ? &s->gpu_scene : &s->cpu_scene;
+    /* timed frames are the image's work only: ib's neighbour-quality pass is a diagnostic */
+    render_setup setup;
+    oit_status status = render_setup_create(s, o, false, &setup, err);
+    oit_algorithm *alg = setup.alg;
     int measured = 0;
     double measure_start_ms = 0.0;
     for (int f = 0; status == OIT_OK && f < warmup + frames; ++f) {
@@ -370,7 +354,7 @@ static oit_status run_algorithm(session *s, const render_options *o, int warmup,
             progress(progress_data, f + 1, warmup + frames);
         if (f == warmup)
             measure_start_ms = now_ms();
-        status = ops->render(alg, scene, &frame, err);
+        status = ops->render(alg, setup.scene, &setup.frame, err);
         if (status == OIT_OK && f >= warmup) {
             ops->stats(alg, &per_frame[measured++]);
             if (budget_ms > 0.0 && measured >= BENCH_MIN_FRAMES && now_ms() - measure_start_ms > budget_ms)

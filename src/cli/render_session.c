@@ -38,6 +38,18 @@ int usage_error(const char *fmt, const char *detail)
 
 /* ------------------------------------------------------------- parsing */
 
+/* A flag whose value is one of two names: "--flag must be A or B, got 'X'" otherwise. */
+static oit_status parse_choice(const char *flag, const char *value, const char *const names[2],
+                               const int values[2], int *out, oit_error *err)
+{
+    for (int k = 0; k < 2; ++k)
+        if (strcmp(value, names[k]) == 0) {
+            *out = values[k];
+            return OIT_OK;
+        }
+    return oit_fail(err, OIT_E_INPUT, "%s must be %s or %s, got '%s'", flag, names[0], names[1], value);
+}
+
 bool parse_double(const char *text, double *out)
 {
     char *end = NULL;
@@ -226,27 +238,19 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
         o->alpha = (float)a;
     } else if (strcmp(flag, "--shading") == 0) {
         NEED_VALUE();
-        if (strcmp(value, "flat") == 0)
-            o->shading = OIT_SHADE_FLAT;
-        else if (strcmp(value, "headlight") == 0)
-            o->shading = OIT_SHADE_HEADLIGHT;
-        else {
-            *status = oit_fail(err, OIT_E_INPUT, "--shading must be flat or headlight, got '%s'", value);
-            return -1;
-        }
+        int shading;
+        CHECK(parse_choice(flag, value, (const char *const[]){"flat", "headlight"},
+                           (const int[]){OIT_SHADE_FLAT, OIT_SHADE_HEADLIGHT}, &shading, err));
+        o->shading = (oit_shading_mode)shading;
     } else if (strcmp(flag, "--background") == 0) {
         NEED_VALUE();
         CHECK(parse_colour("--background", value, o->background, err));
     } else if (strcmp(flag, "--backend") == 0) {
         NEED_VALUE();
-        if (strcmp(value, "egl") == 0)
-            o->backend = OIT_BACKEND_EGL;
-        else if (strcmp(value, "osmesa") == 0)
-            o->backend = OIT_BACKEND_OSMESA;
-        else {
-            *status = oit_fail(err, OIT_E_INPUT, "--backend must be egl or osmesa, got '%s'", value);
-            return -1;
-        }
+        int backend;
+        CHECK(parse_choice(flag, value, (const char *const[]){"egl", "osmesa"},
+                           (const int[]){OIT_BACKEND_EGL, OIT_BACKEND_OSMESA}, &backend, err));
+        o->backend = (oit_backend)backend;
     } else if (strcmp(flag, "--max-memory") == 0) {
         NEED_VALUE();
         long mb;
@@ -258,14 +262,10 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
         o->config.max_memory_bytes = (uint64_t)mb * 1024 * 1024;
     } else if (strcmp(flag, "--sort") == 0) {
         NEED_VALUE();
-        if (strcmp(value, "insertion") == 0)
-            o->config.ll_sort = OIT_LL_SORT_INSERTION;
-        else if (strcmp(value, "array") == 0)
-            o->config.ll_sort = OIT_LL_SORT_LOCAL_ARRAY;
-        else {
-            *status = oit_fail(err, OIT_E_INPUT, "--sort must be insertion or array, got '%s'", value);
-            return -1;
-        }
+        int sort;
+        CHECK(parse_choice(flag, value, (const char *const[]){"insertion", "array"},
+                           (const int[]){OIT_LL_SORT_INSERTION, OIT_LL_SORT_LOCAL_ARRAY}, &sort, err));
+        o->config.ll_sort = (oit_ll_sort)sort;
     } else if (strcmp(flag, "--max-layers") == 0) {
         NEED_VALUE();
         long layers;
@@ -434,10 +434,11 @@ oit_status render_frame_settings(const session *s, const render_options *o, oit_
     return oit_matrices_validate(frame->modelview, frame->projection, err);
 }
 
-oit_status render_frames(session *s, const render_options *o, render_result *result, oit_error *err)
+oit_status render_setup_create(session *s, const render_options *o, bool neighbour_quality,
+                               render_setup *setup, oit_error *err)
 {
-    memset(result, 0, sizeof *result);
     const oit_algorithm_ops *ops = o->algorithm;
+    memset(setup, 0, sizeof *setup);
     oit_status status = OIT_OK;
     if (ops->uses_gl) {
         status = session_need_gl(s, err);
@@ -446,31 +447,36 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
     }
     oit_algorithm_config config = o->config;
     config.shader_dir = s->shader_dir;
+    config.neighbour_quality = neighbour_quality;
+    status = render_frame_settings(s, o, &setup->frame, err);
+    if (status == OIT_OK)
+        status = ops->create(&config, &setup->alg, err);
+    if (status == OIT_OK)
+        status = ops->resize(setup->alg, o->width, o->height, err);
+    setup->scene = ops->uses_gl ? &s->gpu_scene : &s->cpu_scene;
+    return status;
+}
 
-    oit_frame_settings frame;
-    status = render_frame_settings(s, o, &frame, err);
-    if (status != OIT_OK)
-        return status;
-
+oit_status render_frames(session *s, const render_options *o, render_result *result, oit_error *err)
+{
+    memset(result, 0, sizeof *result);
+    const oit_algorithm_ops *ops = o->algorithm;
     oit_stats *per_frame = calloc((size_t)o->frames, sizeof *per_frame);
     if (!per_frame)
         return oit_fail(err, OIT_E_RUNTIME, "out of memory for %d frames of statistics", o->frames);
-    oit_algorithm *alg = NULL;
-    status = ops->create(&config, &alg, err);
-    if (status == OIT_OK)
-        status = ops->resize(alg, o->width, o->height, err);
-    const oit_scene *scene = ops->uses_gl ? &s->gpu_scene : &s->cpu_scene;
+    render_setup setup;
+    oit_status status = render_setup_create(s, o, o->config.neighbour_quality, &setup, err);
     for (int f = 0; status == OIT_OK && f < o->frames; ++f) {
-        status = ops->render(alg, scene, &frame, err);
+        status = ops->render(setup.alg, setup.scene, &setup.frame, err);
         if (status == OIT_OK)
-            ops->stats(alg, &per_frame[f]);
+            ops->stats(setup.alg, &per_frame[f]);
     }
     if (status == OIT_OK)
-        status = ops->read_image(alg, &result->image, err);
+        status = ops->read_image(setup.alg, &result->image, err);
     if (status == OIT_OK)
         median_stats(per_frame, o->frames, &result->stats);
-    if (alg)
-        ops->destroy(alg);
+    if (setup.alg)
+        ops->destroy(setup.alg);
     free(per_frame);
     return status;
 }

@@ -95,6 +95,17 @@ typedef struct render_result {
  * are given); validates the matrices. */
 oit_status render_frame_settings(const session *s, const render_options *o, oit_frame_settings *frame,
                                  oit_error *err);
+/* What a run of frames needs: the algorithm o names, created and sized, its
+ * frame settings and the scene it draws (GPU or CPU). On failure *alg is NULL
+ * or must still be destroyed by the caller (it is non-NULL once created). */
+typedef struct render_setup {
+    oit_algorithm *alg;
+    oit_frame_settings frame;
+    const oit_scene *scene;
+} render_setup;
+/* neighbour_quality: whether ib measures its links (a diagnostic pass) */
+oit_status render_setup_create(session *s, const render_options *o, bool neighbour_quality,
+                               render_setup *setup, oit_error *err);
 /* Renders o->frames frames; figures are medians over frames 2..N. */
 oit_status render_frames(session *s, const render_options *o, render_result *result, oit_error *err);
 

@@ -340,6 +340,37 @@ static void add_uv_sphere(part *p, const double centre[3], double radius, int se
 #undef RING
 }
 
+/* The flat end caps of an extrusion along the frame's z (cylinders, gears):
+ * centre positions and normals at z0 (facing -z) and z1 (facing +z); each
+ * outline edge a -> b adds one fan triangle per cap. */
+typedef struct end_caps {
+    uint32_t centre[2], normal[2];
+} end_caps;
+
+static end_caps add_end_caps(part *p, const frame *f, double z0, double z1)
+{
+    end_caps caps;
+    double v[3], n[3];
+    frame_point(f, 0, 0, z0, v);
+    caps.centre[0] = add_position(p, v);
+    frame_point(f, 0, 0, z1, v);
+    caps.centre[1] = add_position(p, v);
+    frame_vector(f, 0, 0, -1, n);
+    caps.normal[0] = add_normal(p, n);
+    frame_vector(f, 0, 0, 1, n);
+    caps.normal[1] = add_normal(p, n);
+    return caps;
+}
+
+/* a0, b0: the edge's ends at z0; a1, b1 at z1 (wound to face outwards) */
+static void add_end_cap_triangles(part *p, const end_caps *caps, uint32_t a0, uint32_t a1,
+                                  uint32_t b0, uint32_t b1)
+{
+    uint32_t c0 = caps->centre[0], n0 = caps->normal[0], c1 = caps->centre[1], n1 = caps->normal[1];
+    add_triangle(p, c0, n0, b0, n0, a0, n0);
+    add_triangle(p, c1, n1, a1, n1, b1, n1);
+}
+
 /* Closed cylinder along the frame's z from z0 to z1: smooth side, flat caps
  * (cap rims share the side's positions). Triangles: 4 * segments. */
 static void add_cylinder(part *p, const frame *f, double radius, double z0, double z1,
@@ -356,23 +387,14 @@ static void add_cylinder(part *p, const frame *f, double radius, double z0, doub
         frame_vector(f, c, sn, 0, n);
         add_normal(p, n);
     }
-    double v[3], n[3];
-    frame_point(f, 0, 0, z0, v);
-    uint32_t centre0 = add_position(p, v);
-    frame_point(f, 0, 0, z1, v);
-    uint32_t centre1 = add_position(p, v);
-    frame_vector(f, 0, 0, -1, n);
-    uint32_t cap0 = add_normal(p, n);
-    frame_vector(f, 0, 0, 1, n);
-    uint32_t cap1 = add_normal(p, n);
+    end_caps caps = add_end_caps(p, f, z0, z1);
     for (int s = 0; s < segments; ++s) {
         int t = (s + 1) % segments;
         uint32_t a0 = base + 2 * s, a1 = a0 + 1, b0 = base + 2 * t, b1 = b0 + 1;
         uint32_t na = side_normal + s, nb = side_normal + t;
         add_triangle(p, a0, na, b0, nb, b1, nb);
         add_triangle(p, a0, na, b1, nb, a1, na);
-        add_triangle(p, centre0, cap0, b0, cap0, a0, cap0);
-        add_triangle(p, centre1, cap1, a1, cap1, b1, cap1);
+        add_end_cap_triangles(p, &caps, a0, a1, b0, b1);
     }
 }
 
@@ -425,20 +447,11 @@ static void add_gear(part *p, const frame *f, int teeth, double root, double tip
         frame_point(f, r * cos(angle), r * sin(angle), z1, v);
         add_position(p, v);
     }
-    double v[3], n[3];
-    frame_point(f, 0, 0, z0, v);
-    uint32_t centre0 = add_position(p, v);
-    frame_point(f, 0, 0, z1, v);
-    uint32_t centre1 = add_position(p, v);
-    frame_vector(f, 0, 0, -1, n);
-    uint32_t cap0 = add_normal(p, n);
-    frame_vector(f, 0, 0, 1, n);
-    uint32_t cap1 = add_normal(p, n);
+    end_caps caps = add_end_caps(p, f, z0, z1);
     for (int i = 0; i < outline; ++i) {
         int j = (i + 1) % outline;
         uint32_t a0 = ring0 + 2 * i, a1 = a0 + 1, b0 = ring0 + 2 * j, b1 = b0 + 1;
-        add_triangle(p, centre0, cap0, b0, cap0, a0, cap0);
-        add_triangle(p, centre1, cap1, a1, cap1, b1, cap1);
+        add_end_cap_triangles(p, &caps, a0, a1, b0, b1);
         /* Outward side normal: the edge direction turned clockwise in xy. */
         const double *pa = p->positions + (size_t)a0 * 3, *pb = p->positions + (size_t)b0 * 3;
         double edge[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
