@@ -77,18 +77,51 @@ float epsilon(described_fragment from, float predicted, vec2 to_pixel_centre, uv
     return eps_z + eps_n;
 }
 
-// Best partner of `from` in the run [start, start + run_length) at to_centre.
-uint best_by_epsilon(described_fragment from, pixel_ray to_ray, vec2 to_centre, uint start,
-                     uint run_length, out float best_eps)
+// First slot of the run [start, start + count) whose eye depth at to_centre is
+// >= depth (count if none): runs are sorted by window depth, and eye depth
+// grows with window depth along a pixel's ray.
+uint first_at_or_behind(vec2 to_centre, uint start, uint count, float depth)
 {
+    uint low = 0u, high = count;
+    while (low < high) {
+        uint middle = (low + high) / 2u;
+        if (ib_eye_depth(to_centre, ib_depth_fetch(start + middle)) < depth)
+            low = middle + 1u;
+        else
+            high = middle;
+    }
+    return low;
+}
+
+// Best partner of `from` in the run [start, start + run_length) at to_centre:
+// the smallest epsilon (the first slot on ties), ignoring candidates above
+// `limit`. eps >= eps_z, and eps_z only grows away from the predicted depth,
+// so the walk outwards from it stops on each side once eps_z exceeds the best
+// so far (or the limit); `margin` covers eps_n's rounding below 0. The same
+// answer as trying every candidate (the thesis did), for a few of them.
+uint best_by_epsilon(described_fragment from, pixel_ray to_ray, vec2 to_centre, uint start,
+                     uint run_length, float limit, out float best_eps)
+{
+    const float margin = 1e-5;
     uint best = IB_NONE;
     best_eps = 1e30;
+    uint count = min(run_length, IB_NONE);
     float predicted = predicted_depth(from, to_ray);
-    for (uint j = 0u; j < run_length && j < IB_NONE; ++j) {
-        float e = epsilon(from, predicted, to_centre, ib_core_fetch(start + j));
-        if (e < best_eps) {
-            best_eps = e;
-            best = j;
+    uint first_behind = first_at_or_behind(to_centre, start, count, predicted);
+    for (int side = 0; side < 2; ++side) {
+        int step = side == 0 ? 1 : -1;
+        for (int j = side == 0 ? int(first_behind) : int(first_behind) - 1; j >= 0 && j < int(count);
+             j += step) {
+            uvec4 to = ib_core_fetch(start + uint(j));
+            float actual = ib_eye_depth(to_centre, uintBitsToFloat(to.x));
+            float eps_z = abs(predicted - actual) / ib_radius_eye;
+            if (eps_z > min(best_eps, limit) + margin)
+                break;
+            float e = epsilon(from, predicted, to_centre, to);
+            if (e < 1e30 && (e < best_eps || (e == best_eps && uint(j) < best))) {
+                best_eps = e;
+                best = uint(j);
+            }
         }
     }
     return best;
@@ -100,13 +133,14 @@ uint search_by_epsilon(uint i, described_fragment described, pixel_ray ray, vec2
                        uint other_length)
 {
     float eps;
-    uint candidate = best_by_epsilon(described, other_ray, other_centre, other_start, other_length, eps);
+    uint candidate = best_by_epsilon(described, other_ray, other_centre, other_start, other_length,
+                                     ib_epsilon_max, eps);
     if (candidate == IB_NONE || eps > ib_epsilon_max)
         return IB_NONE;
     // mutual check: f must be the candidate's best partner in f's pixel
     float back_eps;
     uint back = best_by_epsilon(describe(ib_core_fetch(other_start + candidate)), ray, centre, start,
-                                run_length, back_eps);
+                                run_length, 1e30, back_eps);
     return back == i ? candidate : IB_NONE;
 }
 
@@ -134,15 +168,7 @@ uint search_by_ids(described_fragment f, pixel_ray to_ray, vec2 to_centre, uint 
         return IB_NONE;
     uint count = min(run_length, IB_NONE);
     float predicted = predicted_depth(f, to_ray);
-    // first slot whose eye depth is >= predicted
-    uint low = 0u, high = count;
-    while (low < high) {
-        uint middle = (low + high) / 2u;
-        if (ib_eye_depth(to_centre, ib_depth_fetch(start + middle)) < predicted)
-            low = middle + 1u;
-        else
-            high = middle;
-    }
+    uint low = first_at_or_behind(to_centre, start, count, predicted);
     // the next candidates at or behind the prediction and in front of it,
     // with their triangles and depth gaps (1e30: none left on that side)
     uint behind = low;
