@@ -29,6 +29,7 @@ for scene in $models; do
 import json, sys
 d = json.load(open(sys.argv[1]))
 stage = {s["name"]: s["gpu_ms"] for s in d["stages"]}
+stage["neighbours"] += stage.get("neighbours_epsilon", 0.0)  # the whole search
 print(f"| {sys.argv[2]} | {d['fragments']} | {sys.argv[3]} | {d['neighbours_four_share']:.3f} | "
       f"{d['neighbours_symmetric_share']:.3f} | {d['neighbours_same_component_share']:.3f} | "
       f"{stage['neighbours']:.0f} | {d['gpu_ms']:.0f} |")

@@ -28,15 +28,17 @@ from ib_png import read_png, pixel
 work, name = sys.argv[1], sys.argv[2]
 needs = {"none": set(), "curvature": {"curvature_distance"}, "distance": {"curvature_distance"},
          "dist-curv": {"curvature_distance"}, "fields": {"fields", "diffusion", "blur"}, "edges": set()}
-construction = ["clear", "fill", "sort", "neighbours", "neighbour_stats"]
+# the default search is welded: its epsilon fallback is a stage of its own
+construction = ["clear", "fill", "sort", "neighbours", "neighbours_epsilon", "neighbour_stats"]
+n = len(construction)
 for modulation, extra in needs.items():
     d = json.load(open(f"{work}/{modulation}.json"))
     stages = [s["name"] for s in d["stages"]]
-    assert stages[:5] == construction and stages[-1] == "compose", (modulation, stages)
-    assert set(stages[5:-1]) == extra, (modulation, stages)
+    assert stages[:n] == construction and stages[-1] == "compose", (modulation, stages)
+    assert set(stages[n:-1]) == extra, (modulation, stages)
     assert d["bytes_per_fragment"] <= 64 and d["bytes_per_pixel"] <= 12, d
     assert 0 <= d["psi"] <= 1 and d["mean_list"] >= 1 and sum(d["list_histogram"]) == 128 * 128, d
-    print(name, modulation, "stages", stages[5:-1], d["fragments"], "fragments, gpu ms", d["gpu_ms"])
+    print(name, modulation, "stages", stages[n:-1], d["fragments"], "fragments, gpu ms", d["gpu_ms"])
 for view in ("heatmap", "peel-limit", "layer", "neighbours", "curvature", "distance", "fields"):
     image = read_png(f"{work}/view_{view}.png")
     shown = sum(1 for y in range(image[1]) for x in range(image[0]) if pixel(image, x, y) != (255, 255, 255))

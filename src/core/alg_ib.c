@@ -19,7 +19,9 @@
  * One frame (each a timed stage; modulation passes that are off do not run):
  *   fill        geometry pass into linked lists (as ll); overflow: grow, fill again
  *   sort        each list becomes a contiguous run sorted front to back
- *   neighbours  the four surface neighbours of every fragment (--neighbours)
+ *   neighbours  the four surface neighbours of every fragment (--neighbours):
+ *               the triangle table and the index / welded search
+ *   neighbours_epsilon  the epsilon search for the fragments queued (welded, epsilon)
  *   neighbour_stats  link quality, summed on the GPU (config.neighbour_quality)
  *   fields, diffusion, blur   transparency fields (modulation fields / view fields)
  *   curvature_distance        (curvature, distance, dist-curv / their views)
@@ -673,8 +675,11 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     oit_timer_stage_begin(&s->timer, "neighbours");
     ib_item_pass(s, IB_TRIANGLES, frame, scene->index_count / 3u);
     ib_pass(s, IB_NEIGHBOURS, frame, 0);
-    if (plan.params.search != OIT_NEIGHBOURS_INDEX)
+    if (plan.params.search != OIT_NEIGHBOURS_INDEX) {
+        /* a stage of its own: how much of the search the fallback costs is worth seeing */
+        oit_timer_stage_begin(&s->timer, "neighbours_epsilon");
         ib_item_pass(s, IB_NEIGHBOURS_EPSILON, frame, needed);
+    }
     if (s->config.neighbour_quality) {
         /* diagnostics, not part of the frame: oit bench and oit measure turn it off */
         oit_timer_stage_begin(&s->timer, "neighbour_stats");
