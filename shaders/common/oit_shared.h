@@ -43,6 +43,13 @@
  * OIT_SSBO_FRAGMENT_SORTED_NEXT (list sorted front to back); OIT_LIST_END ends a list. */
 #define OIT_LL_NODE_BYTES 16
 #define OIT_LL_NEXT_BYTES 4
+/* ll: read-only views of the pool as buffer textures, for the passes that only
+ * read a buffer (texelFetch is gathered in SIMD on llvmpipe; storage-buffer
+ * loads go lane by lane): the sort reads nodes and next, compose nodes and
+ * sorted next */
+#define OIT_TEXUNIT_LL_NODES 16        /* usamplerBuffer rgba32ui over the nodes */
+#define OIT_TEXUNIT_LL_NEXT 17         /* usamplerBuffer r32ui over next */
+#define OIT_TEXUNIT_LL_SORTED_NEXT 18  /* usamplerBuffer r32ui over sorted next */
 /* ll counters (uint, OIT_SSBO_FRAME_COUNTERS): [0..3] as OIT_FRAME_COUNTER_*, then: */
 #define OIT_LL_COUNTER_PSI_PIXELS 4  /* non-empty pixels whose list is longer than 2/3 of the longest */
 #define OIT_LL_COUNTER_HISTOGRAM 5   /* OIT_LL_HISTOGRAM_BINS bins: pixels per list length (bin 0 unused) */

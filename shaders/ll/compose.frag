@@ -22,16 +22,16 @@ layout(location = OIT_UNIFORM_LL_DISTANCE_PASS) uniform int distance_pass;
 // k = 1; skip: k; far end: the last one), or 0 if it is the last.
 float ll_distance(uint node)
 {
-    float depth = uintBitsToFloat(ll_nodes[node].z);
+    float depth = uintBitsToFloat(ll_node_fetch(node).z);
     uint steps = u_distance_mode == OIT_IB_DISTANCE_ADJACENT ? 1u
                : u_distance_mode == OIT_IB_DISTANCE_SKIP ? uint(max(u_distance_skip, 1))
                : OIT_LIST_END;
     uint target = node;
-    for (uint k = 0u; k < steps && ll_sorted_next[target] != OIT_LIST_END; ++k)
-        target = ll_sorted_next[target];
+    for (uint k = 0u; k < steps && ll_sorted_next_fetch(target) != OIT_LIST_END; ++k)
+        target = ll_sorted_next_fetch(target);
     if (target == node)
         return 0.0;
-    return abs(oit_eye_depth(gl_FragCoord.xy, uintBitsToFloat(ll_nodes[target].z)) -
+    return abs(oit_eye_depth(gl_FragCoord.xy, uintBitsToFloat(ll_node_fetch(target).z)) -
                oit_eye_depth(gl_FragCoord.xy, depth));
 }
 
@@ -57,7 +57,7 @@ void main()
     if (distance_pass == 1) { // the frame's largest distance only
         float largest = 0.0;
         for (uint node = imageLoad(ll_heads, ivec2(gl_FragCoord.xy)).x; node != OIT_LIST_END;
-             node = ll_sorted_next[node])
+             node = ll_sorted_next_fetch(node))
             largest = max(largest, ll_distance(node));
         if (largest > 0.0)
             atomicMax(ll_counters[OIT_LL_COUNTER_MAX_DISTANCE], floatBitsToUint(largest));
@@ -76,10 +76,10 @@ void main()
     float transmittance = 1.0;
     uint length = 0u;
     for (uint node = imageLoad(ll_heads, ivec2(gl_FragCoord.xy)).x; node != OIT_LIST_END;
-         node = ll_sorted_next[node], ++length) {
+         node = ll_sorted_next_fetch(node), ++length) {
         if (length < first || length >= end)
             continue; // still walked: psi needs the length
-        vec4 fragment = ll_node_colour(ll_nodes[node]);
+        vec4 fragment = ll_node_colour(ll_node_fetch(node));
         if (u_distance_mode >= 0)
             fragment.a = clamp(ll_distance(node) / norm, 0.0, 1.0) * fragment.a;
         colour += transmittance * fragment.a * fragment.rgb;

@@ -29,6 +29,14 @@ layout(std430, binding = OIT_SSBO_FRAGMENT_NEXT) buffer ll_next_buffer {
 layout(std430, binding = OIT_SSBO_FRAGMENT_SORTED_NEXT) buffer ll_sorted_next_buffer {
     uint ll_sorted_next[];
 };
+// The same three buffers read through buffer textures, for passes that only read
+// them (after a GL_TEXTURE_FETCH_BARRIER_BIT): see OIT_TEXUNIT_LL_* in oit_shared.h.
+layout(binding = OIT_TEXUNIT_LL_NODES) uniform usamplerBuffer ll_nodes_texture;
+layout(binding = OIT_TEXUNIT_LL_NEXT) uniform usamplerBuffer ll_next_texture;
+layout(binding = OIT_TEXUNIT_LL_SORTED_NEXT) uniform usamplerBuffer ll_sorted_next_texture;
+uvec4 ll_node_fetch(uint node) { return texelFetch(ll_nodes_texture, int(node)); }
+uint ll_next_fetch(uint node) { return texelFetch(ll_next_texture, int(node)).x; }
+uint ll_sorted_next_fetch(uint node) { return texelFetch(ll_sorted_next_texture, int(node)).x; }
 layout(std430, binding = OIT_SSBO_FRAME_COUNTERS) buffer ll_counter_buffer {
     uint ll_counters[OIT_LL_COUNTER_COUNT];
 };
@@ -63,8 +71,8 @@ uint ll_sort_in_place(uint head, out uint length)
     float head_depth = 0.0;
     uint head_triangle = 0u;
     length = 0u;
-    for (uint node = head; node != OIT_LIST_END; node = ll_next[node]) {
-        uvec2 key = ll_nodes[node].zw;
+    for (uint node = head; node != OIT_LIST_END; node = ll_next_fetch(node)) {
+        uvec2 key = ll_node_fetch(node).zw;
         float depth = uintBitsToFloat(key.x);
         ++length;
         if (sorted_head == OIT_LIST_END || ll_in_front(depth, key.y, head_depth, head_triangle)) {
@@ -78,7 +86,7 @@ uint ll_sort_in_place(uint head, out uint length)
         uint previous = sorted_head;
         uint current = ll_sorted_next[previous];
         while (current != OIT_LIST_END) {
-            uvec2 current_key = ll_nodes[current].zw;
+            uvec2 current_key = ll_node_fetch(current).zw;
             if (ll_in_front(depth, key.y, uintBitsToFloat(current_key.x), current_key.y))
                 break;
             previous = current;

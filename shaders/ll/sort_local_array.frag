@@ -18,12 +18,12 @@ void main()
     uint triangles[OIT_LOCAL_ARRAY_CAPACITY];
     uint count = 0u;
     bool too_long = false;
-    for (uint node = head; node != OIT_LIST_END; node = ll_next[node]) {
+    for (uint node = head; node != OIT_LIST_END; node = ll_next_fetch(node)) {
         if (count == uint(OIT_LOCAL_ARRAY_CAPACITY)) {
             too_long = true;
             break;
         }
-        uvec2 key = ll_nodes[node].zw;
+        uvec2 key = ll_node_fetch(node).zw;
         nodes[count] = node;
         depths[count] = uintBitsToFloat(key.x);
         triangles[count] = key.y;

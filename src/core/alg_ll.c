@@ -65,9 +65,11 @@ typedef struct ll_state {
 
     GLuint head_image;
     GLuint node_buffer, next_buffer, sorted_next_buffer;
+    /* buffer-texture views of the three (OIT_TEXUNIT_LL_*): the sort and compose read through them */
+    GLuint node_texture, next_texture, sorted_next_texture;
     GLuint counter_buffer;
     uint64_t pool_capacity;  /* nodes the pool holds */
-    uint64_t gl_node_limit;  /* most nodes one SSBO binding can address */
+    uint64_t gl_node_limit;  /* most nodes one SSBO binding and one buffer texture can address */
 
     int64_t overflow_retries_total; /* since create; stats report the last frame's */
     uint32_t long_list_pixels;      /* last frame: pixels the local-array sort could not hold */
@@ -111,6 +113,17 @@ static oit_status ll_allocate_pool(ll_state *s, uint64_t capacity, oit_error *er
     glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(capacity * OIT_LL_NEXT_BYTES), NULL,
                  GL_DYNAMIC_COPY);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    const struct {
+        GLuint texture, buffer;
+        GLenum format;
+    } views[] = {{s->node_texture, s->node_buffer, GL_RGBA32UI},
+                 {s->next_texture, s->next_buffer, GL_R32UI},
+                 {s->sorted_next_texture, s->sorted_next_buffer, GL_R32UI}};
+    for (size_t i = 0; i < sizeof views / sizeof views[0]; ++i) {
+        glBindTexture(GL_TEXTURE_BUFFER, views[i].texture);
+        glTexBuffer(GL_TEXTURE_BUFFER, views[i].format, views[i].buffer);
+    }
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
     GLenum error = glGetError();
     if (error != GL_NO_ERROR) {
         s->pool_capacity = 0;
@@ -138,7 +151,8 @@ static oit_status ll_grow_pool(ll_state *s, uint64_t needed, oit_error *err)
     if (needed > s->gl_node_limit)
         return oit_fail(err, OIT_E_RUNTIME,
                         "ll: the frame needs %llu fragments, more than this GL can address in "
-                        "one shader storage buffer (%llu; GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",
+                        "one shader storage buffer or buffer texture (%llu; "
+                        "GL_MAX_SHADER_STORAGE_BLOCK_SIZE, GL_MAX_TEXTURE_BUFFER_SIZE)",
                         (unsigned long long)needed, (unsigned long long)s->gl_node_limit);
     uint64_t capacity = needed + needed / 4; /* headroom, so a camera move rarely refills */
     uint64_t limit = ll_node_limit(s);
@@ -158,6 +172,8 @@ static void ll_destroy(oit_algorithm *alg)
     glDeleteProgram(s->sort_program);
     glDeleteProgram(s->compose_program);
     glDeleteTextures(1, &s->head_image);
+    GLuint textures[] = {s->node_texture, s->next_texture, s->sorted_next_texture};
+    glDeleteTextures(3, textures);
     GLuint buffers[] = {s->node_buffer, s->next_buffer, s->sorted_next_buffer, s->counter_buffer};
     glDeleteBuffers(4, buffers);
     oit_gl_output_release(&s->output);
@@ -207,8 +223,17 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
     GLint64 max_block_bytes = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
     s->gl_node_limit = (uint64_t)max_block_bytes / OIT_LL_NODE_BYTES;
+    GLint max_texels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    if (s->gl_node_limit > (uint64_t)max_texels)
+        s->gl_node_limit = (uint64_t)max_texels;
     if (s->gl_node_limit >= OIT_LIST_END)
         s->gl_node_limit = OIT_LIST_END - 1u; /* node indices are uint, END is reserved */
+    GLuint textures[3];
+    glGenTextures(3, textures);
+    s->node_texture = textures[0];
+    s->next_texture = textures[1];
+    s->sorted_next_texture = textures[2];
 
     GLuint buffers[4];
     glGenBuffers(4, buffers);
@@ -266,6 +291,17 @@ static void ll_bind_pool(const ll_state *s)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_FRAME_COUNTERS, s->counter_buffer);
     glBindImageTexture(OIT_IMAGE_LIST_HEAD, s->head_image, 0, GL_FALSE, 0, GL_READ_WRITE,
                        GL_R32UI);
+    const struct {
+        GLenum unit;
+        GLuint texture;
+    } views[] = {{OIT_TEXUNIT_LL_NODES, s->node_texture},
+                 {OIT_TEXUNIT_LL_NEXT, s->next_texture},
+                 {OIT_TEXUNIT_LL_SORTED_NEXT, s->sorted_next_texture}};
+    for (size_t i = 0; i < sizeof views / sizeof views[0]; ++i) {
+        glActiveTexture(GL_TEXTURE0 + views[i].unit);
+        glBindTexture(GL_TEXTURE_BUFFER, views[i].texture);
+    }
+    glActiveTexture(GL_TEXTURE0);
 }
 
 /* ll shows the colour image and the list views; the rest is the Illustration
@@ -305,7 +341,8 @@ static void ll_clear_and_fill(ll_state *s, const oit_scene *scene,
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zeros, zeros);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     /* the clears must land before the fill's image and buffer atomics */
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
 
     oit_timer_stage_begin(&s->timer, retry ? "fill_retry" : "fill");
     glUseProgram(s->fill_program);
@@ -375,7 +412,8 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     }
 
     oit_timer_stage_begin(&s->timer, "sort");
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(s->sort_program);
     oit_gl_draw_fullscreen(&s->output); /* colour writes are still off */
     status = ll_check(s, "ll sort", err);
@@ -388,7 +426,8 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     const bool auto_region = distance && !(frame->modulation.focus_region > 0.0f);
     if (auto_region) {
         oit_timer_stage_begin(&s->timer, "distance_max");
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
         glUseProgram(s->compose_program);
         oit_gl_set_frame_uniforms(frame);
         glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view);
@@ -401,7 +440,8 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     }
 
     oit_timer_stage_begin(&s->timer, "compose");
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(s->compose_program);
     oit_gl_set_frame_uniforms(frame);
     glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, auto_region ? 2 : 0);
