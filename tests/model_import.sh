@@ -31,6 +31,32 @@ assert abs(onion["radius"] - 1.0) < 1e-3, onion
 assert gearbox["components"] == 14, gearbox
 print("import checks ok:", spider["components"], engine["components"], stl_ascii["welded_vertices"], onion["welded_vertices"])
 PY
+# Longest edges (the Illustration Buffer's id-search window relies on them being
+# upper bounds): a 3-4-5 triangle in one group, a unit right triangle in another.
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cat >"$work/edges.obj" <<'OBJ'
+v 0 0 0
+v 3 0 0
+v 0 4 0
+v 10 0 0
+v 11 0 0
+v 10 1 0
+g big
+f 1 2 3
+g small
+f 4 5 6
+OBJ
+python3 - "$(info "$work/edges.obj")" <<'PY' || fail "longest edges"
+import json, sys
+m = json.loads(sys.argv[1])
+edges = {p["name"]: p["longest_edge"] for p in m["parts"]}
+# rounded up (never below the true length), by at most a float step
+assert 5.0 <= edges["big"] <= 5.0 * (1 + 1e-6), edges
+assert 2 ** 0.5 <= edges["small"] <= 2 ** 0.5 * (1 + 1e-6), edges
+assert m["longest_edge"] == edges["big"], m
+print("longest edges ok:", edges)
+PY
 # glTF files that are wrong in known ways are refused with a one-line message.
 expect_exit 2 "non-finite" -- "$oit" info --model $models/glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb
 # (Assimp itself drops the faces of IndexOutOfRange.gltf that point outside; with all of them out, nothing is left)

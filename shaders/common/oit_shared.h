@@ -182,6 +182,7 @@
 #define OIT_TEXUNIT_IB_RUN_WORDS 12    /* usamplerBuffer r32ui over the run core: word 4 slot + k */
 #define OIT_TEXUNIT_IB_COMPONENTS 14   /* samplerBuffer rgba32f over the component table */
 #define OIT_TEXUNIT_IB_NODES 15        /* usamplerBuffer rgba32ui over the nodes (fields) */
+#define OIT_TEXUNIT_IB_COMPONENT_EDGES 19 /* samplerBuffer r32f: each component's longest edge */
 #define OIT_SSBO_IB_TRIANGLES 13       /* the triangle table, written by ib/triangles.comp */
 #define OIT_IB_TRIANGLE_BYTES 32       /* ids (3 uint) + component, eye-space plane (4 float) */
 #define OIT_IB_NODE_BYTES 16
@@ -199,7 +200,12 @@
 #define OIT_IB_HISTOGRAM_BINS 65       /* = OIT_HISTOGRAM_BINS in oit.h */
 /* fragments queued for the epsilon search (ib/neighbours_epsilon.comp) */
 #define OIT_IB_COUNTER_EPSILON_ITEMS 75
-#define OIT_IB_COUNTER_COUNT 76
+/* its work-group counts (x, y, z) for glDispatchComputeIndirect, written by
+ * ib/epsilon_dispatch.comp: only as many groups as there are items */
+#define OIT_IB_COUNTER_EPSILON_DISPATCH 76
+#define OIT_IB_ITEMS_PER_GROUP 64      /* local size of the per-item passes */
+#define OIT_IB_MAX_GROUPS_X 65535      /* the dispatch limit every GL guarantees per axis */
+#define OIT_IB_COUNTER_COUNT 79
 /* a neighbour slot without a neighbour */
 #define OIT_IB_NO_NEIGHBOUR 65535
 /* ib passes: the capacity of the fill pool (uint), the pass parameter (int:

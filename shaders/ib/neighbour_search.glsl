@@ -29,11 +29,14 @@ struct described_fragment {
     uint component;
     uvec3 ids;         // its triangle's vertex ids (welded or not, as searched)
     uint triangle;
+    float eye_depth;   // at its pixel centre
+    float window;      // the id search's reach in eye depth (see ib_common.glsl)
 };
 
-described_fragment describe(uvec4 f)
+described_fragment describe(uvec4 f, vec2 pixel_centre)
 {
     described_fragment d;
+    d.eye_depth = ib_eye_depth(pixel_centre, uintBitsToFloat(f.x));
     uvec4 row = ib_triangle_ids(f.y);
     vec4 plane = ib_triangle_plane(f.y);
     d.plane_normal = plane.xyz;
@@ -42,6 +45,7 @@ described_fragment describe(uvec4 f)
     d.component = row.w;
     d.ids = row.xyz;
     d.triangle = f.y;
+    d.window = 2.0 * ib_component_longest_edge(d.component) * ib_edge_scale + ib_window_margin;
     return d;
 }
 
@@ -139,7 +143,7 @@ uint search_by_epsilon(uint i, described_fragment described, pixel_ray ray, vec2
         return IB_NONE;
     // mutual check: f must be the candidate's best partner in f's pixel
     float back_eps;
-    uint back = best_by_epsilon(describe(ib_core_fetch(other_start + candidate)), ray, centre, start,
+    uint back = best_by_epsilon(describe(ib_core_fetch(other_start + candidate), other_centre), ray, centre, start,
                                 run_length, 1e30, back_eps);
     return back == i ? candidate : IB_NONE;
 }
@@ -173,35 +177,58 @@ uint search_by_ids(described_fragment f, pixel_ray to_ray, vec2 to_centre, uint 
     // with their triangles and depth gaps (1e30: none left on that side)
     uint behind = low;
     int in_front = int(low) - 1;
+    // Only candidates within f.window of f's own depth can share a
+    // vertex with f's triangle: a side is done once it leaves the window in the
+    // direction it walks (behind: deeper, in front: nearer); candidates short
+    // of the window are skipped without loading their triangle.
+    float window_near = f.eye_depth - f.window;
+    float window_far = f.eye_depth + f.window;
     uvec4 core_behind = uvec4(0u), core_in_front = uvec4(0u);
     float gap_behind = 1e30, gap_in_front = 1e30;
+    float depth_behind = 0.0, depth_in_front = 0.0;
     if (behind < count) {
         core_behind = ib_core_fetch(start + behind);
-        gap_behind = ib_eye_depth(to_centre, uintBitsToFloat(core_behind.x)) - predicted;
+        depth_behind = ib_eye_depth(to_centre, uintBitsToFloat(core_behind.x));
+        gap_behind = depth_behind - predicted;
+        if (depth_behind > window_far) {
+            behind = count;
+            gap_behind = 1e30;
+        }
     }
     if (in_front >= 0) {
         core_in_front = ib_core_fetch(start + uint(in_front));
-        gap_in_front = predicted - ib_eye_depth(to_centre, uintBitsToFloat(core_in_front.x));
+        depth_in_front = ib_eye_depth(to_centre, uintBitsToFloat(core_in_front.x));
+        gap_in_front = predicted - depth_in_front;
+        if (depth_in_front < window_near) {
+            in_front = -1;
+            gap_in_front = 1e30;
+        }
     }
     // one candidate per step, without branches on the side taken: llvmpipe
     // would run both sides (masked) and load twice as much
     while (behind < count || in_front >= 0) {
         bool take_behind = behind < count && (in_front < 0 || gap_behind <= gap_in_front);
         uint j = take_behind ? behind : uint(in_front);
-        if (adjacent_to(f, take_behind ? core_behind.y : core_in_front.y))
+        float depth = take_behind ? depth_behind : depth_in_front;
+        bool in_window = depth >= window_near && depth <= window_far;
+        if (in_window && adjacent_to(f, take_behind ? core_behind.y : core_in_front.y))
             return j;
         // the next candidate on the side just tried (the fetch is ignored past the run)
         int next = take_behind ? int(behind) + 1 : in_front - 1;
-        bool valid = next >= 0 && uint(next) < count;
         uvec4 next_core = ib_core_fetch(start + uint(next));
-        float gap = ib_eye_depth(to_centre, uintBitsToFloat(next_core.x)) - predicted;
+        float next_depth = ib_eye_depth(to_centre, uintBitsToFloat(next_core.x));
+        float gap = next_depth - predicted;
         if (take_behind) {
-            behind = uint(next);
+            bool valid = uint(next) < count && next_depth <= window_far;
+            behind = valid ? uint(next) : count;
             core_behind = next_core;
+            depth_behind = next_depth;
             gap_behind = valid ? gap : 1e30;
         } else {
-            in_front = next;
+            bool valid = next >= 0 && next_depth >= window_near;
+            in_front = valid ? next : -1;
             core_in_front = next_core;
+            depth_in_front = next_depth;
             gap_in_front = valid ? -gap : 1e30;
         }
     }

@@ -60,7 +60,7 @@ void main()
                 missing |= other_length[d] > 0u ? 1u << d : 0u;
             }
         } else {
-            described_fragment described = describe(ib_core_fetch(start + i));
+            described_fragment described = describe(ib_core_fetch(start + i), centre);
             for (int d = 0; d < 4; ++d) {
                 found[d] = search_by_ids(described, other_ray[d], other_centre[d], other_start[d],
                                          other_length[d]);

@@ -6,11 +6,13 @@
 #include "common/oit_shared.h"
 #include "ib/neighbour_search.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = OIT_IB_ITEMS_PER_GROUP) in;
 
 void main()
 {
-    uint item = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
+    // dispatched indirectly (epsilon_dispatch.comp): rows of groups, the last one partly used
+    uint item = gl_GlobalInvocationID.x +
+                gl_GlobalInvocationID.y * gl_NumWorkGroups.x * uint(OIT_IB_ITEMS_PER_GROUP);
     if (item >= ib_counters[OIT_IB_COUNTER_EPSILON_ITEMS])
         return;
     uvec2 queued = ib_nodes[item].xy;
@@ -21,7 +23,7 @@ void main()
     uint run_length = ib_run_length(pixel);
     vec2 centre = vec2(pixel) + 0.5;
     pixel_ray ray = ray_through(centre);
-    described_fragment described = describe(ib_core_fetch(start + i));
+    described_fragment described = describe(ib_core_fetch(start + i), centre);
     uvec2 words = texelFetch(ib_links_texture, int(start + i)).xy;
     for (int d = 0; d < 4; ++d) {
         if ((directions & (1u << d)) == 0u)

@@ -10,11 +10,12 @@
 
 layout(location = OIT_UNIFORM_IB_PASS) uniform int item_count; // the number of triangles
 
-layout(local_size_x = 64) in;
+layout(local_size_x = OIT_IB_ITEMS_PER_GROUP) in;
 
 void main()
 {
-    uint triangle = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
+    uint triangle = gl_GlobalInvocationID.x +
+                    gl_GlobalInvocationID.y * gl_NumWorkGroups.x * uint(OIT_IB_ITEMS_PER_GROUP);
     if (triangle >= uint(item_count))
         return;
     uvec3 v = ib_triangle_vertices(triangle);

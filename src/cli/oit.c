@@ -283,14 +283,16 @@ static int command_info(int argc, char **argv)
                m.vertex_count, m.welded_count, m.triangle_count, m.component_count);
         printf(", \"bounds_min\": [%g, %g, %g], \"bounds_max\": [%g, %g, %g]", m.bounds_min[0],
                m.bounds_min[1], m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);
-        printf(", \"centre\": [%g, %g, %g], \"radius\": %g, \"parts\": [", m.centre[0], m.centre[1],
-               m.centre[2], m.radius);
+        printf(", \"centre\": [%g, %g, %g], \"radius\": %g, \"longest_edge\": %.9g, \"parts\": [",
+               m.centre[0], m.centre[1], m.centre[2], m.radius, m.longest_edge);
         for (uint32_t c = 0; c < m.component_count; ++c) {
             const oit_component *p = &m.components[c];
             printf("%s{\"name\": ", c ? ", " : "");
             json_string(stdout, p->name);
-            printf(", \"colour\": [%.4g, %.4g, %.4g], \"opacity\": %.4g, \"triangles\": %u}", p->colour[0],
-                   p->colour[1], p->colour[2], p->opacity, p->triangle_count);
+            printf(", \"colour\": [%.4g, %.4g, %.4g], \"opacity\": %.4g, \"triangles\": %u, "
+                   "\"longest_edge\": %.9g}",
+                   p->colour[0], p->colour[1], p->colour[2], p->opacity, p->triangle_count,
+                   p->longest_edge);
         }
         printf("]}\n");
     } else {
@@ -302,6 +304,7 @@ static int command_info(int argc, char **argv)
                m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);
         printf("sphere      centre (%g, %g, %g), radius %g\n", m.centre[0], m.centre[1], m.centre[2],
                m.radius);
+        printf("longest edge %g\n", m.longest_edge);
         for (uint32_t c = 0; c < m.component_count; ++c) {
             const oit_component *p = &m.components[c];
             printf("  %-32s colour (%.3f, %.3f, %.3f) opacity %.3f, %u triangles\n", p->name, p->colour[0],

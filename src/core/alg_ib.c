@@ -67,6 +67,7 @@ typedef struct ib_params {
     int32_t last_layer_opaque;
     float epsilon_max, radius_eye;
     int32_t needs_fields;
+    float edge_scale, window_margin; /* the id search's depth window (ib_common.glsl) */
 } ib_params;
 
 enum ib_program {
@@ -75,6 +76,7 @@ enum ib_program {
     IB_TRIANGLES,
     IB_NEIGHBOURS,
     IB_NEIGHBOURS_EPSILON,
+    IB_EPSILON_DISPATCH,
     IB_NEIGHBOUR_STATS,
     IB_FIELDS,
     IB_DIFFUSION,
@@ -90,7 +92,7 @@ enum ib_program {
  * on llvmpipe; compute invocations have no quad or helper semantics.) */
 static const char *const ib_shaders[IB_PROGRAM_COUNT] = {
     "ib/fill.frag",      "ib/sort.comp",      "ib/triangles.comp", "ib/neighbours.comp",
-    "ib/neighbours_epsilon.comp",
+    "ib/neighbours_epsilon.comp", "ib/epsilon_dispatch.comp",
     "ib/neighbour_stats.comp", "ib/fields_init.comp", "ib/diffusion.comp",
     "ib/blur.comp",      "ib/curvature_distance.comp", "ib/compose.frag",
 };
@@ -111,6 +113,9 @@ typedef struct ib_state {
     /* read-only buffer-texture views of core, links and the triangle table */
     GLuint core_texture, links_texture, triangle_texture, core_words_texture;
     GLuint nodes_texture, components_texture;
+    /* per component its longest edge (model space), for the id search's window;
+     * uploaded every frame (one float per component) */
+    GLuint component_edge_buffer, component_edge_texture;
     uint64_t pool_capacity;
     uint64_t gl_fragment_limit;
     uint64_t gl_texel_limit; /* GL_MAX_TEXTURE_BUFFER_SIZE */
@@ -204,11 +209,11 @@ static void ib_destroy(oit_algorithm *alg)
         glDeleteProgram(s->programs[p]);
     GLuint textures[] = {s->head_image, s->count_image, s->core_texture, s->links_texture,
                          s->triangle_texture, s->core_words_texture, s->nodes_texture,
-                         s->components_texture};
-    glDeleteTextures(8, textures);
+                         s->components_texture, s->component_edge_texture};
+    glDeleteTextures(9, textures);
     GLuint buffers[] = {s->node_buffer, s->core_buffer, s->links_buffer, s->counter_buffer,
-                        s->param_buffer, s->triangle_buffer};
-    glDeleteBuffers(6, buffers);
+                        s->param_buffer, s->triangle_buffer, s->component_edge_buffer};
+    glDeleteBuffers(7, buffers);
     oit_gl_output_release(&s->output);
     oit_timer_destroy(&s->timer);
     free(s->shader_dir);
@@ -265,22 +270,24 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     if (s->gl_fragment_limit > s->gl_texel_limit / 4u)
         s->gl_fragment_limit = s->gl_texel_limit / 4u;
 
-    GLuint buffers[6];
-    glGenBuffers(6, buffers);
+    GLuint buffers[7];
+    glGenBuffers(7, buffers);
     s->node_buffer = buffers[0];
     s->core_buffer = buffers[1];
     s->links_buffer = buffers[2];
     s->counter_buffer = buffers[3];
     s->param_buffer = buffers[4];
     s->triangle_buffer = buffers[5];
-    GLuint buffer_textures[6];
-    glGenTextures(6, buffer_textures);
+    s->component_edge_buffer = buffers[6];
+    GLuint buffer_textures[7];
+    glGenTextures(7, buffer_textures);
     s->core_texture = buffer_textures[0];
     s->links_texture = buffer_textures[1];
     s->triangle_texture = buffer_textures[2];
     s->core_words_texture = buffer_textures[3];
     s->nodes_texture = buffer_textures[4];
     s->components_texture = buffer_textures[5];
+    s->component_edge_texture = buffer_textures[6];
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
     glBufferData(GL_SHADER_STORAGE_BUFFER, OIT_IB_COUNTER_COUNT * sizeof(GLuint), NULL,
                  GL_DYNAMIC_READ);
@@ -423,6 +430,26 @@ static oit_status ib_make_plan(const oit_frame_settings *frame, const oit_scene 
     }
     float radius = scene->model ? scene->model->radius : 1.0f;
     p->radius_eye = radius * scale > 0.0f ? radius * scale : 1.0f;
+    /* Two fragments whose triangles share a vertex v are each within the longest
+     * edge L of their component of v, so their eye depths differ by at most 2 L
+     * (eye-space lengths; the search keeps to f's component): it need not look
+     * further. Eye-space lengths are at most the
+     * model-space ones times the modelview's largest singular value, bounded
+     * by sqrt of the largest row sum of |M^T M| (exact for rotation and uniform
+     * scale); the margins cover rounding in the depths rebuilt from the depth
+     * buffer. */
+    double gram_bound = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        double row_sum = 0.0;
+        for (int j = 0; j < 3; ++j) {
+            const float *ci = frame->modelview + i * 4, *cj = frame->modelview + j * 4;
+            row_sum += fabs((double)ci[0] * cj[0] + (double)ci[1] * cj[1] + (double)ci[2] * cj[2]);
+        }
+        if (row_sum > gram_bound)
+            gram_bound = row_sum;
+    }
+    p->edge_scale = (float)(sqrt(gram_bound) * 1.001);
+    p->window_margin = 0.01f * p->radius_eye;
 
     plan->curvature_distance = m->mode == OIT_MODULATE_CURVATURE || m->mode == OIT_MODULATE_DISTANCE ||
                                m->mode == OIT_MODULATE_DIST_CURV || m->view == OIT_VIEW_CURVATURE ||
@@ -460,7 +487,8 @@ static void ib_bind(const ib_state *s, const oit_scene *scene)
                  {OIT_TEXUNIT_IB_TRIANGLES, s->triangle_texture},
                  {OIT_TEXUNIT_IB_RUN_WORDS, s->core_words_texture},
                  {OIT_TEXUNIT_IB_NODES, s->nodes_texture},
-                 {OIT_TEXUNIT_IB_COMPONENTS, s->components_texture}};
+                 {OIT_TEXUNIT_IB_COMPONENTS, s->components_texture},
+                 {OIT_TEXUNIT_IB_COMPONENT_EDGES, s->component_edge_texture}};
     glBindTexture(GL_TEXTURE_BUFFER, s->components_texture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, scene->component_buffer);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
@@ -469,6 +497,26 @@ static void ib_bind(const ib_state *s, const oit_scene *scene)
         glBindTexture(GL_TEXTURE_BUFFER, views[i].texture);
     }
     glActiveTexture(GL_TEXTURE0);
+}
+
+/* Each component's longest edge (oit_component.longest_edge), one float each. */
+static oit_status ib_upload_component_edges(ib_state *s, const oit_scene *scene, oit_error *err)
+{
+    const oit_model *model = scene->model;
+    uint32_t count = model && model->component_count ? model->component_count : 1;
+    float *edges = malloc(sizeof(float) * count);
+    if (!edges)
+        return oit_fail(err, OIT_E_RUNTIME, "ib: out of memory for %u component edges", count);
+    for (uint32_t c = 0; c < count; ++c)
+        edges[c] = model && model->component_count ? model->components[c].longest_edge : 0.0f;
+    glBindBuffer(GL_TEXTURE_BUFFER, s->component_edge_buffer);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)(sizeof(float) * count), edges, GL_DYNAMIC_DRAW);
+    glBindTexture(GL_TEXTURE_BUFFER, s->component_edge_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, s->component_edge_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    free(edges);
+    return OIT_OK;
 }
 
 /* The triangle table holds 2 rows per triangle; grown to the scene's size. */
@@ -516,14 +564,15 @@ static void ib_barrier(void)
                     GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-/* A pass of program p with one invocation per item (work groups of 64, in
- * rows past the work-group count limit); the shader skips those past the end. */
+/* A pass of program p with one invocation per item (work groups of
+ * OIT_IB_ITEMS_PER_GROUP, in rows past the work-group count limit); the shader
+ * skips those past the end. */
 static void ib_item_pass(ib_state *s, enum ib_program p, const oit_frame_settings *frame,
                          GLuint items)
 {
-    GLuint groups = (items + 63u) / 64u;
+    GLuint groups = (items + OIT_IB_ITEMS_PER_GROUP - 1u) / OIT_IB_ITEMS_PER_GROUP;
     GLuint rows = 1;
-    while (groups > 65535u) {
+    while (groups > OIT_IB_MAX_GROUPS_X) {
         groups = (groups + 1u) / 2u;
         rows *= 2u;
     }
@@ -534,6 +583,23 @@ static void ib_item_pass(ib_state *s, enum ib_program p, const oit_frame_setting
         glUniform1i(OIT_UNIFORM_IB_PASS, (GLint)items);
     if (items > 0)
         glDispatchCompute(groups, rows, 1);
+}
+
+/* A per-item pass whose item count a GPU pass counted: program `counts` (one
+ * invocation) turns it into work-group counts at counter `slot`, and program p
+ * runs with exactly those (no invocations that only find they have no item). */
+static void ib_indirect_item_pass(ib_state *s, enum ib_program p, enum ib_program counts, int slot,
+                                  const oit_frame_settings *frame)
+{
+    ib_barrier();
+    glUseProgram(s->programs[counts]);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(s->programs[p]);
+    oit_gl_set_frame_uniforms(frame);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counter_buffer);
+    glDispatchComputeIndirect((GLintptr)(slot * sizeof(GLuint)));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 }
 
 /* One per-pixel pass of program p (compute, or the full-screen compose), with
@@ -639,6 +705,9 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->param_buffer);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof plan.params, &plan.params);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    status = ib_upload_component_edges(s, scene, err);
+    if (status != OIT_OK)
+        goto failed;
     ib_bind(s, scene);
 
     int retries = 0;
@@ -678,7 +747,8 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     if (plan.params.search != OIT_NEIGHBOURS_INDEX) {
         /* a stage of its own: how much of the search the fallback costs is worth seeing */
         oit_timer_stage_begin(&s->timer, "neighbours_epsilon");
-        ib_item_pass(s, IB_NEIGHBOURS_EPSILON, frame, needed);
+        ib_indirect_item_pass(s, IB_NEIGHBOURS_EPSILON, IB_EPSILON_DISPATCH,
+                              OIT_IB_COUNTER_EPSILON_DISPATCH, frame);
     }
     if (s->config.neighbour_quality) {
         /* diagnostics, not part of the frame: oit bench and oit measure turn it off */

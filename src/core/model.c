@@ -345,6 +345,25 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
     model->radius = radius2 > 0.0 ? nextafterf((float)sqrt(radius2), INFINITY) : 0.0f;
     if (!isfinite(model->radius))
         return oit_fail(err, OIT_E_INPUT, "model extent overflows a float");
+    model->longest_edge = 0.0f;
+    for (uint32_t c = 0; c < model->component_count; ++c) {
+        oit_component *comp = &model->components[c];
+        double edge2 = 0.0;
+        for (uint64_t t = comp->first_triangle; t < (uint64_t)comp->first_triangle + comp->triangle_count;
+             ++t)
+            for (int e = 0; e < 3; ++e) {
+                const float *a = p + (size_t)model->indices[t * 3 + e] * 3;
+                const float *b = p + (size_t)model->indices[t * 3 + (e + 1) % 3] * 3;
+                double d[3] = {(double)a[0] - b[0], (double)a[1] - b[1], (double)a[2] - b[2]};
+                double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                if (d2 > edge2)
+                    edge2 = d2;
+            }
+        /* rounded up, as the radius: a bound must not be undercut by rounding */
+        comp->longest_edge = edge2 > 0.0 ? nextafterf((float)sqrt(edge2), INFINITY) : 0.0f;
+        if (comp->longest_edge > model->longest_edge)
+            model->longest_edge = comp->longest_edge;
+    }
     return OIT_OK;
 }
 

@@ -55,6 +55,7 @@ typedef struct oit_component {
     float opacity;            /* material opacity (MTL d, glTF base alpha), 1 if none */
     uint32_t first_triangle;  /* the component's triangles are contiguous */
     uint32_t triangle_count;
+    float longest_edge;       /* its longest triangle edge (model space; computed) */
 } oit_component;
 
 typedef struct oit_model {
@@ -74,6 +75,9 @@ typedef struct oit_model {
     float bounds_min[3], bounds_max[3];
     float centre[3]; /* bounding sphere */
     float radius;
+    float longest_edge; /* the longest triangle edge (model space), the largest of the
+                           components': bounds how far apart two fragments of
+                           triangles that share a vertex can be */
 } oit_model;
 
 /* Import any format Assimp reads. Bad files give OIT_E_INPUT and a message
