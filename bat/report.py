@@ -390,7 +390,7 @@ class Report:
             ax.bar(range(len(data)), ys, bottom=bottom, label=n)
             bottom = [b + y for b, y in zip(bottom, ys)]
         ax.set_xticks(range(len(data)))
-        ax.set_xticklabels([f"{s}\n{fmt(t, 0)} ms" for (s, _), t in zip(data, totals)], rotation=60, ha="right",
+        ax.set_xticklabels([f"{s} ({fmt(t, 0)} ms)" for (s, _), t in zip(data, totals)], rotation=60, ha="right",
                            fontsize=8)
         ax.set_ylabel("% of the frame's stages")
         ax.set_ylim(0, 100)
@@ -643,7 +643,9 @@ class Report:
                 "so each fragment's cost depends on the neighbouring lists' lengths; across the scenes, the "
                 f"neighbour time per fragment against the mean list length has Spearman ρ = {fmt(rho)} "
                 "(1: it follows the list length exactly, 0: unrelated). The thesis's FindNeighbors "
-                f"was {spread_text([100 * x[2] for x in self._thesis_shares()], 0)} % of its construction.")
+                f"was {spread_text([100 * x[2] for x in self._thesis_shares()], 0)} % of its construction. "
+                "What shortened the search so far, and what was tried and did not pay, with numbers: "
+                "[illustration-buffer.md](illustration-buffer.md#speed-on-llvmpipe).")
             if self.profile:
                 notes.append("  " + self.profile)
         dp_ll = self.ratios.get("dp_ll", {})
@@ -670,10 +672,21 @@ class Report:
                     total = sum(st.values())
                     if total:
                         fill_share.append(stage_sum(st, ("fill",)) / total)
+            fill_over_blend = []
+            for s in self.scenes:
+                ll, blend = self.row(s, "ll"), self.value(s, "blend", "cpu_ms_median")
+                if ll and blend:
+                    fill_over_blend.append(stage_sum(stages_of(ll), ("fill",)) / blend)
             notes.append(
                 f"- **`ll` vs `blend`** (median {statistics.median(ll_blend):.2f}×): `ll`'s fill takes "
-                f"{spread_text([100 * x for x in fill_share], 0)} % of its frame; the rest is the sort and the "
-                "compose over every fragment, work `blend` does not do.")
+                f"{spread_text([100 * x for x in fill_share], 0)} % of its frame and alone costs "
+                f"{spread_text(fill_over_blend)} × `blend`'s whole frame: the same geometry pass, but every "
+                "fragment takes a node with an atomic counter, stores it and swaps its pixel's head with an "
+                "image atomic, and llvmpipe executes storage-buffer accesses lane by lane "
+                "([illustration-buffer.md](illustration-buffer.md#speed-on-llvmpipe)) where `blend`'s "
+                "blending is vectorised. The rest is the sort and the compose over every fragment, "
+                "work `blend` does not do (they already read through buffer textures, "
+                "[algorithms.md](algorithms.md#ll-per-pixel-linked-lists-yang-et-al-2010)).")
         if notes:
             self.emit("## Where a target is missed, and why", "", *notes, "")
 
