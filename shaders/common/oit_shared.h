@@ -182,7 +182,7 @@
 #define OIT_TEXUNIT_IB_RUN_WORDS 12    /* usamplerBuffer r32ui over the run core: word 4 slot + k */
 #define OIT_TEXUNIT_IB_COMPONENTS 14   /* samplerBuffer rgba32f over the component table */
 #define OIT_TEXUNIT_IB_NODES 15        /* usamplerBuffer rgba32ui over the nodes (fields) */
-#define OIT_TEXUNIT_IB_COMPONENT_EDGES 19 /* samplerBuffer r32f: each component's longest edge */
+#define OIT_TEXUNIT_IB_TRIANGLE_REACH 19 /* samplerBuffer r32f: oit_model.triangle_reach */
 #define OIT_SSBO_IB_TRIANGLES 13       /* the triangle table, written by ib/triangles.comp */
 #define OIT_IB_TRIANGLE_BYTES 32       /* ids (3 uint) + component, eye-space plane (4 float) */
 #define OIT_IB_NODE_BYTES 16

@@ -73,13 +73,13 @@ layout(binding = OIT_TEXUNIT_IB_TRIANGLES) uniform usamplerBuffer ib_triangle_te
 layout(binding = OIT_TEXUNIT_IB_RUN_WORDS) uniform usamplerBuffer ib_core_words_texture;
 layout(binding = OIT_TEXUNIT_IB_COMPONENTS) uniform samplerBuffer ib_components_texture;
 layout(binding = OIT_TEXUNIT_IB_NODES) uniform usamplerBuffer ib_nodes_texture;
-layout(binding = OIT_TEXUNIT_IB_COMPONENT_EDGES) uniform samplerBuffer ib_component_edges_texture;
+layout(binding = OIT_TEXUNIT_IB_TRIANGLE_REACH) uniform samplerBuffer ib_triangle_reach_texture;
 
 uvec4 ib_core_fetch(uint slot) { return texelFetch(ib_core_texture, int(slot)); }
 // The component's material (as oit_components[component]: rgb colour, a opacity).
 vec4 ib_component_material(uint component) { return texelFetch(ib_components_texture, int(component)); }
-// The component's longest edge, model space (oit_component.longest_edge).
-float ib_component_longest_edge(uint component) { return texelFetch(ib_component_edges_texture, int(component)).x; }
+// The triangle's reach, model space (oit_model.triangle_reach).
+float ib_triangle_reach(uint triangle) { return texelFetch(ib_triangle_reach_texture, int(triangle)).x; }
 // Only the window depth (one channel is cheaper to gather than four).
 float ib_depth_fetch(uint slot) { return uintBitsToFloat(texelFetch(ib_core_words_texture, int(4u * slot)).x); }
 
@@ -107,7 +107,7 @@ layout(std430, binding = OIT_SSBO_IB_PARAMS) readonly buffer ib_param_buffer {
     float ib_radius_eye; // the model's bounding radius in eye space
     int ib_needs_fields;
     // The id search's window: a candidate sharing a vertex with f's triangle is
-    // at most 2 * (its component's longest edge) * ib_edge_scale + ib_window_margin
+    // at most 2 * ib_triangle_reach(f's triangle) * ib_edge_scale + ib_window_margin
     // from f in eye depth (see alg_ib.c).
     float ib_edge_scale;
     float ib_window_margin;

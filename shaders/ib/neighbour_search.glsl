@@ -45,7 +45,7 @@ described_fragment describe(uvec4 f, vec2 pixel_centre)
     d.component = row.w;
     d.ids = row.xyz;
     d.triangle = f.y;
-    d.window = 2.0 * ib_component_longest_edge(d.component) * ib_edge_scale + ib_window_margin;
+    d.window = 2.0 * ib_triangle_reach(f.y) * ib_edge_scale + ib_window_margin;
     return d;
 }
 

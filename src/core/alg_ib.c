@@ -113,9 +113,8 @@ typedef struct ib_state {
     /* read-only buffer-texture views of core, links and the triangle table */
     GLuint core_texture, links_texture, triangle_texture, core_words_texture;
     GLuint nodes_texture, components_texture;
-    /* per component its longest edge (model space), for the id search's window;
-     * uploaded every frame (one float per component) */
-    GLuint component_edge_buffer, component_edge_texture;
+    /* view of the scene's triangle reach (oit_model.triangle_reach): the id search's window */
+    GLuint triangle_reach_texture;
     uint64_t pool_capacity;
     uint64_t gl_fragment_limit;
     uint64_t gl_texel_limit; /* GL_MAX_TEXTURE_BUFFER_SIZE */
@@ -209,11 +208,11 @@ static void ib_destroy(oit_algorithm *alg)
         glDeleteProgram(s->programs[p]);
     GLuint textures[] = {s->head_image, s->count_image, s->core_texture, s->links_texture,
                          s->triangle_texture, s->core_words_texture, s->nodes_texture,
-                         s->components_texture, s->component_edge_texture};
+                         s->components_texture, s->triangle_reach_texture};
     glDeleteTextures(9, textures);
     GLuint buffers[] = {s->node_buffer, s->core_buffer, s->links_buffer, s->counter_buffer,
-                        s->param_buffer, s->triangle_buffer, s->component_edge_buffer};
-    glDeleteBuffers(7, buffers);
+                        s->param_buffer, s->triangle_buffer};
+    glDeleteBuffers(6, buffers);
     oit_gl_output_release(&s->output);
     oit_timer_destroy(&s->timer);
     free(s->shader_dir);
@@ -270,15 +269,14 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     if (s->gl_fragment_limit > s->gl_texel_limit / 4u)
         s->gl_fragment_limit = s->gl_texel_limit / 4u;
 
-    GLuint buffers[7];
-    glGenBuffers(7, buffers);
+    GLuint buffers[6];
+    glGenBuffers(6, buffers);
     s->node_buffer = buffers[0];
     s->core_buffer = buffers[1];
     s->links_buffer = buffers[2];
     s->counter_buffer = buffers[3];
     s->param_buffer = buffers[4];
     s->triangle_buffer = buffers[5];
-    s->component_edge_buffer = buffers[6];
     GLuint buffer_textures[7];
     glGenTextures(7, buffer_textures);
     s->core_texture = buffer_textures[0];
@@ -287,7 +285,7 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     s->core_words_texture = buffer_textures[3];
     s->nodes_texture = buffer_textures[4];
     s->components_texture = buffer_textures[5];
-    s->component_edge_texture = buffer_textures[6];
+    s->triangle_reach_texture = buffer_textures[6];
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
     glBufferData(GL_SHADER_STORAGE_BUFFER, OIT_IB_COUNTER_COUNT * sizeof(GLuint), NULL,
                  GL_DYNAMIC_READ);
@@ -430,9 +428,9 @@ static oit_status ib_make_plan(const oit_frame_settings *frame, const oit_scene 
     }
     float radius = scene->model ? scene->model->radius : 1.0f;
     p->radius_eye = radius * scale > 0.0f ? radius * scale : 1.0f;
-    /* Two fragments whose triangles share a vertex v are each within the longest
-     * edge L of their component of v, so their eye depths differ by at most 2 L
-     * (eye-space lengths; the search keeps to f's component): it need not look
+    /* A fragment of a triangle sharing a vertex with f's lies within twice the
+     * reach of f's triangle (oit_model.triangle_reach) of f, so their eye depths
+     * differ by at most that (eye-space lengths): the search need not look
      * further. Eye-space lengths are at most the
      * model-space ones times the modelview's largest singular value, bounded
      * by sqrt of the largest row sum of |M^T M| (exact for rotation and uniform
@@ -488,35 +486,17 @@ static void ib_bind(const ib_state *s, const oit_scene *scene)
                  {OIT_TEXUNIT_IB_RUN_WORDS, s->core_words_texture},
                  {OIT_TEXUNIT_IB_NODES, s->nodes_texture},
                  {OIT_TEXUNIT_IB_COMPONENTS, s->components_texture},
-                 {OIT_TEXUNIT_IB_COMPONENT_EDGES, s->component_edge_texture}};
+                 {OIT_TEXUNIT_IB_TRIANGLE_REACH, s->triangle_reach_texture}};
     glBindTexture(GL_TEXTURE_BUFFER, s->components_texture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, scene->component_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, s->triangle_reach_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, scene->triangle_reach_buffer);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
     for (size_t i = 0; i < sizeof views / sizeof views[0]; ++i) {
         glActiveTexture(GL_TEXTURE0 + views[i].unit);
         glBindTexture(GL_TEXTURE_BUFFER, views[i].texture);
     }
     glActiveTexture(GL_TEXTURE0);
-}
-
-/* Each component's longest edge (oit_component.longest_edge), one float each. */
-static oit_status ib_upload_component_edges(ib_state *s, const oit_scene *scene, oit_error *err)
-{
-    const oit_model *model = scene->model;
-    uint32_t count = model && model->component_count ? model->component_count : 1;
-    float *edges = malloc(sizeof(float) * count);
-    if (!edges)
-        return oit_fail(err, OIT_E_RUNTIME, "ib: out of memory for %u component edges", count);
-    for (uint32_t c = 0; c < count; ++c)
-        edges[c] = model && model->component_count ? model->components[c].longest_edge : 0.0f;
-    glBindBuffer(GL_TEXTURE_BUFFER, s->component_edge_buffer);
-    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)(sizeof(float) * count), edges, GL_DYNAMIC_DRAW);
-    glBindTexture(GL_TEXTURE_BUFFER, s->component_edge_texture);
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, s->component_edge_buffer);
-    glBindTexture(GL_TEXTURE_BUFFER, 0);
-    glBindBuffer(GL_TEXTURE_BUFFER, 0);
-    free(edges);
-    return OIT_OK;
 }
 
 /* The triangle table holds 2 rows per triangle; grown to the scene's size. */
@@ -705,9 +685,6 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->param_buffer);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof plan.params, &plan.params);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    status = ib_upload_component_edges(s, scene, err);
-    if (status != OIT_OK)
-        goto failed;
     ib_bind(s, scene);
 
     int retries = 0;

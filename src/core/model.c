@@ -56,6 +56,7 @@ void oit_model_free(oit_model *model)
     free(model->welded_ids);
     free(model->indices);
     free(model->components);
+    free(model->triangle_reach);
     memset(model, 0, sizeof *model);
 }
 
@@ -345,12 +346,22 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
     model->radius = radius2 > 0.0 ? nextafterf((float)sqrt(radius2), INFINITY) : 0.0f;
     if (!isfinite(model->radius))
         return oit_fail(err, OIT_E_INPUT, "model extent overflows a float");
+    /* Longest edges: per triangle (kept in triangle_reach for the moment), per
+     * component, the model's; rounded up, as the radius: they are bounds. */
+    free(model->triangle_reach);
+    model->triangle_reach = alloc_array(model->triangle_count, sizeof *model->triangle_reach);
+    float *vertex_reach = calloc_array(model->welded_count ? model->welded_count : 1, sizeof(float));
+    if (!model->triangle_reach || !vertex_reach) {
+        free(vertex_reach);
+        return oit_fail(err, OIT_E_RUNTIME, "out of memory for %u triangles' edges", model->triangle_count);
+    }
     model->longest_edge = 0.0f;
     for (uint32_t c = 0; c < model->component_count; ++c) {
         oit_component *comp = &model->components[c];
-        double edge2 = 0.0;
+        comp->longest_edge = 0.0f;
         for (uint64_t t = comp->first_triangle; t < (uint64_t)comp->first_triangle + comp->triangle_count;
-             ++t)
+             ++t) {
+            double edge2 = 0.0;
             for (int e = 0; e < 3; ++e) {
                 const float *a = p + (size_t)model->indices[t * 3 + e] * 3;
                 const float *b = p + (size_t)model->indices[t * 3 + (e + 1) % 3] * 3;
@@ -359,11 +370,31 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
                 if (d2 > edge2)
                     edge2 = d2;
             }
-        /* rounded up, as the radius: a bound must not be undercut by rounding */
-        comp->longest_edge = edge2 > 0.0 ? nextafterf((float)sqrt(edge2), INFINITY) : 0.0f;
+            float edge = edge2 > 0.0 ? nextafterf((float)sqrt(edge2), INFINITY) : 0.0f;
+            model->triangle_reach[t] = edge;
+            if (edge > comp->longest_edge)
+                comp->longest_edge = edge;
+        }
         if (comp->longest_edge > model->longest_edge)
             model->longest_edge = comp->longest_edge;
     }
+    /* reach: the longest edge around each welded vertex, then around each triangle */
+    for (uint32_t t = 0; t < model->triangle_count; ++t)
+        for (int k = 0; k < 3; ++k) {
+            float *around = &vertex_reach[model->welded_ids[model->indices[(size_t)t * 3 + k]]];
+            if (model->triangle_reach[t] > *around)
+                *around = model->triangle_reach[t];
+        }
+    for (uint32_t t = 0; t < model->triangle_count; ++t) {
+        float reach = 0.0f;
+        for (int k = 0; k < 3; ++k) {
+            float around = vertex_reach[model->welded_ids[model->indices[(size_t)t * 3 + k]]];
+            if (around > reach)
+                reach = around;
+        }
+        model->triangle_reach[t] = reach;
+    }
+    free(vertex_reach);
     return OIT_OK;
 }
 

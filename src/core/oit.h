@@ -76,8 +76,11 @@ typedef struct oit_model {
     float centre[3]; /* bounding sphere */
     float radius;
     float longest_edge; /* the longest triangle edge (model space), the largest of the
-                           components': bounds how far apart two fragments of
-                           triangles that share a vertex can be */
+                           components' */
+    float *triangle_reach; /* per triangle: the longest edge of any triangle that shares a
+                              (welded) vertex with it, itself included. A fragment of a
+                              triangle sharing a vertex with t lies within 2 x reach[t] of
+                              any fragment of t: ib's neighbour search stops there */
 } oit_model;
 
 /* Import any format Assimp reads. Bad files give OIT_E_INPUT and a message
@@ -314,6 +317,7 @@ typedef struct oit_scene {
     unsigned vertex_buffers[4]; /* position, normal, component, welded id */
     unsigned index_buffer;
     unsigned component_buffer;  /* SSBO at OIT_SSBO_COMPONENTS */
+    unsigned triangle_reach_buffer; /* oit_model.triangle_reach, one float per triangle */
     uint32_t index_count;
     uint64_t gpu_bytes;
 } oit_scene;

@@ -88,6 +88,13 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
                  component_data, GL_STATIC_DRAW);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     bytes += component_slots * 4 * sizeof(float);
+    /* per triangle its reach (ib's neighbour search), read as a buffer texture */
+    glGenBuffers(1, &scene->triangle_reach_buffer);
+    glBindBuffer(GL_TEXTURE_BUFFER, scene->triangle_reach_buffer);
+    size_t reach_bytes = (size_t)model->triangle_count * sizeof(float);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)reach_bytes, model->triangle_reach, GL_STATIC_DRAW);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    bytes += reach_bytes;
     free(component_data);
     free(identity_ids);
 
@@ -107,6 +114,7 @@ void oit_scene_release(oit_scene *scene)
         glDeleteBuffers(4, scene->vertex_buffers);
         glDeleteBuffers(1, &scene->index_buffer);
         glDeleteBuffers(1, &scene->component_buffer);
+        glDeleteBuffers(1, &scene->triangle_reach_buffer);
     }
     memset(scene, 0, sizeof *scene);
 }
