@@ -246,7 +246,10 @@ class Report:
         self.emit("**Timing on llvmpipe.** Its `GL_TIME_ELAPSED` queries do not measure the work, so every stage "
                   "is timed as wall time between `glFinish()` calls (the \"GPU\" columns), and the frame time is the "
                   "wall time of the whole frame. Ratios measured in the same run are what carry over to a GPU; "
-                  "absolute times do not. The machine has two cores, so llvmpipe runs two threads.", "")
+                  "absolute times do not. The machine has two cores, so llvmpipe runs two threads. On a shared "
+                  "virtual machine a small scene's times can differ by up to a third between two runs of this "
+                  "script (spider-general's `ib` neighbour search: 20 ms in one run, 30 ms in the next, with "
+                  "the same code); medians over the scenes move far less than single scenes.", "")
         if self.failed:
             self.emit(f"**{len(self.failed)} run(s) failed** and are left out of the tables:", "")
             for r in self.failed:
