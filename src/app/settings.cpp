@@ -234,6 +234,18 @@ std::string render_command(const std::string &oit_program, const std::string &mo
 
 namespace {
 
+// JSON with comments and trailing commas; a syntax error becomes "FILE:LINE: what".
+bool parse_json(const std::string &file, const std::string &text, rapidjson::Document &d, std::string &error)
+{
+    d.Parse<rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag>(text.c_str(), text.size());
+    if (!d.HasParseError())
+        return true;
+    size_t offset = std::min(d.GetErrorOffset(), text.size());
+    int line = 1 + int(std::count(text.begin(), text.begin() + long(offset), '\n'));
+    error = file + ":" + std::to_string(line) + ": " + rapidjson::GetParseError_En(d.GetParseError());
+    return false;
+}
+
 using rapidjson::Value;
 
 void add(Value &object, const char *key, Value value, rapidjson::Document::AllocatorType &a)
@@ -414,13 +426,8 @@ bool preset_from_json(const std::string &file, const std::string &text, RenderSe
 {
     has_camera = false;
     rapidjson::Document d;
-    d.Parse<rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag>(text.c_str(), text.size());
-    if (d.HasParseError()) {
-        size_t offset = std::min(d.GetErrorOffset(), text.size());
-        int line = 1 + int(std::count(text.begin(), text.begin() + long(offset), '\n'));
-        error = file + ":" + std::to_string(line) + ": " + rapidjson::GetParseError_En(d.GetParseError());
+    if (!parse_json(file, text, d, error))
         return false;
-    }
     if (!d.IsObject()) {
         error = file + ":1: a preset is a JSON object";
         return false;
@@ -602,13 +609,8 @@ bool read_model_list(const std::string &file, const std::string &text, const std
                      std::vector<ModelEntry> &out, std::string &error)
 {
     rapidjson::Document d;
-    d.Parse<rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag>(text.c_str(), text.size());
-    if (d.HasParseError()) {
-        size_t offset = std::min(d.GetErrorOffset(), text.size());
-        int line = 1 + int(std::count(text.begin(), text.begin() + long(offset), '\n'));
-        error = file + ":" + std::to_string(line) + ": " + rapidjson::GetParseError_En(d.GetParseError());
+    if (!parse_json(file, text, d, error))
         return false;
-    }
     if (!d.IsObject() || !d.HasMember("models") || !d["models"].IsArray()) {
         error = file + ":1: expected an object with a \"models\" array";
         return false;
