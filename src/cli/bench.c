@@ -344,8 +344,10 @@ static oit_status run_algorithm(session *s, const render_options *o, int warmup,
         return oit_fail(err, OIT_E_RUNTIME, "out of memory for %d frames of statistics", frames);
     }
     /* timed frames are the image's work only: ib's neighbour-quality pass is a diagnostic */
+    render_options timed = *o;
+    timed.config.neighbour_quality = false;
     render_setup setup;
-    oit_status status = render_setup_create(s, o, false, &setup, err);
+    oit_status status = render_setup_create(s, &timed, &setup, err);
     oit_algorithm *alg = setup.alg;
     int measured = 0;
     double measure_start_ms = 0.0;

@@ -434,8 +434,8 @@ oit_status render_frame_settings(const session *s, const render_options *o, oit_
     return oit_matrices_validate(frame->modelview, frame->projection, err);
 }
 
-oit_status render_setup_create(session *s, const render_options *o, bool neighbour_quality,
-                               render_setup *setup, oit_error *err)
+oit_status render_setup_create(session *s, const render_options *o, render_setup *setup,
+                               oit_error *err)
 {
     const oit_algorithm_ops *ops = o->algorithm;
     memset(setup, 0, sizeof *setup);
@@ -447,7 +447,6 @@ oit_status render_setup_create(session *s, const render_options *o, bool neighbo
     }
     oit_algorithm_config config = o->config;
     config.shader_dir = s->shader_dir;
-    config.neighbour_quality = neighbour_quality;
     status = render_frame_settings(s, o, &setup->frame, err);
     if (status == OIT_OK)
         status = ops->create(&config, &setup->alg, err);
@@ -465,7 +464,7 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
     if (!per_frame)
         return oit_fail(err, OIT_E_RUNTIME, "out of memory for %d frames of statistics", o->frames);
     render_setup setup;
-    oit_status status = render_setup_create(s, o, o->config.neighbour_quality, &setup, err);
+    oit_status status = render_setup_create(s, o, &setup, err);
     for (int f = 0; status == OIT_OK && f < o->frames; ++f) {
         status = ops->render(setup.alg, setup.scene, &setup.frame, err);
         if (status == OIT_OK)

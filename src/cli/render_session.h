@@ -103,9 +103,8 @@ typedef struct render_setup {
     oit_frame_settings frame;
     const oit_scene *scene;
 } render_setup;
-/* neighbour_quality: whether ib measures its links (a diagnostic pass) */
-oit_status render_setup_create(session *s, const render_options *o, bool neighbour_quality,
-                               render_setup *setup, oit_error *err);
+oit_status render_setup_create(session *s, const render_options *o, render_setup *setup,
+                               oit_error *err);
 /* Renders o->frames frames; figures are medians over frames 2..N. */
 oit_status render_frames(session *s, const render_options *o, render_result *result, oit_error *err);
 
