@@ -69,13 +69,12 @@ float predicted_depth(described_fragment d, pixel_ray r)
 
 // ---- epsilon
 
-// predicted: from's plane depth on the ray through to_pixel_centre
-float epsilon(described_fragment from, float predicted, vec2 to_pixel_centre, uvec4 to)
+// eps_z: |from's plane depth on the ray through to's pixel - to's depth| / radius
+// (best_by_epsilon computes it first: it also bounds the walk)
+float epsilon(described_fragment from, float eps_z, uvec4 to)
 {
     if (ib_triangle_component(to.y) != from.component)
         return 1e30;
-    float actual = ib_eye_depth(to_pixel_centre, uintBitsToFloat(to.x));
-    float eps_z = abs(predicted - actual) / ib_radius_eye;
     vec3 n_to = oit_unpack_normal(to.z);
     float eps_n = 1.0 - dot(from.normal, n_to);
     return eps_z + eps_n;
@@ -121,7 +120,7 @@ uint best_by_epsilon(described_fragment from, pixel_ray to_ray, vec2 to_centre, 
             float eps_z = abs(predicted - actual) / ib_radius_eye;
             if (eps_z > min(best_eps, limit) + margin)
                 break;
-            float e = epsilon(from, predicted, to_centre, to);
+            float e = epsilon(from, eps_z, to);
             if (e < 1e30 && (e < best_eps || (e == best_eps && uint(j) < best))) {
                 best_eps = e;
                 best = uint(j);
@@ -143,8 +142,8 @@ uint search_by_epsilon(uint i, described_fragment described, pixel_ray ray, vec2
         return IB_NONE;
     // mutual check: f must be the candidate's best partner in f's pixel
     float back_eps;
-    uint back = best_by_epsilon(describe(ib_core_fetch(other_start + candidate), other_centre), ray, centre, start,
-                                run_length, 1e30, back_eps);
+    described_fragment partner = describe(ib_core_fetch(other_start + candidate), other_centre);
+    uint back = best_by_epsilon(partner, ray, centre, start, run_length, 1e30, back_eps);
     return back == i ? candidate : IB_NONE;
 }
 
