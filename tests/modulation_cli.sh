@@ -70,8 +70,8 @@ expect_exit 2 "dp: only the adjacent distance" -- "${r[@]}" --algorithm dp --mod
 expect_exit 2 "dp: only the adjacent distance" -- "${r[@]}" --algorithm dp --modulation distance --distance skip:2
 expect_exit 2 "ddp: only the adjacent distance" -- "${r[@]}" --algorithm ddp --modulation distance --distance far
 for algorithm in blend wboit ddp ll; do
-    expect_exit 2 "$algorithm: opacity modulation 1 needs surface neighbours" -- "${r[@]}" --algorithm "$algorithm" --modulation curvature
+    expect_exit 2 "$algorithm: opacity modulation 'curvature' needs surface neighbours" -- "${r[@]}" --algorithm "$algorithm" --modulation curvature
 done
 # dp approximates curvature and edges (neighbours in the same peeled layer), not fields
-expect_exit 2 "dp: opacity modulation 4 \(fields\) needs surface neighbours" -- "${r[@]}" --algorithm dp --modulation fields
+expect_exit 2 "dp: opacity modulation 'fields' needs surface neighbours" -- "${r[@]}" --algorithm dp --modulation fields
 expect_exit 2 "dp: only the adjacent distance" -- "${r[@]}" --algorithm dp --modulation dist-curv --distance far

@@ -1088,6 +1088,18 @@ void MainWindow::load_finished()
                                .arg(model_->triangle_count)
                                .arg(model_->component_count));
     last_error_.clear();
+    // what the import skipped or repaired is said once, in a notice that does not block
+    model_warnings_.clear();
+    for (uint32_t i = 0; i < model_->warning_count; ++i)
+        model_warnings_ << QString::fromUtf8(model_->warnings[i]);
+    if (!model_warnings_.isEmpty()) {
+        if (error_box_)
+            error_box_->close();
+        error_box_ = new QMessageBox(QMessageBox::Information, "Model loaded with warnings",
+                                     model_warnings_.join("\n"), QMessageBox::Ok, this);
+        error_box_->setAttribute(Qt::WA_DeleteOnClose);
+        error_box_->open();
+    }
     emit model_loaded(model_path_);
 }
 

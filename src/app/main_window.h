@@ -54,6 +54,8 @@ public:
     QString model_path() const { return model_path_; }
     bool loading() const;
     QString last_error() const { return last_error_; }
+    // the loaded model's import warnings (oit_model.warnings), shown in a notice
+    QStringList model_warnings() const { return model_warnings_; }
 
     // Start loading a model off the GUI thread (the previous one stays until it succeeds).
     void load_model(const QString &path);
@@ -113,6 +115,7 @@ private:
     ModelPointer model_;
     QString model_path_;
     QString last_error_;
+    QStringList model_warnings_;
     QFutureWatcher<LoadResult *> *loader_ = nullptr;
     QString loading_path_;
     std::string pending_preset_; // applied again once the next model is loaded

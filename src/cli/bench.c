@@ -197,26 +197,41 @@ static oit_status scene_list_read(scene_list *list, const render_options *base, 
     FILE *file = fopen(path, "r");
     if (!file)
         return oit_fail(err, OIT_E_INPUT, "--scene-list %s: %s", path, strerror(errno));
-    char line[8192];
+    /* getline: lines of any length, and their real length, so that a NUL
+     * byte cannot cut a line short without a word */
+    char *line = NULL;
+    size_t line_capacity = 0;
+    ssize_t length;
     int line_number = 0;
     oit_status status = OIT_OK;
-    while (status == OIT_OK && fgets(line, sizeof line, file)) {
+    while (status == OIT_OK && (length = getline(&line, &line_capacity, file)) >= 0) {
         ++line_number;
+        char where[4200];
+        snprintf(where, sizeof where, "%s:%d", path, line_number);
+        if (memchr(line, '\0', (size_t)length)) {
+            status = oit_fail(err, OIT_E_INPUT, "%s: the line holds a NUL byte", where);
+            break;
+        }
         char *hash = strchr(line, '#');
         if (hash)
             *hash = '\0';
         char *tokens[BENCH_MAX_TOKENS];
         int count = 0;
         char *save = NULL;
-        for (char *token = strtok_r(line, " \t\r\n", &save); token && count < BENCH_MAX_TOKENS;
-             token = strtok_r(NULL, " \t\r\n", &save))
+        for (char *token = strtok_r(line, " \t\r\n", &save); token;
+             token = strtok_r(NULL, " \t\r\n", &save)) {
+            if (count == BENCH_MAX_TOKENS) {
+                status = oit_fail(err, OIT_E_INPUT, "%s: more than %d words on the line", where,
+                                  BENCH_MAX_TOKENS);
+                break;
+            }
             tokens[count++] = token;
-        if (count == 0)
+        }
+        if (status != OIT_OK || count == 0)
             continue;
-        char where[4200];
-        snprintf(where, sizeof where, "%s:%d", path, line_number);
         status = scene_add(list, base, count, tokens, where, err);
     }
+    free(line);
     fclose(file);
     if (status == OIT_OK && list->count == 0)
         status = oit_fail(err, OIT_E_INPUT, "--scene-list %s holds no scenes", path);
@@ -517,9 +532,11 @@ static void write_row(bench_output *out, const bench_scene *scene, const session
         fprintf(f, ", \"view\": ");
         json_string(f, scene->view);
         fprintf(f, ", \"algorithm\": \"%s\", \"width\": %d, \"height\": %d", label, width, height);
-        if (s->model_loaded)
+        if (s->model_loaded) {
             fprintf(f, ", \"vertices\": %u, \"triangles\": %u, \"components\": %u", m->vertex_count,
                     m->triangle_count, m->component_count);
+            json_warnings(f, m);
+        }
         if (!r->ok) {
             fprintf(f, ", \"error\": ");
             json_string(f, r->error);

@@ -14,9 +14,11 @@ static int parse_view(const char *text, oit_modulation *modulation, oit_error *e
     if (colon) {
         char *end = NULL;
         parameter = strtol(colon + 1, &end, 10);
-        if (end == colon + 1 || *end != '\0' || parameter < 0 || parameter > 1000000) {
-            *status = oit_fail(err, OIT_E_INPUT, "--view %s: the number after ':' must be a whole number >= 0",
-                               text);
+        if (end == colon + 1 || *end != '\0' || parameter < 0 ||
+            parameter > OIT_VIEW_PARAMETER_MAX) {
+            *status = oit_fail(err, OIT_E_INPUT,
+                               "--view %s: the number after ':' must be a whole number from 0 to %d", text,
+                               OIT_VIEW_PARAMETER_MAX);
             return -1;
         }
     }

@@ -46,6 +46,7 @@ static void print_render_json(FILE *out, const render_options *o, const session 
     }
     fprintf(out, ", \"width\": %d, \"height\": %d, \"frames\": %d", o->width, o->height, o->frames);
     fprintf(out, ", \"triangles\": %u", s->model.triangle_count);
+    json_warnings(out, &s->model);
     /* the camera used, row by row as --modelview/--projection and oit measure take it */
     oit_frame_settings frame;
     oit_error ignored;
@@ -148,6 +149,8 @@ static int command_render(int argc, char **argv)
     }
     if (!o.model_path)
         return usage_error("render needs --model PATH%s", "");
+    if (o.out_path && (status = check_output_path("--out", o.out_path, &err)) != OIT_OK)
+        return report(status, &err);
 
     session s;
     status = session_open(&s, o.model_path, o.backend, o.config.debug, &err);
@@ -276,9 +279,11 @@ static int command_info(int argc, char **argv)
     oit_status status = oit_model_load(model_path, &m, &err);
     if (status != OIT_OK)
         return report(status, &err);
+    print_model_warnings(&m);
     if (json) {
         printf("{\"model\": ");
         json_string(stdout, model_path);
+        json_warnings(stdout, &m);
         printf(", \"vertices\": %u, \"welded_vertices\": %u, \"triangles\": %u, \"components\": %u",
                m.vertex_count, m.welded_count, m.triangle_count, m.component_count);
         printf(", \"bounds_min\": [%g, %g, %g], \"bounds_max\": [%g, %g, %g]", m.bounds_min[0],

@@ -9,6 +9,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "local_options.h"
 #include "modulation_options.h"
@@ -319,6 +321,7 @@ oit_status session_open(session *s, const char *model_path, oit_backend backend,
     oit_status status = oit_model_load(model_path, &s->model, err);
     if (status != OIT_OK)
         return status;
+    print_model_warnings(&s->model);
     s->model_loaded = true;
     oit_scene_cpu(&s->cpu_scene, &s->model);
     return OIT_OK;
@@ -357,6 +360,7 @@ oit_status session_set_model(session *s, const char *model_path, oit_error *err)
     oit_status status = oit_model_load(model_path, &s->model, err);
     if (status != OIT_OK)
         return status;
+    print_model_warnings(&s->model);
     s->model_loaded = true;
     oit_scene_cpu(&s->cpu_scene, &s->model);
     return OIT_OK;
@@ -419,8 +423,12 @@ oit_status render_frame_settings(const session *s, const render_options *o, oit_
     frame->width = o->width;
     frame->height = o->height;
     float default_modelview[16], default_projection[16];
-    oit_default_camera(&s->model, o->width, o->height, o->orbit[0], o->orbit[1], default_modelview,
-                       default_projection);
+    if (!o->has_modelview || !o->has_projection) {
+        oit_status status = oit_default_camera(&s->model, o->width, o->height, o->orbit[0], o->orbit[1],
+                                               default_modelview, default_projection, err);
+        if (status != OIT_OK)
+            return status;
+    }
     memcpy(frame->modelview, o->has_modelview ? o->modelview : default_modelview, sizeof frame->modelview);
     memcpy(frame->projection, o->has_projection ? o->projection : default_projection,
            sizeof frame->projection);
@@ -480,20 +488,104 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
     return status;
 }
 
+/* ------------------------------------------------------------- output */
+
+oit_status check_output_path(const char *flag, const char *path, oit_error *err)
+{
+    if (!*path)
+        return oit_fail(err, OIT_E_INPUT, "%s: empty file name", flag);
+    char directory[4096];
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(directory, sizeof directory, ".");
+    else if (slash == path)
+        snprintf(directory, sizeof directory, "/");
+    else
+        snprintf(directory, sizeof directory, "%.*s", (int)(slash - path), path);
+    struct stat info;
+    if (stat(directory, &info) != 0)
+        return oit_fail(err, OIT_E_INPUT, "%s %s: the directory %s does not exist", flag, path,
+                        directory);
+    if (!S_ISDIR(info.st_mode))
+        return oit_fail(err, OIT_E_INPUT, "%s %s: %s is not a directory", flag, path, directory);
+    if (access(directory, W_OK) != 0)
+        return oit_fail(err, OIT_E_INPUT, "%s %s: cannot write in %s: %s", flag, path, directory,
+                        strerror(errno));
+    if (stat(path, &info) == 0) {
+        if (S_ISDIR(info.st_mode))
+            return oit_fail(err, OIT_E_INPUT, "%s %s: is a directory", flag, path);
+        if (access(path, W_OK) != 0)
+            return oit_fail(err, OIT_E_INPUT, "%s %s: cannot write: %s", flag, path, strerror(errno));
+    }
+    return OIT_OK;
+}
+
 /* --------------------------------------------------------------- JSON */
+
+/* Length of the well-formed UTF-8 sequence at c (RFC 3629: no overlong
+ * forms, no surrogates, nothing above U+10FFFF), or 0 if it is not one. */
+static int utf8_sequence_length(const unsigned char *c)
+{
+    int length;
+    unsigned lowest;
+    if (c[0] < 0x80)
+        return 1;
+    else if (c[0] >= 0xc2 && c[0] <= 0xdf)
+        length = 2, lowest = 0x80;
+    else if (c[0] >= 0xe0 && c[0] <= 0xef)
+        length = 3, lowest = 0x800;
+    else if (c[0] >= 0xf0 && c[0] <= 0xf4)
+        length = 4, lowest = 0x10000;
+    else
+        return 0;
+    unsigned code = c[0] & (0x3f >> (length - 1));
+    for (int k = 1; k < length; ++k) {
+        if ((c[k] & 0xc0) != 0x80) /* also stops at the terminating NUL */
+            return 0;
+        code = (code << 6) | (c[k] & 0x3f);
+    }
+    if (code < lowest || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff))
+        return 0;
+    return length;
+}
 
 void json_string(FILE *out, const char *text)
 {
+    /* JSON text is UTF-8: paths and names are bytes, so a byte that is not
+     * part of a well-formed sequence becomes U+FFFD (the replacement
+     * character), and the output always parses. */
     fputc('"', out);
-    for (const unsigned char *c = (const unsigned char *)text; *c; ++c) {
-        if (*c == '"' || *c == '\\')
-            fprintf(out, "\\%c", *c);
-        else if (*c < 0x20)
-            fprintf(out, "\\u%04x", *c);
-        else
-            fputc(*c, out);
+    for (const unsigned char *c = (const unsigned char *)text; *c;) {
+        int length = utf8_sequence_length(c);
+        if (length == 0) {
+            fputs("\\ufffd", out);
+            ++c;
+        } else if (*c == '"' || *c == '\\') {
+            fprintf(out, "\\%c", *c++);
+        } else if (*c < 0x20 || *c == 0x7f) {
+            fprintf(out, "\\u%04x", *c++);
+        } else {
+            fwrite(c, 1, (size_t)length, out);
+            c += length;
+        }
     }
     fputc('"', out);
+}
+
+void json_warnings(FILE *out, const oit_model *model)
+{
+    fputs(", \"warnings\": [", out);
+    for (uint32_t i = 0; i < model->warning_count; ++i) {
+        fputs(i ? ", " : "", out);
+        json_string(out, model->warnings[i]);
+    }
+    fputc(']', out);
+}
+
+void print_model_warnings(const oit_model *model)
+{
+    for (uint32_t i = 0; i < model->warning_count; ++i)
+        fprintf(stderr, "oit: warning: %s\n", model->warnings[i]);
 }
 
 double stages_total(const oit_stats *stats)

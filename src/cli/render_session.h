@@ -110,7 +110,15 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
 
 /* --------------------------------------------------------------- output */
 
+/* Checks, before any work, that the file flag names can be written: its
+ * directory exists and is writable, and it is not a directory. */
+oit_status check_output_path(const char *flag, const char *path, oit_error *err);
+/* A JSON string of text; bytes that are not well-formed UTF-8 become U+FFFD. */
 void json_string(FILE *out, const char *text);
+/* ', "warnings": [...]': the model's import warnings (oit_model.warnings). */
+void json_warnings(FILE *out, const oit_model *model);
+/* Each import warning as "oit: warning: ..." on stderr. */
+void print_model_warnings(const oit_model *model);
 double stages_total(const oit_stats *stats);
 
 #endif

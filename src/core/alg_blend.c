@@ -92,13 +92,13 @@ static oit_status blend_render(oit_algorithm *alg, const oit_scene *scene,
                         "blending in submission order never has two fragments of a pixel at once");
     if (modulation->mode != OIT_MODULATE_NONE)
         return oit_fail(err, OIT_E_INPUT,
-                        "blend: opacity modulation %d needs surface neighbours (ib only): blending "
+                        "blend: opacity modulation '%s' needs surface neighbours (ib only): blending "
                         "in submission order never sees the adjacent pixels' fragments of the "
                         "same surface",
-                        (int)modulation->mode);
+                        oit_modulation_mode_name(modulation->mode));
     if (modulation->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "blend: buffer views are ll's and ib's (view %d)",
-                        (int)modulation->view);
+        return oit_fail(err, OIT_E_INPUT, "blend: buffer views are ll's and ib's (view '%s')",
+                        oit_view_name(modulation->view));
     if (frame->width != alg->output.width || frame->height != alg->output.height) {
         oit_status status = blend_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)

@@ -492,14 +492,14 @@ static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,
                         "further along the ray than the ones peeled (use ll, ib or reference)");
     if (modulation->mode != OIT_MODULATE_NONE && !distance)
         return oit_fail(err, OIT_E_INPUT,
-                        "ddp: opacity modulation %d needs surface neighbours (ib only): dual depth "
+                        "ddp: opacity modulation '%s' needs surface neighbours (ib only): dual depth "
                         "peeling blends each front layer in the pass that peels it, before the "
                         "adjacent pixels' fragments of that layer are known (dp approximates "
                         "curvature and dist-curv from neighbours in the same peeled layer)",
-                        (int)modulation->mode);
+                        oit_modulation_mode_name(modulation->mode));
     if (modulation->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "ddp: buffer views are ll's and ib's (view %d)",
-                        (int)modulation->view);
+        return oit_fail(err, OIT_E_INPUT, "ddp: buffer views are ll's and ib's (view '%s')",
+                        oit_view_name(modulation->view));
     if (frame->width != s->width || frame->height != s->height ||
         (distance && !s->distance_targets)) {
         s->distance_targets = s->distance_targets || distance;

@@ -509,7 +509,7 @@ static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
     const bool neighbours = dp_needs_neighbours(frame);
     if (m->mode == OIT_MODULATE_FIELDS)
         return oit_fail(err, OIT_E_INPUT,
-                        "dp: opacity modulation 4 (fields) needs surface neighbours (ib only): "
+                        "dp: opacity modulation 'fields' needs surface neighbours (ib only): "
                         "the fields diffuse over the whole surface, across layers, and a peeled "
                         "layer is gone once blended; dp does the local ones, the adjacent "
                         "distance, and curvature and edges from neighbours in the same layer");
@@ -518,8 +518,8 @@ static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
                         "dp: only the adjacent distance: skip and far-end distances need layers "
                         "further behind than the last one peeled (use ll, ib or reference)");
     if (m->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "dp: buffer views are ll's and ib's (view %d)",
-                        (int)m->view);
+        return oit_fail(err, OIT_E_INPUT, "dp: buffer views are ll's and ib's (view '%s')",
+                        oit_view_name(m->view));
     if (frame->width != s->width || frame->height != s->height ||
         (distance && !s->distance_targets) || (neighbours && !s->normal_targets)) {
         s->distance_targets = s->distance_targets || distance;

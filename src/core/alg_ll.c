@@ -311,15 +311,15 @@ static oit_status ll_check_view(const oit_modulation *modulation, oit_error *err
     if (modulation->view != OIT_VIEW_COLOUR && modulation->view != OIT_VIEW_HEATMAP &&
         modulation->view != OIT_VIEW_PEEL_LIMIT && modulation->view != OIT_VIEW_LAYER)
         return oit_fail(err, OIT_E_INPUT,
-                        "ll: view %d is not supported (colour, heatmap, peel limit and layer only)",
-                        (int)modulation->view);
+                        "ll: view '%s' is not supported (colour, heatmap, peel limit and layer only)",
+                        oit_view_name(modulation->view));
     if (modulation->mode != OIT_MODULATE_NONE && modulation->mode != OIT_MODULATE_DISTANCE)
         return oit_fail(err, OIT_E_INPUT,
-                        "ll: opacity modulation %d needs surface neighbours (ib only): a pixel's "
+                        "ll: opacity modulation '%s' needs surface neighbours (ib only): a pixel's "
                         "list has no link to the adjacent pixels' lists, which are sorted only "
                         "inside their own compose invocation; ll does the local ones and the "
                         "distance",
-                        (int)modulation->mode);
+                        oit_modulation_mode_name(modulation->mode));
     return OIT_OK;
 }
 

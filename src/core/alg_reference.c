@@ -808,13 +808,13 @@ static oit_status check_view(const oit_modulation *modulation, oit_error *err)
     if (modulation->view != OIT_VIEW_COLOUR && modulation->view != OIT_VIEW_PEEL_LIMIT &&
         modulation->view != OIT_VIEW_LAYER)
         return oit_fail(err, OIT_E_INPUT,
-                        "reference: view %d is not supported (only colour, peel limit and layer)",
-                        (int)modulation->view);
+                        "reference: view '%s' is not supported (only colour, peel limit and layer)",
+                        oit_view_name(modulation->view));
     if (modulation->mode != OIT_MODULATE_NONE && modulation->mode != OIT_MODULATE_DISTANCE)
         return oit_fail(err, OIT_E_INPUT,
-                        "reference: opacity modulation %d is not supported (only distance; the "
+                        "reference: opacity modulation '%s' is not supported (only distance; the "
                         "non-local ones are ib's)",
-                        (int)modulation->mode);
+                        oit_modulation_mode_name(modulation->mode));
     if ((int)modulation->distance < OIT_DISTANCE_ADJACENT ||
         (int)modulation->distance > OIT_DISTANCE_FAR_END)
         return oit_fail(err, OIT_E_INPUT, "reference: unknown distance mode %d",

@@ -128,12 +128,12 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
                         "weighted blending accumulates fragments with no order");
     if (modulation->mode != OIT_MODULATE_NONE)
         return oit_fail(err, OIT_E_INPUT,
-                        "wboit: opacity modulation %d needs surface neighbours (ib only): weighted "
+                        "wboit: opacity modulation '%s' needs surface neighbours (ib only): weighted "
                         "blending keeps no fragment, so no pixel sees its neighbours' fragments",
-                        (int)modulation->mode);
+                        oit_modulation_mode_name(modulation->mode));
     if (modulation->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "wboit: buffer views are ll's and ib's (view %d)",
-                        (int)modulation->view);
+        return oit_fail(err, OIT_E_INPUT, "wboit: buffer views are ll's and ib's (view '%s')",
+                        oit_view_name(modulation->view));
     if (frame->width != s->width || frame->height != s->height) {
         oit_status status = wboit_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)

@@ -46,3 +46,16 @@ void oit_algorithm_config_defaults(oit_algorithm_config *config)
     config->debug = false;
     config->neighbour_quality = true;
 }
+
+const char *oit_view_name(oit_view view)
+{
+    static const char *const names[] = {"colour",     "heatmap",   "peel-limit", "layer",
+                                        "neighbours", "curvature", "distance",   "fields"};
+    return (int)view >= 0 && (size_t)view < sizeof names / sizeof names[0] ? names[view] : "unknown";
+}
+
+const char *oit_modulation_mode_name(oit_modulation_mode mode)
+{
+    static const char *const names[] = {"none", "curvature", "distance", "dist-curv", "fields", "edges"};
+    return (int)mode >= 0 && (size_t)mode < sizeof names / sizeof names[0] ? names[mode] : "unknown";
+}

@@ -34,6 +34,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -293,6 +294,57 @@ static oit_status common_setup(oit_backend backend, bool debug, oit_error *err)
     return OIT_OK;
 }
 
+/* Mesa's loaders write their warnings straight to stderr ("libEGL warning:
+ * egl: failed to create dri2 screen"), ahead of the one-line error the
+ * caller prints. While a context is made, stderr goes to a temporary file;
+ * on failure its first line joins the error message, on success it is
+ * dropped. A debug context keeps stderr as it is, for developers. */
+typedef struct stderr_capture {
+    FILE *file;
+    int saved_fd;
+} stderr_capture;
+
+static bool stderr_capture_begin(stderr_capture *capture)
+{
+    fflush(stderr);
+    capture->file = tmpfile();
+    capture->saved_fd = capture->file ? dup(STDERR_FILENO) : -1;
+    if (capture->saved_fd < 0 || dup2(fileno(capture->file), STDERR_FILENO) < 0) {
+        if (capture->saved_fd >= 0)
+            close(capture->saved_fd);
+        if (capture->file)
+            fclose(capture->file);
+        capture->file = NULL;
+        return false;
+    }
+    return true;
+}
+
+/* Restores stderr; the first non-empty captured line goes to first_line. */
+static void stderr_capture_end(stderr_capture *capture, char *first_line, size_t size)
+{
+    first_line[0] = '\0';
+    if (!capture->file)
+        return;
+    fflush(stderr);
+    dup2(capture->saved_fd, STDERR_FILENO);
+    close(capture->saved_fd);
+    rewind(capture->file);
+    char line[OIT_ERROR_MESSAGE_SIZE];
+    while (fgets(line, sizeof line, capture->file)) {
+        line[strcspn(line, "\r\n")] = '\0';
+        if (line[0]) {
+            snprintf(first_line, size, "%s", line);
+            break;
+        }
+    }
+    fclose(capture->file);
+    capture->file = NULL;
+}
+
+static oit_status context_create(oit_gl_context *context, oit_backend backend, bool debug,
+                                 oit_error *err);
+
 oit_status oit_gl_context_create(oit_backend backend, bool debug, oit_gl_context **out,
                                  oit_error *err)
 {
@@ -306,6 +358,28 @@ oit_status oit_gl_context_create(oit_backend backend, bool debug, oit_gl_context
     context->egl_display = EGL_NO_DISPLAY;
     context->egl_context = EGL_NO_CONTEXT;
 
+    stderr_capture capture = {0};
+    if (!debug)
+        stderr_capture_begin(&capture);
+    oit_status status = context_create(context, backend, debug, err);
+    char driver_said[OIT_ERROR_MESSAGE_SIZE];
+    stderr_capture_end(&capture, driver_said, sizeof driver_said);
+    if (status != OIT_OK) {
+        if (driver_said[0] && err) {
+            char message[OIT_ERROR_MESSAGE_SIZE];
+            snprintf(message, sizeof message, "%s", err->message);
+            oit_fail(err, status, "%s (the driver said: %s)", message, driver_said);
+        }
+        oit_gl_context_destroy(context);
+        return status;
+    }
+    *out = context;
+    return OIT_OK;
+}
+
+static oit_status context_create(oit_gl_context *context, oit_backend backend, bool debug,
+                                 oit_error *err)
+{
     oit_status status;
     if (backend == OIT_BACKEND_EGL) {
         status = egl_create(context, debug, err);
@@ -318,12 +392,7 @@ oit_status oit_gl_context_create(oit_backend backend, bool debug, oit_gl_context
     }
     if (status == OIT_OK)
         status = common_setup(backend, debug, err);
-    if (status != OIT_OK) {
-        oit_gl_context_destroy(context);
-        return status;
-    }
-    *out = context;
-    return OIT_OK;
+    return status;
 }
 
 void oit_gl_context_destroy(oit_gl_context *context)

@@ -14,12 +14,6 @@
 /* Larger images are surely a mistake (and 16384^2 * 4 bytes = 1 GiB). */
 #define OIT_IMAGE_MAX_SIDE 16384
 
-static const char *path_basename(const char *path)
-{
-    const char *slash = strrchr(path, '/');
-    return slash && slash[1] ? slash + 1 : path;
-}
-
 oit_status oit_image_alloc(oit_image *image, int width, int height, oit_error *err)
 {
     image->width = image->height = 0;
@@ -66,7 +60,7 @@ static void on_png_warning(png_structp png, png_const_charp message)
 
 oit_status oit_png_write(const char *path, const oit_image *image, oit_error *err)
 {
-    const char *volatile name = path_basename(path); /* volatile: used after longjmp */
+    const char *volatile name = path; /* volatile: used after longjmp */
     if (!image || !image->rgba || image->width <= 0 || image->height <= 0)
         return oit_fail(err, OIT_E_INPUT, "%s: no image to write", name);
     FILE *file = fopen(path, "wb");
@@ -118,7 +112,7 @@ oit_status oit_png_write(const char *path, const oit_image *image, oit_error *er
 
 oit_status oit_png_read(const char *path, oit_image *image, oit_error *err)
 {
-    const char *volatile name = path_basename(path); /* volatile: used after longjmp */
+    const char *volatile name = path; /* volatile: used after longjmp */
     image->width = image->height = 0;
     image->rgba = NULL;
     struct stat status;

@@ -64,13 +64,9 @@ bool oit_mat4_normal_matrix(const float m[16], float out[9])
     return true;
 }
 
-/* Determinant of a column-major 4x4 by cofactor expansion (double). */
-static double det4(const float m[16])
+/* Determinant of a[4][4] (row-major, double) by cofactor expansion. */
+static double det4(double a[4][4])
 {
-    double a[4][4];
-    for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 4; ++col)
-            a[row][col] = m[col * 4 + row];
     double det = 0.0;
     for (int col = 0; col < 4; ++col) {
         double minor[3][3];
@@ -81,6 +77,47 @@ static double det4(const float m[16])
         det += ((col % 2) ? -1.0 : 1.0) * a[0][col] * det3(minor);
     }
     return det;
+}
+
+double oit_mat4_regularity(const float m[16])
+{
+    /* Units make a plain determinant useless as a test: a projection's
+     * translation column carries lengths (2fn/(n-f)) while its other columns
+     * are ratios, so scaling the scene by s scales one column by s and the
+     * determinant with it. Equilibrating first (each column, then each row,
+     * scaled to a largest element of 1, twice over) removes every such
+     * scaling; then |det| / (product of the row lengths) (Hadamard's ratio) is
+     * 1 for orthogonal rows and 0 for a singular matrix, whatever the units. */
+    double a[4][4];
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            a[row][col] = m[col * 4 + row];
+    for (int round = 0; round < 2; ++round) {
+        for (int col = 0; col < 4; ++col) {
+            double largest = 0.0;
+            for (int row = 0; row < 4; ++row)
+                largest = fmax(largest, fabs(a[row][col]));
+            if (largest == 0.0 || !isfinite(largest))
+                return 0.0;
+            for (int row = 0; row < 4; ++row)
+                a[row][col] /= largest;
+        }
+        for (int row = 0; row < 4; ++row) {
+            double largest = 0.0;
+            for (int col = 0; col < 4; ++col)
+                largest = fmax(largest, fabs(a[row][col]));
+            if (largest == 0.0)
+                return 0.0;
+            for (int col = 0; col < 4; ++col)
+                a[row][col] /= largest;
+        }
+    }
+    double lengths = 1.0;
+    for (int row = 0; row < 4; ++row)
+        lengths *= sqrt(a[row][0] * a[row][0] + a[row][1] * a[row][1] + a[row][2] * a[row][2] +
+                        a[row][3] * a[row][3]);
+    double ratio = fabs(det4(a)) / lengths;
+    return isfinite(ratio) ? fmin(ratio, 1.0) : 0.0;
 }
 
 oit_status oit_matrices_validate(const float modelview[16], const float projection[16],
@@ -97,18 +134,28 @@ oit_status oit_matrices_validate(const float modelview[16], const float projecti
     float normal_matrix[9];
     if (!oit_mat4_normal_matrix(modelview, normal_matrix))
         return oit_fail(err, OIT_E_INPUT, "modelview is singular (its 3x3 part has no inverse)");
-    double scale = 0.0;
-    for (int i = 0; i < 16; ++i)
-        scale = fmax(scale, fabs(projection[i]));
-    double det = det4(projection);
-    if (scale == 0.0 || !isfinite(det) || fabs(det) <= 1e-12 * pow(scale, 4))
-        return oit_fail(err, OIT_E_INPUT, "projection is singular (determinant %g)", det);
+    double regularity = oit_mat4_regularity(projection);
+    if (regularity < OIT_MATRIX_REGULARITY_MIN)
+        return oit_fail(err, OIT_E_INPUT,
+                        "projection is singular (regularity %.3g after scaling rows and columns, "
+                        "below %g: it maps a direction to nothing)",
+                        regularity, OIT_MATRIX_REGULARITY_MIN);
     return OIT_OK;
 }
 
-void oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
-                        float elevation_degrees, float modelview[16], float projection[16])
+oit_status oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
+                              float elevation_degrees, float modelview[16], float projection[16],
+                              oit_error *err)
 {
+    /* Eye space keeps the model's units (focus regions and distances along the
+     * ray are lengths the user gives in them), so the model's size must leave
+     * room for squared eye-space lengths in single precision. */
+    if (model->radius > 0.0f &&
+        (model->radius < OIT_MODEL_RADIUS_MIN || model->radius > OIT_MODEL_RADIUS_MAX))
+        return oit_fail(err, OIT_E_INPUT,
+                        "the model's bounding radius %g is outside the %g to %g units the default "
+                        "camera frames in single precision; give --modelview and --projection",
+                        model->radius, OIT_MODEL_RADIUS_MIN, OIT_MODEL_RADIUS_MAX);
     const double degrees = 3.14159265358979323846 / 180.0;
     const double fov_y = 40.0 * degrees;
     double aspect = (width > 0 && height > 0) ? (double)width / height : 1.0;
@@ -143,6 +190,7 @@ void oit_default_camera(const oit_model *model, int width, int height, float azi
     projection[10] = (float)((far_plane + near_plane) / (near_plane - far_plane));
     projection[11] = -1.0f;
     projection[14] = (float)(2.0 * far_plane * near_plane / (near_plane - far_plane));
+    return OIT_OK;
 }
 
 void oit_shade(const oit_frame_settings *frame, const float colour[3], const float eye_normal[3],

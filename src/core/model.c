@@ -1,12 +1,17 @@
 /* model.c: model import through Assimp, validation, normals, welding, bounds. */
+#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
+#include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 #include <assimp/config.h>
 #include <assimp/material.h>
@@ -57,7 +62,143 @@ void oit_model_free(oit_model *model)
     free(model->indices);
     free(model->components);
     free(model->triangle_reach);
+    free(model->warnings);
     memset(model, 0, sizeof *model);
+}
+
+/* ------------------------------------------------------------- warnings */
+
+/* Warnings gathered during one import: Assimp's own (through its log) and
+ * ours. Lines that differ only in their numbers ("vertex 12", "vertex 13")
+ * are one warning with a count. */
+typedef struct import_warnings {
+    char text[OIT_MODEL_WARNING_LIMIT][OIT_ERROR_MESSAGE_SIZE];
+    char shape[OIT_MODEL_WARNING_LIMIT][OIT_ERROR_MESSAGE_SIZE];
+    unsigned repeats[OIT_MODEL_WARNING_LIMIT];
+    unsigned count;
+    unsigned left_out; /* distinct warnings beyond the limit */
+} import_warnings;
+
+static void text_shape(const char *text, char *shape, size_t size)
+{
+    size_t n = 0;
+    for (const char *c = text; *c && n + 1 < size; ++c) {
+        if (isdigit((unsigned char)*c)) {
+            while (isdigit((unsigned char)c[1]) || c[1] == '.')
+                ++c;
+            shape[n++] = '#';
+        } else {
+            shape[n++] = *c;
+        }
+    }
+    shape[n] = '\0';
+}
+
+static void add_warning(import_warnings *w, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+static void add_warning(import_warnings *w, const char *fmt, ...)
+{
+    char text[OIT_ERROR_MESSAGE_SIZE], shape[OIT_ERROR_MESSAGE_SIZE];
+    va_list args;
+    va_start(args, fmt);
+    vsnprintf(text, sizeof text, fmt, args);
+    va_end(args);
+    for (char *c = text; *c; ++c) /* one line each */
+        if ((unsigned char)*c < 0x20)
+            *c = ' ';
+    text_shape(text, shape, sizeof shape);
+    for (unsigned i = 0; i < w->count; ++i)
+        if (strcmp(w->shape[i], shape) == 0) {
+            ++w->repeats[i];
+            return;
+        }
+    if (w->count == OIT_MODEL_WARNING_LIMIT) {
+        ++w->left_out;
+        return;
+    }
+    memcpy(w->text[w->count], text, sizeof text);
+    memcpy(w->shape[w->count], shape, sizeof shape);
+    w->repeats[w->count++] = 1;
+}
+
+/* Assimp's log lines are "Warn,  T0: text" and "Error, T0: text". Errors
+ * that end the import come back as the import's error instead; the ones
+ * logged on a successful import are repairs (e.g. OFF indices clamped). What
+ * this renderer never reads (bones, animations, textures) is left out. */
+static void assimp_log(const char *message, char *user)
+{
+    import_warnings *w = (import_warnings *)user;
+    bool warn = strncmp(message, "Warn", 4) == 0, error = strncmp(message, "Error", 5) == 0;
+    if (!warn && !error)
+        return;
+    const char *text = strstr(message, ": ");
+    text = text ? text + 2 : message;
+    static const char *const unread[] = {"bone", "Bone", "nimation", "exture",
+                                         "No object detected to attach"};
+    for (size_t i = 0; i < sizeof unread / sizeof unread[0]; ++i)
+        if (strstr(text, unread[i]))
+            return;
+    char line[OIT_ERROR_MESSAGE_SIZE];
+    snprintf(line, sizeof line, "%s", text);
+    size_t length = strlen(line);
+    while (length > 0 && (line[length - 1] == '\n' || line[length - 1] == '\r' || line[length - 1] == ' '))
+        line[--length] = '\0';
+    /* Assimp's OFF reader replaces an index past the end by the last vertex. */
+    const char *repair = strstr(line, "OFF: Vertex index is out of range")
+                             ? " (it drew the face with the last vertex instead)"
+                             : "";
+    add_warning(w, "the importer reports: %s%s", line, repair);
+}
+
+/* Line-based formats have no end marker, so a file cut short loads as a
+ * smaller model. The one trace left is a last line without its line end. */
+static void check_line_end(const char *path, import_warnings *w)
+{
+    const char *dot = strrchr(path, '.');
+    if (!dot || (strcasecmp(dot, ".obj") != 0 && strcasecmp(dot, ".off") != 0))
+        return;
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return;
+    char tail[81] = {0};
+    size_t got = 0;
+    if (fseek(file, -80, SEEK_END) != 0)
+        rewind(file);
+    got = fread(tail, 1, 80, file);
+    fclose(file);
+    tail[got] = '\0';
+    if (got == 0 || tail[got - 1] == '\n' || tail[got - 1] == '\r')
+        return;
+    const char *last = strrchr(tail, '\n');
+    last = last ? last + 1 : tail;
+    add_warning(w, "the last line ('%.60s') has no line end: if the file was cut short, "
+                   "what followed is missing", last);
+}
+
+static oit_status keep_warnings(oit_model *model, const char *name, const import_warnings *w,
+                                oit_error *err)
+{
+    model->warning_count = 0;
+    if (w->count == 0)
+        return OIT_OK;
+    model->warnings = calloc(w->count, sizeof *model->warnings);
+    if (!model->warnings)
+        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
+    for (unsigned i = 0; i < w->count; ++i) {
+        char repeats[32] = "", left_out[64] = "";
+        if (w->repeats[i] > 1)
+            snprintf(repeats, sizeof repeats, " (%u times)", w->repeats[i]);
+        if (i + 1 == w->count && w->left_out)
+            snprintf(left_out, sizeof left_out, "; %u other warnings left out", w->left_out);
+        snprintf(model->warnings[i], sizeof model->warnings[i], "%s: %s%s%s", name, w->text[i],
+                 repeats, left_out);
+    }
+    model->warning_count = w->count;
+    return OIT_OK;
 }
 
 /* ------------------------------------------------------------ finishing */
@@ -140,11 +281,11 @@ static oit_status repair_normals(oit_model *model, oit_error *err)
     return status;
 }
 
-static uint64_t hash_position(const uint32_t bits[3])
+static uint64_t hash_words(const uint32_t *bits, int count)
 {
-    /* 64-bit mix (splitmix-style) of the three coordinate bit patterns. */
+    /* 64-bit mix (splitmix-style) of the bit patterns. */
     uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < count; ++k) {
         h ^= bits[k];
         h *= 0xbf58476d1ce4e5b9ull;
         h ^= h >> 31;
@@ -179,7 +320,7 @@ static oit_status weld_vertices(oit_model *model, oit_error *err)
     for (uint32_t v = 0; v < n; ++v) {
         uint32_t bits[3];
         position_bits(model->positions + (size_t)v * 3, bits);
-        uint64_t slot = hash_position(bits) & mask;
+        uint64_t slot = hash_words(bits, 3) & mask;
         for (;;) {
             if (slots[slot] == 0) {
                 slots[slot] = v + 1;
@@ -198,6 +339,82 @@ static oit_status weld_vertices(oit_model *model, oit_error *err)
     }
     model->welded_count = next_id;
     free(slots);
+    return OIT_OK;
+}
+
+/* A vertex's identity for joining: position, normal and first texture
+ * coordinate bits (-0.0 as 0.0) and the component that owns it. Texture
+ * coordinates are not drawn, but they keep the file's own indexing at seams,
+ * which the thesis's index-based neighbour search is about. */
+#define VERTEX_KEY_WORDS 10
+static void vertex_key(const oit_model *model, const float *texture_coordinates,
+                       const uint32_t *vertex_owner, uint32_t v, uint32_t key[VERTEX_KEY_WORDS])
+{
+    position_bits(model->positions + (size_t)v * 3, key);
+    position_bits(model->normals + (size_t)v * 3, key + 3);
+    position_bits(texture_coordinates + (size_t)v * 3, key + 6);
+    key[9] = vertex_owner[v];
+}
+
+/* Vertices equal bit for bit in position and normal within one component
+ * become one, and the triangles are re-indexed. This replaces Assimp's
+ * JoinIdenticalVertices, which joins within a tolerance relative to each
+ * mesh's size but compares normals absolutely: it moved vertices, and joined
+ * different ones in a model scaled by 1e-6 than in the same model at scale 1
+ * (4366 against 4406 vertices of the gearbox), so the image changed with the
+ * units. The survivors keep their order of first appearance (texture
+ * coordinates are compacted alongside, as the keys of the survivors). */
+static oit_status join_identical_vertices(oit_model *model, float *texture_coordinates,
+                                          const uint32_t *vertex_owner, oit_error *err)
+{
+    uint32_t n = model->vertex_count;
+    uint64_t capacity = 16;
+    while (capacity < (uint64_t)n * 2)
+        capacity *= 2;
+    uint32_t *slots = calloc_array(capacity, sizeof *slots); /* new index + 1, 0 = empty */
+    uint32_t *remap = alloc_array(n, sizeof *remap);
+    uint32_t *owner_of_new = alloc_array(n, sizeof *owner_of_new);
+    if (!slots || !remap || !owner_of_new) {
+        free(slots);
+        free(remap);
+        free(owner_of_new);
+        return oit_fail(err, OIT_E_RUNTIME, "out of memory joining %u vertices", n);
+    }
+    uint64_t mask = capacity - 1;
+    uint32_t kept = 0;
+    for (uint32_t v = 0; v < n; ++v) {
+        uint32_t key[VERTEX_KEY_WORDS];
+        vertex_key(model, texture_coordinates, vertex_owner, v, key);
+        uint64_t slot = hash_words(key, VERTEX_KEY_WORDS) & mask;
+        for (;;) {
+            if (slots[slot] == 0) {
+                /* compacting in place is safe: kept <= v */
+                memmove(model->positions + (size_t)kept * 3, model->positions + (size_t)v * 3,
+                        3 * sizeof *model->positions);
+                memmove(model->normals + (size_t)kept * 3, model->normals + (size_t)v * 3,
+                        3 * sizeof *model->normals);
+                memmove(texture_coordinates + (size_t)kept * 3, texture_coordinates + (size_t)v * 3,
+                        3 * sizeof *texture_coordinates);
+                owner_of_new[kept] = vertex_owner[v];
+                slots[slot] = ++kept;
+                remap[v] = kept - 1;
+                break;
+            }
+            uint32_t other_key[VERTEX_KEY_WORDS];
+            vertex_key(model, texture_coordinates, owner_of_new, slots[slot] - 1, other_key);
+            if (memcmp(key, other_key, sizeof key) == 0) {
+                remap[v] = slots[slot] - 1;
+                break;
+            }
+            slot = (slot + 1) & mask;
+        }
+    }
+    for (uint64_t i = 0; i < (uint64_t)model->triangle_count * 3; ++i)
+        model->indices[i] = remap[model->indices[i]];
+    model->vertex_count = kept;
+    free(slots);
+    free(remap);
+    free(owner_of_new);
     return OIT_OK;
 }
 
@@ -406,6 +623,8 @@ typedef struct load_state {
     uint64_t vertex_count, triangle_count, component_count; /* counted, then filled */
     bool any_normals; /* some mesh has normals: keep them, compute only the missing */
     uint32_t *mesh_uses; /* per Assimp mesh: how many nodes instance it */
+    uint32_t *vertex_owner; /* per vertex: the component that filled it */
+    float *texture_coordinates; /* per vertex: the first UV(W) channel, or 0 */
     struct name_set *names;
     bool bad_index; /* first face index outside its mesh, for the message */
     uint32_t bad_mesh_face, bad_mesh_index;
@@ -427,12 +646,65 @@ static uint32_t mesh_triangle_count(const struct aiMesh *mesh)
     return count;
 }
 
-/* Pass 1: count what the node tree instantiates (a mesh used by two nodes
- * becomes two components). */
-static void count_node(load_state *st, const struct aiNode *node, unsigned depth)
+/* The node tree is walked depth first, children in order, with a stack of
+ * its own: files nest nodes as deep as they like (a glTF chain of 5,000
+ * nodes is valid), and a recursion would either cut them off or overflow
+ * the C stack. Each entry carries its node's global transform. */
+typedef struct node_entry {
+    const struct aiNode *node;
+    struct aiMatrix4x4 global;
+} node_entry;
+
+typedef struct node_walk {
+    node_entry *entries;
+    size_t count, capacity;
+    bool out_of_memory;
+} node_walk;
+
+static void walk_push(node_walk *walk, const struct aiNode *node, const struct aiMatrix4x4 *global)
 {
-    if (!node || depth > 1000)
+    if (!node || walk->out_of_memory)
         return;
+    if (walk->count == walk->capacity) {
+        size_t capacity = walk->capacity ? walk->capacity * 2 : 64;
+        node_entry *grown = realloc(walk->entries, capacity * sizeof *grown);
+        if (!grown) {
+            walk->out_of_memory = true;
+            return;
+        }
+        walk->entries = grown;
+        walk->capacity = capacity;
+    }
+    walk->entries[walk->count].node = node;
+    walk->entries[walk->count].global = *global;
+    ++walk->count;
+}
+
+static void multiply(const struct aiMatrix4x4 *a, const struct aiMatrix4x4 *b,
+                     struct aiMatrix4x4 *out);
+
+/* Pops the next node in depth-first order and pushes its children; false
+ * when the walk is over (or out of memory: walk->out_of_memory). */
+static bool walk_next(node_walk *walk, node_entry *out)
+{
+    if (walk->count == 0 || walk->out_of_memory)
+        return false;
+    *out = walk->entries[--walk->count];
+    for (unsigned i = out->node->mNumChildren; i-- > 0;) {
+        const struct aiNode *child = out->node->mChildren[i];
+        if (!child)
+            continue;
+        struct aiMatrix4x4 global;
+        multiply(&out->global, &child->mTransformation, &global);
+        walk_push(walk, child, &global);
+    }
+    return true;
+}
+
+/* Pass 1: count what one node instantiates (a mesh used by two nodes
+ * becomes two components). */
+static void count_node(load_state *st, const struct aiNode *node)
+{
     for (unsigned i = 0; i < node->mNumMeshes; ++i) {
         unsigned m = node->mMeshes[i];
         if (m >= st->scene->mNumMeshes)
@@ -450,8 +722,6 @@ static void count_node(load_state *st, const struct aiNode *node, unsigned depth
         st->component_count += 1;
         st->any_normals |= mesh->mNormals != NULL;
     }
-    for (unsigned i = 0; i < node->mNumChildren; ++i)
-        count_node(st, node->mChildren[i], depth + 1);
 }
 
 static void material_properties(const struct aiScene *scene, unsigned index, oit_component *comp)
@@ -628,14 +898,11 @@ static void normal_matrix(const struct aiMatrix4x4 *m, double n[9], double *dete
     *determinant = a * n[0] + b * n[1] + c * n[2];
 }
 
-/* Pass 2: copy vertices (transformed to model space), triangles, components. */
-static void fill_node(load_state *st, const struct aiNode *node, const struct aiMatrix4x4 *parent,
-                      unsigned depth)
+/* Pass 2: copy one node's vertices (transformed to model space), triangles,
+ * components. */
+static void fill_node(load_state *st, const struct aiNode *node, const struct aiMatrix4x4 *node_global)
 {
-    if (!node || depth > 1000)
-        return;
-    struct aiMatrix4x4 global;
-    multiply(parent, &node->mTransformation, &global);
+    struct aiMatrix4x4 global = *node_global;
     double nm[9], determinant;
     normal_matrix(&global, nm, &determinant);
     oit_model *model = st->model;
@@ -691,9 +958,37 @@ static void fill_node(load_state *st, const struct aiNode *node, const struct ai
             ++model->triangle_count;
         }
         comp->triangle_count = model->triangle_count - comp->first_triangle;
+        for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+            st->vertex_owner[base + v] = c;
+            float *uv = st->texture_coordinates + ((size_t)base + v) * 3;
+            const struct aiVector3D *in = mesh->mTextureCoords[0] ? &mesh->mTextureCoords[0][v] : NULL;
+            uv[0] = in ? (float)in->x : 0.0f;
+            uv[1] = in ? (float)in->y : 0.0f;
+            uv[2] = in ? (float)in->z : 0.0f;
+        }
     }
-    for (unsigned i = 0; i < node->mNumChildren; ++i)
-        fill_node(st, node->mChildren[i], &global, depth + 1);
+}
+
+/* Runs visit on every node of the scene, depth first; false when out of memory. */
+static bool walk_scene(load_state *st, void (*visit)(load_state *, const struct aiNode *,
+                                                     const struct aiMatrix4x4 *))
+{
+    /* The root node's transform is applied too: importers put axis
+     * conversions (e.g. Z-up to Y-up) there. */
+    node_walk walk = {0};
+    walk_push(&walk, st->scene->mRootNode, &st->scene->mRootNode->mTransformation);
+    node_entry entry;
+    while (walk_next(&walk, &entry))
+        visit(st, entry.node, &entry.global);
+    bool ok = !walk.out_of_memory;
+    free(walk.entries);
+    return ok;
+}
+
+static void count_visit(load_state *st, const struct aiNode *node, const struct aiMatrix4x4 *global)
+{
+    (void)global;
+    count_node(st, node);
 }
 
 /* Assimp's PLY reader spends time linear in the element counts the header
@@ -748,15 +1043,20 @@ static oit_status check_off_header(const char *path, const char *name, long long
         strlen(keyword) >= 3 && strcmp(keyword + strlen(keyword) - 3, "OFF") == 0) {
         /* The counts may follow the keyword on the same line. */
         const char *counts = strstr(line, keyword) + strlen(keyword);
-        unsigned long long vertices = 0, faces = 0;
-        int found = sscanf(counts, "%llu %llu", &vertices, &faces);
+        /* signed, so that a count of -3 is reported as -3 */
+        long long vertices = 0, faces = 0;
+        int found = sscanf(counts, "%lld %lld", &vertices, &faces);
         for (int lines = 0; found < 2 && lines < 1000 && fgets(line, sizeof line, file); ++lines)
             if (line[0] != '#')
-                found = sscanf(line, "%llu %llu", &vertices, &faces);
-        if (found == 2 && (vertices > (unsigned long long)file_size ||
-                           faces > (unsigned long long)file_size))
+                found = sscanf(line, "%lld %lld", &vertices, &faces);
+        if (found == 2 && (vertices < 0 || faces < 0))
             status = oit_fail(err, OIT_E_INPUT,
-                              "%s: OFF header declares %llu vertices and %llu faces but the file "
+                              "%s: OFF header declares %lld vertices and %lld faces: counts cannot "
+                              "be negative",
+                              name, vertices, faces);
+        else if (found == 2 && (vertices > file_size || faces > file_size))
+            status = oit_fail(err, OIT_E_INPUT,
+                              "%s: OFF header declares %lld vertices and %lld faces but the file "
                               "has only %lld bytes",
                               name, vertices, faces, file_size);
     }
@@ -764,7 +1064,8 @@ static oit_status check_off_header(const char *path, const char *name, long long
     return status;
 }
 
-static oit_status check_file(const char *path, const char *name, oit_error *err)
+static oit_status check_file(const char *path, const char *name, long long *file_size,
+                             oit_error *err)
 {
     struct stat info;
     if (stat(path, &info) != 0)
@@ -779,10 +1080,130 @@ static oit_status check_file(const char *path, const char *name, oit_error *err)
     if (!file)
         return oit_fail(err, OIT_E_INPUT, "%s: cannot open: %s", name, strerror(errno));
     fclose(file);
+    *file_size = (long long)info.st_size;
     oit_status status = check_ply_header(path, name, (long long)info.st_size, err);
     if (status == OIT_OK)
         status = check_off_header(path, name, (long long)info.st_size, err);
     return status;
+}
+
+/* ------------------------------------------------- files the model refers to */
+
+/* Assimp reads through this file system so that the files a model refers to
+ * (an OBJ's material libraries, a glTF's buffers) are known: when an import
+ * fails, it is tried once more with those files refused, and if the error
+ * goes away (or changes) the message names the referred file, not the
+ * model. */
+typedef struct import_files {
+    const char *model_path;
+    bool refuse_others;
+    char first_other[4096]; /* the first other file opened, "" if none */
+} import_files;
+
+static FILE *io_stream(struct aiFile *file) { return (FILE *)(void *)file->UserData; }
+
+static size_t io_read(struct aiFile *file, char *buffer, size_t size, size_t count)
+{
+    return fread(buffer, size, count, io_stream(file));
+}
+
+static size_t io_write(struct aiFile *file, const char *buffer, size_t size, size_t count)
+{
+    (void)file, (void)buffer, (void)size, (void)count;
+    return 0; /* import only */
+}
+
+static size_t io_tell(struct aiFile *file)
+{
+    long position = ftell(io_stream(file));
+    return position < 0 ? 0 : (size_t)position;
+}
+
+static size_t io_size(struct aiFile *file)
+{
+    FILE *stream = io_stream(file);
+    long position = ftell(stream), end = -1;
+    if (position >= 0 && fseek(stream, 0, SEEK_END) == 0)
+        end = ftell(stream);
+    if (position >= 0)
+        fseek(stream, position, SEEK_SET);
+    return end < 0 ? 0 : (size_t)end;
+}
+
+static void io_flush(struct aiFile *file) { fflush(io_stream(file)); }
+
+static enum aiReturn io_seek(struct aiFile *file, size_t offset, enum aiOrigin origin)
+{
+    int whence = origin == aiOrigin_SET ? SEEK_SET : origin == aiOrigin_CUR ? SEEK_CUR : SEEK_END;
+    /* aiOrigin_CUR moves backwards by a wrapped-around size_t */
+    return fseek(io_stream(file), (long)offset, whence) == 0 ? aiReturn_SUCCESS : aiReturn_FAILURE;
+}
+
+static struct aiFile *io_open(struct aiFileIO *io, const char *path, const char *mode)
+{
+    import_files *files = (import_files *)(void *)io->UserData;
+    if (strcmp(path, files->model_path) != 0) {
+        if (!files->first_other[0])
+            snprintf(files->first_other, sizeof files->first_other, "%s", path);
+        if (files->refuse_others)
+            return NULL;
+    }
+    struct aiFile *file = calloc(1, sizeof *file);
+    FILE *stream = file ? fopen(path, mode) : NULL;
+    if (!stream) {
+        free(file);
+        return NULL;
+    }
+    file->ReadProc = io_read;
+    file->WriteProc = io_write;
+    file->TellProc = io_tell;
+    file->FileSizeProc = io_size;
+    file->SeekProc = io_seek;
+    file->FlushProc = io_flush;
+    file->UserData = (aiUserData)(void *)stream;
+    return file;
+}
+
+static void io_close(struct aiFileIO *io, struct aiFile *file)
+{
+    (void)io;
+    if (file) {
+        fclose(io_stream(file));
+        free(file);
+    }
+}
+
+static const struct aiScene *import_with(const char *path, unsigned flags,
+                                         const struct aiPropertyStore *props, import_files *files)
+{
+    struct aiFileIO io = {io_open, io_close, (aiUserData)(void *)files};
+    return aiImportFileExWithProperties(path, flags, &io, props);
+}
+
+/* After a failed import that opened other files: was it one of those? */
+static void name_failing_file(const char *path, unsigned flags,
+                              const struct aiPropertyStore *props, import_files *files,
+                              char *why, size_t why_size)
+{
+    if (!files->first_other[0])
+        return;
+    char other[4096];
+    snprintf(other, sizeof other, "%s", files->first_other);
+    files->refuse_others = true;
+    const struct aiScene *again = import_with(path, flags, props, files);
+    const char *again_why = again ? "" : aiGetErrorString();
+    bool theirs = again || !again_why || strcmp(again_why, why) != 0;
+    if (again)
+        aiReleaseImport(again);
+    if (!theirs)
+        return;
+    const char *other_name = path_basename(other);
+    const char *dot = strrchr(other_name, '.');
+    char reason[OIT_ERROR_MESSAGE_SIZE];
+    snprintf(reason, sizeof reason, "%s", why);
+    snprintf(why, why_size, "%s %.200s: %.280s",
+             dot && strcasecmp(dot, ".mtl") == 0 ? "material library" : "the file it refers to,",
+             other_name, reason);
 }
 
 oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
@@ -791,35 +1212,58 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
     if (!path || !*path)
         return oit_fail(err, OIT_E_INPUT, "no model file given");
     const char *name = path_basename(path);
-    oit_status status = check_file(path, name, err);
+    long long file_size = 0;
+    oit_status status = check_file(path, name, &file_size, err);
     if (status != OIT_OK)
         return status;
 
     /* Post-processing, and why:
      * - Triangulate: polygons become triangles (the renderer draws triangles).
-     * - JoinIdenticalVertices: OBJ and STL give one vertex per face corner;
-     *   indexing shares them (identical in every attribute) within a mesh.
      * - SortByPType + SBP_REMOVE(points, lines): a mesh mixing primitive types
      *   is split and the point and line meshes dropped, so OBJ line/point
      *   elements never reach us and a file with nothing else has no triangles.
      * - ValidateDataStructure: Assimp rejects broken index data itself.
-     * Not used: PreTransformVertices (it merges meshes sharing a material and
+     * Not used: JoinIdenticalVertices (OBJ and STL give one vertex per face
+     *   corner; join_identical_vertices shares them exactly, where Assimp's
+     *   join uses tolerances that depend on the model's units),
+     *   PreTransformVertices (it merges meshes sharing a material and
      *   loses their names; the node tree is walked here instead, applying
      *   node transforms), FindDegenerates (it would turn zero-area triangles
      *   into lines or points and change the triangle count; they are harmless),
      *   GenNormals (missing normals are computed in oit_model_finish). */
-    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                     aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+    unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     struct aiPropertyStore *props = aiCreatePropertyStore();
-    if (!props)
+    import_warnings *warnings = calloc(1, sizeof *warnings);
+    if (!props || !warnings) {
+        if (props)
+            aiReleasePropertyStore(props);
+        free(warnings);
         return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
+    }
     aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
                                aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    const struct aiScene *scene = aiImportFileExWithProperties(path, flags, NULL, props);
+    /* Assimp's log is process-wide: one import at a time listens to it (and
+     * nothing of it reaches stderr). */
+    static pthread_mutex_t import_lock = PTHREAD_MUTEX_INITIALIZER;
+    pthread_mutex_lock(&import_lock);
+    struct aiLogStream log = {assimp_log, (char *)warnings};
+    aiAttachLogStream(&log);
+    import_files files = {.model_path = path};
+    const struct aiScene *scene = import_with(path, flags, props, &files);
+    char why_text[OIT_ERROR_MESSAGE_SIZE] = "";
+    if (!scene) {
+        const char *assimp_why = aiGetErrorString();
+        snprintf(why_text, sizeof why_text, "%s", assimp_why ? assimp_why : "");
+        if (why_text[0])
+            name_failing_file(path, flags, props, &files, why_text, sizeof why_text);
+    }
+    aiDetachLogStream(&log);
+    pthread_mutex_unlock(&import_lock);
     aiReleasePropertyStore(props);
     if (!scene) {
-        const char *why = aiGetErrorString();
-        if (!why || !*why)
+        free(warnings);
+        const char *why = why_text;
+        if (!why[0])
             why = "unknown format or broken file";
         /* With points and lines removed, Assimp reports a file without
          * triangles in its own words; say it plainly. */
@@ -827,9 +1271,24 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
             strstr(why, "contains no vertices") || strstr(why, "has no faces") ||
             strstr(why, "mNumMeshes is 0"))
             return oit_fail(err, OIT_E_INPUT, "%s: no triangles (Assimp: %s)", name, why);
+        /* Assimp sizes its arrays from the file's counts before reading the
+         * data; a count that no file of this size could hold ends in
+         * std::bad_alloc, which names nothing the user can act on. */
+        if (strstr(why, "bad_alloc")) {
+            if (file_size < ((long long)16 << 20))
+                return oit_fail(err, OIT_E_INPUT,
+                                "%s: the importer ran out of memory on this %lld-byte file: a count "
+                                "in it (vertices, faces, a face's corners) is larger than the file "
+                                "could hold, so the file is corrupt",
+                                name, file_size);
+            return oit_fail(err, OIT_E_RUNTIME,
+                            "%s: not enough memory to import this %lld-byte file", name, file_size);
+        }
         return oit_fail(err, OIT_E_INPUT, "%s: cannot import: %s", name, why);
     }
+    check_line_end(path, warnings);
     if (!scene->mRootNode) {
+        free(warnings);
         aiReleaseImport(scene);
         return oit_fail(err, OIT_E_INPUT, "%s: no triangles (the file has no scene nodes)", name);
     }
@@ -842,7 +1301,10 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
         status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
         goto done;
     }
-    count_node(&st, scene->mRootNode, 0);
+    if (!walk_scene(&st, count_visit)) {
+        status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory walking the node tree", name);
+        goto done;
+    }
     if (st.triangle_count == 0) {
         status = oit_fail(err, OIT_E_INPUT, "%s: no triangles", name);
         goto done;
@@ -861,29 +1323,33 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
     out->normals = alloc_array(st.vertex_count * 3, sizeof *out->normals);
     out->indices = alloc_array(st.triangle_count * 3, sizeof *out->indices);
     out->components = calloc_array(st.component_count, sizeof *out->components);
-    if (!out->positions || !out->normals || !out->indices || !out->components ||
+    st.vertex_owner = alloc_array(st.vertex_count, sizeof *st.vertex_owner);
+    st.texture_coordinates = alloc_array(st.vertex_count * 3, sizeof *st.texture_coordinates);
+    if (!out->positions || !out->normals || !out->indices || !out->components || !st.vertex_owner ||
+        !st.texture_coordinates ||
         !name_set_init(&names, st.component_count)) {
         status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory for %llu vertices", name,
                           (unsigned long long)st.vertex_count);
         goto done;
     }
-    /* The root node's transform is applied too: importers put axis
-     * conversions (e.g. Z-up to Y-up) there. */
-    struct aiMatrix4x4 identity;
-    memset(&identity, 0, sizeof identity);
-    identity.a1 = identity.b2 = identity.c3 = identity.d4 = 1;
-    fill_node(&st, scene->mRootNode, &identity, 0);
-    if (st.bad_index)
+    if (!walk_scene(&st, fill_node))
+        status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory walking the node tree", name);
+    else if (st.bad_index)
         status = oit_fail(err, OIT_E_INPUT,
                           "%s: face %u of mesh '%s' refers to vertex %u, outside the mesh", name,
                           st.bad_mesh_face, st.bad_mesh_name, st.bad_mesh_index);
+    else
+        status = join_identical_vertices(out, st.texture_coordinates, st.vertex_owner, err);
 
 done:
     aiReleaseImport(scene);
     free(st.mesh_uses);
+    free(st.vertex_owner);
+    free(st.texture_coordinates);
     name_set_free(&names);
     if (status != OIT_OK) {
         oit_model_free(out);
+        free(warnings);
         return status;
     }
     status = oit_model_finish(out, !st.any_normals, err);
@@ -891,7 +1357,12 @@ done:
         char reason[OIT_ERROR_MESSAGE_SIZE];
         snprintf(reason, sizeof reason, "%s", err ? err->message : "");
         oit_model_free(out);
+        free(warnings);
         return oit_fail(err, status, "%s: %s", name, reason);
     }
-    return OIT_OK;
+    status = keep_warnings(out, name, warnings, err);
+    free(warnings);
+    if (status != OIT_OK)
+        oit_model_free(out);
+    return status;
 }

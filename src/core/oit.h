@@ -77,11 +77,19 @@ typedef struct oit_model {
     float radius;
     float longest_edge; /* the longest triangle edge (model space), the largest of the
                            components' */
+    /* What the import skipped, repaired or could not check, one line each
+     * ("FILE: what"): a model that loads is never silently incomplete. At most
+     * OIT_MODEL_WARNING_LIMIT; repeats are counted in their line, and the last
+     * line says how many other warnings were left out. */
+    uint32_t warning_count;
+    char (*warnings)[OIT_ERROR_MESSAGE_SIZE];
     float *triangle_reach; /* per triangle: the longest edge of any triangle that shares a
                               (welded) vertex with it, itself included. A fragment of a
                               triangle sharing a vertex with t lies within 2 x reach[t] of
                               any fragment of t: ib's neighbour search stops there */
 } oit_model;
+
+#define OIT_MODEL_WARNING_LIMIT 16
 
 /* Import any format Assimp reads. Bad files give OIT_E_INPUT and a message
  * naming the file and the problem. */
@@ -135,6 +143,13 @@ typedef enum oit_view {
     OIT_VIEW_FIELDS = 7     /* ib: rgb = (alpha, beta, gamma) fields of fragment view_parameter */
 } oit_view;
 
+/* The largest view_parameter (peel limit, layer) a view takes. */
+#define OIT_VIEW_PARAMETER_MAX 1000000
+
+/* The names the command line and the workbench use ("peel-limit",
+ * "dist-curv"), for messages; "unknown" outside the enums. */
+const char *oit_view_name(oit_view view);
+
 /* Opacity modulation of the Illustration Buffer (ib; docs/illustration-buffer.md).
  * Every field's zero value means its default, so a zeroed struct is "no modulation". */
 typedef enum oit_modulation_mode {
@@ -145,6 +160,8 @@ typedef enum oit_modulation_mode {
     OIT_MODULATE_FIELDS = 4,    /* transparency fields alpha, beta, gamma */
     OIT_MODULATE_EDGES = 5      /* opaque where a fragment has fewer than four neighbours */
 } oit_modulation_mode;
+
+const char *oit_modulation_mode_name(oit_modulation_mode mode);
 
 typedef enum oit_neighbour_search {
     OIT_NEIGHBOURS_DEFAULT = 0, /* the best by the measurements (welded) */
@@ -227,7 +244,15 @@ void oit_mat4_identity(float m[16]);
 void oit_mat4_multiply(const float a[16], const float b[16], float out[16]);
 /* normal matrix: inverse transpose of the upper 3x3 of m, column-major 3x3 */
 bool oit_mat4_normal_matrix(const float m[16], float out[9]);
-/* Reject NaN/inf and singular projections with OIT_E_INPUT. */
+/* How far m is from singular, independent of units and scale: |det| over the
+ * product of the row lengths after equilibrating rows and columns, in [0, 1]
+ * (1: orthogonal rows; 0: singular). */
+double oit_mat4_regularity(const float m[16]);
+/* Below this a projection counts as singular: float rounding of an exactly
+ * singular matrix leaves about 1e-7. */
+#define OIT_MATRIX_REGULARITY_MIN 1e-5
+/* Reject NaN/inf, a singular modelview (its 3x3 part) and singular
+ * projections (oit_mat4_regularity) with OIT_E_INPUT. */
 oit_status oit_matrices_validate(const float modelview[16], const float projection[16],
                                  oit_error *err);
 /* A camera that frames the model's bounding sphere: perspective with a 40
@@ -235,8 +260,13 @@ oit_status oit_matrices_validate(const float modelview[16], const float projecti
  * elevation 0 it looks down -z from +z; azimuth turns the model about the
  * vertical axis (degrees, positive shows its right side), elevation tilts the
  * camera up (positive looks down on it). */
-void oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
-                        float elevation_degrees, float modelview[16], float projection[16]);
+#define OIT_MODEL_RADIUS_MIN 1e-12f
+#define OIT_MODEL_RADIUS_MAX 1e15f
+/* Fails (OIT_E_INPUT) for a bounding radius outside [OIT_MODEL_RADIUS_MIN,
+ * OIT_MODEL_RADIUS_MAX]; a radius of 0 (a single point) is framed as 1. */
+oit_status oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
+                              float elevation_degrees, float modelview[16], float projection[16],
+                              oit_error *err);
 /* The per-fragment shading shared by every algorithm and the reference. */
 void oit_shade(const oit_frame_settings *frame, const float colour[3], const float eye_normal[3],
                const float eye_position[3], float out_rgb[3]);
