@@ -278,6 +278,25 @@ private slots:
         QCOMPARE(window->model(), before);
     }
 
+    void import_warnings_are_shown()
+    {
+        QString path = window->model_path();
+        QString cut = work + "/cut.obj";
+        QFile file(cut);
+        QVERIFY(file.open(QIODevice::WriteOnly));
+        file.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nv 0 0"); // cut short: no line end
+        file.close();
+        QSignalSpy loaded(window, &MainWindow::model_loaded);
+        window->load_model(cut);
+        QVERIFY(loaded.wait(30000));
+        QCOMPARE(window->model_warnings().size(), 1);
+        QVERIFY2(window->model_warnings()[0].contains("cut.obj") && window->model_warnings()[0].contains("no line end"),
+                 qPrintable(window->model_warnings().join("; ")));
+        window->load_model(path);
+        QVERIFY(loaded.wait(60000));
+        QVERIFY(window->model_warnings().isEmpty());
+    }
+
     void presets_round_trip_and_name_errors()
     {
         window->set_algorithm("wboit");
