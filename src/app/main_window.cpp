@@ -480,12 +480,15 @@ QWidget *MainWindow::build_algorithm_tab()
                             sync_actions_, syncing_);
     memory->setSuffix(" MB");
     form->addRow("memory budget (--max-memory)", memory);
-    form->addRow("layer limit (--max-layers, dp/ddp)", spin_box(1, 256, [&s] { return s.config.max_layers; },
-                                                                [this, &s](int n) {
-                                                                    s.config.max_layers = n;
-                                                                    render_now();
-                                                                },
-                                                                sync_actions_, syncing_));
+    // 0 is "no cap" (peel until nothing is left), shown as "none"
+    auto *layer_cap = spin_box(0, OIT_PEEL_LAYER_CAP_MAX, [&s] { return s.config.max_layers; },
+                               [this, &s](int n) {
+                                   s.config.max_layers = n;
+                                   render_now();
+                               },
+                               sync_actions_, syncing_);
+    layer_cap->setSpecialValueText("none");
+    form->addRow("layer cap (--max-layers, dp/ddp)", layer_cap);
     form->addRow("shading (--shading)", combo({"flat", "headlight"}, [&s] { return int(s.shading); },
                                               [this, &s](int i) {
                                                   s.shading = oit_shading_mode(i);
@@ -963,6 +966,8 @@ void MainWindow::update_stats()
     optional("fragments", st.fragments);
     optional("longest list", st.max_list);
     optional("layers", st.layers);
+    if (st.truncated)
+        out << QString("TRUNCATED           the layer cap %1 left fragments out\n").arg(view_->settings.config.max_layers);
     if (st.mean_list >= 0)
         out << QString("mean list           %1\n").arg(st.mean_list, 0, 'f', 2);
     if (st.psi >= 0)
@@ -979,11 +984,20 @@ void MainWindow::update_stats()
         out << QString("model               %1 triangles, %2 parts\n").arg(model_->triangle_count).arg(model_->component_count);
     out << QString("renderer            %1\n").arg(QString::fromStdString(view_->renderer()));
     stats_text_->setPlainText(text);
-    status_label_->setText(QString("%1: %2 ms CPU, %3 ms GPU stages, %4 MB")
+    QString truncated;
+    if (st.truncated)
+        truncated = QString(" — TRUNCATED: the layer cap %1 left fragments out").arg(view_->settings.config.max_layers);
+    status_label_->setText(QString("%1: %2 ms CPU, %3 ms GPU stages, %4 MB%5")
                                .arg(QString::fromStdString(view_->settings.algorithm))
                                .arg(st.cpu_ms, 0, 'f', 1)
                                .arg(gpu_total, 0, 'f', 1)
-                               .arg(double(st.memory_bytes) / (1024.0 * 1024.0), 0, 'f', 1));
+                               .arg(double(st.memory_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
+                               .arg(truncated));
+}
+
+QString MainWindow::status_text() const
+{
+    return status_label_->text();
 }
 
 bool MainWindow::show_tab(const QString &name)

@@ -56,6 +56,7 @@ public:
     QString last_error() const { return last_error_; }
     // the loaded model's import warnings (oit_model.warnings), shown in a notice
     QStringList model_warnings() const { return model_warnings_; }
+    QString status_text() const;
 
     // Start loading a model off the GUI thread (the previous one stays until it succeeds).
     void load_model(const QString &path);

@@ -456,7 +456,7 @@ bool preset_from_json(const std::string &file, const std::string &text, RenderSe
         return false;
     s.config.ll_sort = oit_ll_sort(sort);
     int megabytes = int(s.config.max_memory_bytes / (1024 * 1024));
-    if (!r.whole(d, "max-memory", 1, 1 << 22, megabytes) || !r.whole(d, "max-layers", 1, 256, s.config.max_layers))
+    if (!r.whole(d, "max-memory", 1, 1 << 22, megabytes) || !r.whole(d, "max-layers", 0, OIT_PEEL_LAYER_CAP_MAX, s.config.max_layers))
         return false;
     s.config.max_memory_bytes = uint64_t(megabytes) * 1024 * 1024;
     if (!r.number(d, "alpha", 0.0, 1.0, s.alpha))

@@ -478,6 +478,11 @@ static void write_row(bench_output *out, const bench_scene *scene, const session
 {
     const oit_stats *st = &r->last;
     const oit_model *m = &s->model;
+    if (r->ok && st->truncated)
+        fprintf(stderr,
+                "oit: warning: %s, %s: --max-layers %d cut the frame short: pixels with more "
+                "layers lost their farther fragments\n",
+                scene->name, label, scene->options.config.max_layers);
     if (out->csv) {
         FILE *f = out->csv;
         csv_field(f, scene->name);
@@ -565,6 +570,7 @@ static void write_row(bench_output *out, const bench_scene *scene, const session
                 fprintf(f, ", \"layers\": %lld", (long long)st->layers);
             if (st->overflow_retries >= 0)
                 fprintf(f, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
+            fprintf(f, ", \"truncated\": %s", st->truncated ? "true" : "false");
             if (st->bytes_per_fragment >= 0.0)
                 fprintf(f, ", \"bytes_per_fragment\": %.6g", st->bytes_per_fragment);
             if (r->has_reference_diff)

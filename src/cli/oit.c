@@ -77,6 +77,7 @@ static void print_render_json(FILE *out, const render_options *o, const session 
         fprintf(out, ", \"layers\": %lld", (long long)st->layers);
     if (st->overflow_retries >= 0)
         fprintf(out, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
+    fprintf(out, ", \"truncated\": %s", st->truncated ? "true" : "false");
     /* list and Illustration Buffer figures, where the algorithm has them */
     const struct {
         const char *key;
@@ -123,7 +124,9 @@ static const char render_help[] =
     "  --sort VARIANT         ll: insertion (in place, default) | array (local array of 64)\n"
     "  --fragment-pool N      ll, ib: initial fragment pool capacity (default: automatic); it grows\n"
     "                         as needed\n"
-    "  --max-layers N         dp, ddp: peel at most N layers, 1..256 (default 256)\n"
+    "  --max-layers N         dp, ddp: peel at most N layers, 1..1000000 (default: no cap, peel\n"
+    "                         until nothing is left); a frame the cap cuts short gets a warning\n"
+    "                         and \"truncated\": true\n"
     "  --frames N             render N frames; figures are medians over frames 2..N (default 1)\n"
     "  --json                 print one JSON object with timings and statistics on stdout\n"
     "  --debug                debug GL context: every stage is checked for GL errors\n";
@@ -158,6 +161,8 @@ static int command_render(int argc, char **argv)
     memset(&result, 0, sizeof result);
     if (status == OIT_OK)
         status = render_frames(&s, &o, &result, &err);
+    if (status == OIT_OK)
+        warn_if_truncated(&o, &result.stats);
     if (status == OIT_OK && o.out_path)
         status = oit_png_write(o.out_path, &result.image, &err);
     if (status == OIT_OK) {

@@ -271,9 +271,9 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     } else if (strcmp(flag, "--max-layers") == 0) {
         NEED_VALUE();
         long layers;
-        if (!parse_int(value, 1, 256, &layers)) {
-            *status = oit_fail(err, OIT_E_INPUT, "--max-layers must be a whole number in [1, 256], got '%s'",
-                               value);
+        if (!parse_int(value, 1, OIT_PEEL_LAYER_CAP_MAX, &layers)) {
+            *status = oit_fail(err, OIT_E_INPUT, "--max-layers must be a whole number from 1 to %d, got '%s'",
+                               OIT_PEEL_LAYER_CAP_MAX, value);
             return -1;
         }
         o->config.max_layers = (int)layers;
@@ -580,6 +580,15 @@ void json_warnings(FILE *out, const oit_model *model)
         json_string(out, model->warnings[i]);
     }
     fputc(']', out);
+}
+
+void warn_if_truncated(const render_options *o, const oit_stats *stats)
+{
+    if (stats->truncated)
+        fprintf(stderr,
+                "oit: warning: %s: --max-layers %d cut the frame short: pixels with more layers "
+                "lost their farther fragments (\"truncated\": true)\n",
+                o->algorithm->name, o->config.max_layers);
 }
 
 void print_model_warnings(const oit_model *model)

@@ -13,6 +13,8 @@
  * init pass. A tiny full-screen probe with occlusion queries after each pass
  * tells whether any pixel has layers left (and whether any has two distinct
  * depths left, for the layer count), so no extra empty geometry pass is needed.
+ * There is no layer limit by default; with an explicit cap (config.max_layers)
+ * the same probe says whether the cap left layers behind (stats.truncated).
  * "compose" joins front, back and background.
  *
  * Distance modulation (docs/modulation.md), the "delayed blending" variant: a
@@ -33,6 +35,7 @@
  * coplanar fragments are all composited in (depth, triangle index) order, like
  * the reference. Plain depth peeling (dp) keeps only one of them.
  */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -136,9 +139,9 @@ static oit_status ddp_create(const oit_algorithm_config *config, oit_algorithm *
                              oit_error *err)
 {
     *out = NULL;
-    if (config->max_layers < 1 || config->max_layers > OIT_MAX_PEEL_LAYERS)
-        return oit_fail(err, OIT_E_INPUT, "ddp: layer limit %d outside 1..%d",
-                        config->max_layers, OIT_MAX_PEEL_LAYERS);
+    if (config->max_layers < 0 || config->max_layers > OIT_PEEL_LAYER_CAP_MAX)
+        return oit_fail(err, OIT_E_INPUT, "ddp: config.max_layers %d outside 0 (no cap)..%d",
+                        config->max_layers, OIT_PEEL_LAYER_CAP_MAX);
     ddp_state *s = calloc(1, sizeof *s);
     if (!s)
         return oit_fail(err, OIT_E_RUNTIME, "ddp: out of memory");
@@ -359,7 +362,8 @@ static void ddp_distance_pass(ddp_state *s, const oit_frame_settings *frame, ddp
 
 static oit_status ddp_sweep_layers(ddp_state *s, const oit_scene *scene,
                                    const oit_frame_settings *frame, ddp_sweep sweep,
-                                   float distance_norm, int *layers_out, oit_error *err)
+                                   float distance_norm, int *layers_out, bool *truncated,
+                                   oit_error *err)
 {
     static const GLfloat empty_minmax[4] = {DDP_EMPTY_DEPTH, DDP_EMPTY_DEPTH, 0.0f, 0.0f};
     static const GLfloat empty_colour[4] = {0.0f, 0.0f, 0.0f, 1.0f}; /* C = 0, T = 1 */
@@ -392,9 +396,8 @@ static oit_status ddp_sweep_layers(ddp_state *s, const oit_scene *scene,
     oit_timer_stage_end(&s->timer);
     oit_status status = ddp_stage_check(s, "init", err);
 
-    int limit = s->config.max_layers;
-    if (limit > OIT_MAX_PEEL_LAYERS)
-        limit = OIT_MAX_PEEL_LAYERS;
+    /* no cap: every pass peels at least one more layer of some pixel */
+    const int limit = s->config.max_layers > 0 ? s->config.max_layers : INT_MAX;
     int layers = 0;
     for (int pass = 0; status == OIT_OK && any_left && layers < limit; ++pass) {
         char stage[OIT_STAGE_NAME_SIZE];
@@ -440,6 +443,9 @@ static oit_status ddp_sweep_layers(ddp_state *s, const oit_scene *scene,
         oit_timer_stage_end(&s->timer);
         status = ddp_stage_check(s, stage, err);
     }
+    /* the probe after the last pass already says whether the cap left any */
+    if (status == OIT_OK && any_left)
+        *truncated = true;
     *layers_out = layers;
     return status;
 }
@@ -456,7 +462,8 @@ static oit_status ddp_distance_norm(ddp_state *s, const oit_scene *scene,
     glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer[0]);
     glClearBufferfv(GL_COLOR, 0, zero);
     int layers = 0;
-    oit_status status = ddp_sweep_layers(s, scene, frame, DDP_SWEEP_DISTANCE_MAX, 1.0f, &layers, err);
+    oit_status status = ddp_sweep_layers(s, scene, frame, DDP_SWEEP_DISTANCE_MAX, 1.0f, &layers,
+                                         &s->stats.truncated, err);
     if (status != OIT_OK)
         return status;
     oit_timer_stage_begin(&s->timer, "distance_max_read");
@@ -524,7 +531,7 @@ static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,
     if (status == OIT_OK)
         status = ddp_sweep_layers(s, scene, frame,
                                   distance ? DDP_SWEEP_DISTANCE_BLEND : DDP_SWEEP_PLAIN,
-                                  distance_norm, &layers, err);
+                                  distance_norm, &layers, &s->stats.truncated, err);
 
     if (status == OIT_OK) {
         oit_timer_stage_begin(&s->timer, "compose");

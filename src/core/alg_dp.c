@@ -7,7 +7,10 @@
  * layer target. A full-screen pass blends the layer under the float
  * accumulation (rgb = premultiplied colour so far, a = transmittance T). The
  * loop ends when an occlusion query sees no samples or at the layer limit;
- * a final pass adds T * background and writes the RGBA8 output.
+ * a final pass adds T * background and writes the RGBA8 output. By default
+ * there is no layer limit; with an explicit cap (config.max_layers) a pass
+ * that reaches it probes once more and marks the frame truncated if any
+ * fragment was left.
  *
  * Distance modulation (docs/modulation.md): a layer's opacity is its distance
  * along the ray to the next layer, known only once that layer is peeled. So the
@@ -41,6 +44,7 @@
  * the reference composites first. This is the documented behaviour of plain
  * depth peeling; the z-fighting-aware variants are not implemented.
  */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -155,9 +159,9 @@ static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **
                             oit_error *err)
 {
     *out = NULL;
-    if (config->max_layers < 1 || config->max_layers > OIT_MAX_PEEL_LAYERS)
-        return oit_fail(err, OIT_E_INPUT, "dp: layer limit %d outside 1..%d", config->max_layers,
-                        OIT_MAX_PEEL_LAYERS);
+    if (config->max_layers < 0 || config->max_layers > OIT_PEEL_LAYER_CAP_MAX)
+        return oit_fail(err, OIT_E_INPUT, "dp: config.max_layers %d outside 0 (no cap)..%d",
+                        config->max_layers, OIT_PEEL_LAYER_CAP_MAX);
     dp_state *s = calloc(1, sizeof *s);
     if (!s)
         return oit_fail(err, OIT_E_RUNTIME, "dp: out of memory");
@@ -336,9 +340,39 @@ static void dp_blend_curvature(dp_state *s, const oit_frame_settings *frame, GLu
     glDisable(GL_BLEND);
 }
 
+/* After the cap: is any fragment left behind layer `layers - 1`? One more
+ * peel test with colour writes off, only when the cap was reached. */
+static bool dp_fragments_left(dp_state *s, const oit_scene *scene, const oit_frame_settings *frame,
+                              int layers)
+{
+    static const GLfloat far_depth = 1.0f;
+    const int current = layers & 1, previous = current ^ 1;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[current]);
+    glDepthMask(GL_TRUE);
+    glClearBufferfv(GL_DEPTH, 0, &far_depth);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(s->peel_program);
+    oit_gl_set_frame_uniforms(frame);
+    glUniform1i(OIT_UNIFORM_DP_HAS_PREVIOUS, 1);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
+    glBindTexture(GL_TEXTURE_2D, s->depth[previous]);
+    glBeginQuery(GL_ANY_SAMPLES_PASSED, s->samples_query);
+    oit_gl_draw_scene(scene);
+    glEndQuery(GL_ANY_SAMPLES_PASSED);
+    glDisable(GL_DEPTH_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    GLuint any_samples = 0;
+    glGetQueryObjectuiv(s->samples_query, GL_QUERY_RESULT, &any_samples);
+    return any_samples != 0;
+}
+
 static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_frame_settings *frame,
                                 dp_sweep sweep, float distance_norm, int *layers_out,
-                                oit_error *err)
+                                bool *truncated, oit_error *err)
 {
     static const GLfloat empty_layer[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     static const GLuint no_normal[4] = {0u, 0u, 0u, 0u}; /* component + 1 = 0: no fragment */
@@ -346,9 +380,9 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
     const bool distance = sweep == DP_SWEEP_DISTANCE_MAX || sweep == DP_SWEEP_DISTANCE_BLEND;
     const bool neighbours = dp_needs_neighbours(frame);
     const char *prefix = sweep == DP_SWEEP_DISTANCE_MAX ? "distance_peel" : "peel";
-    int limit = s->config.max_layers;
-    if (limit > OIT_MAX_PEEL_LAYERS)
-        limit = OIT_MAX_PEEL_LAYERS;
+    /* no cap: every pass peels one more layer of some pixel, so the loop ends
+     * after the deepest pixel's last layer */
+    const int limit = s->config.max_layers > 0 ? s->config.max_layers : INT_MAX;
     int layers = 0;
     bool last_had_samples = false;
     oit_status status = OIT_OK;
@@ -446,6 +480,12 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
         if (!any_samples)
             break;
     }
+    if (status == OIT_OK && layers == limit && last_had_samples) {
+        oit_timer_stage_begin(&s->timer, "cap_probe");
+        *truncated = *truncated || dp_fragments_left(s, scene, frame, layers);
+        oit_timer_stage_end(&s->timer);
+        status = dp_stage_check(s, "cap_probe", err);
+    }
     if (status == OIT_OK && sweep == DP_SWEEP_DISTANCE_BLEND && neighbours && last_had_samples) {
         /* dist-curv stopped by the layer limit: the last layer peeled still has to
          * be blended, with no next layer (the other colour target, cleared) */
@@ -475,7 +515,8 @@ static oit_status dp_distance_norm(dp_state *s, const oit_scene *scene,
     glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer);
     glClearBufferfv(GL_COLOR, 0, zero);
     int layers = 0;
-    oit_status status = dp_peel_sweep(s, scene, frame, DP_SWEEP_DISTANCE_MAX, 1.0f, &layers, err);
+    oit_status status = dp_peel_sweep(s, scene, frame, DP_SWEEP_DISTANCE_MAX, 1.0f, &layers,
+                                      &s->stats.truncated, err);
     if (status != OIT_OK)
         return status;
     oit_timer_stage_begin(&s->timer, "distance_max_read");
@@ -551,7 +592,7 @@ static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
                                distance     ? DP_SWEEP_DISTANCE_BLEND
                                : neighbours ? DP_SWEEP_CURVATURE
                                             : DP_SWEEP_PLAIN,
-                               distance_norm, &layers, err);
+                               distance_norm, &layers, &s->stats.truncated, err);
 
     if (status == OIT_OK) {
         oit_timer_stage_begin(&s->timer, "compose");

@@ -285,7 +285,9 @@ void oit_local_contrast(const oit_frame_settings *frame, float rgb[3]);
 /* -------------------------------------------------------------- statistics */
 
 #define OIT_STAGE_NAME_SIZE 32
-#define OIT_MAX_STAGES 264 /* room for OIT_MAX_PEEL_LAYERS peels plus fixed stages */
+#define OIT_MAX_STAGES 264 /* room for OIT_MAX_PEEL_LAYERS peels plus fixed stages; further
+                              stages are summed as "(remaining stages)" */
+#define OIT_PEEL_LAYER_CAP_MAX 1000000 /* the largest explicit --max-layers */
 #define OIT_HISTOGRAM_BINS 65 /* list lengths 0..63, and 64 or more */
 
 typedef struct oit_stage_time {
@@ -304,6 +306,8 @@ typedef struct oit_stats {
     int64_t max_list;         /* longest per-pixel list; -1 where not applicable */
     int64_t layers;           /* layers peeled; -1 where not applicable */
     int64_t overflow_retries; /* frames rendered again with a larger pool; -1 n/a */
+    bool truncated;           /* fragments were left out (dp, ddp: the --max-layers cap was
+                                 reached with fragments left); false: the frame is whole */
 
     /* list statistics (ll, ib, reference); negative where not applicable */
     double mean_list; /* mean list length over non-empty pixels */
@@ -330,7 +334,9 @@ typedef struct oit_algorithm_config {
     const char *shader_dir;     /* root of the shader tree (contains common/) */
     uint64_t max_memory_bytes;  /* budget for buffers that grow (fragment pools) */
     oit_ll_sort ll_sort;
-    int max_layers;             /* peeling layer limit, 1..OIT_MAX_PEEL_LAYERS */
+    int max_layers;             /* dp, ddp: 0 (default) peels until no fragment is left;
+                                   N in 1..OIT_PEEL_LAYER_CAP_MAX is an explicit cap, and
+                                   a frame it cuts short is marked truncated */
     uint64_t initial_fragment_capacity; /* 0: automatic; small values force pool growth (tests) */
     bool debug;                 /* check GL errors after every stage */
     bool neighbour_quality;     /* ib: measure the neighbour links every frame (a pass of its

@@ -147,6 +147,21 @@ private slots:
         QVERIFY(window->view()->last_stats().layers > 1);
     }
 
+    void a_layer_cap_that_cuts_says_so()
+    {
+        window->set_algorithm("dp");
+        window->view()->settings.config.max_layers = 2; // the gearbox has more layers
+        window->settings_changed();
+        frame();
+        QVERIFY(window->view()->last_stats().truncated);
+        QVERIFY2(window->status_text().contains("TRUNCATED"), qPrintable(window->status_text()));
+        window->view()->settings.config.max_layers = 0; // no cap
+        window->settings_changed();
+        frame();
+        QVERIFY(!window->view()->last_stats().truncated);
+        QVERIFY2(!window->status_text().contains("TRUNCATED"), qPrintable(window->status_text()));
+    }
+
     void opacity_slider_changes_the_image()
     {
         QImage half = frame();
