@@ -37,7 +37,7 @@
 /* ---- per-pixel linked lists (alg_ll.c, shaders/ll/ll_nodes.glsl) ----
  * Node i of the fragment pool is one uvec4 in OIT_SSBO_FRAGMENT_NODES:
  *   x = packUnorm2x16(r, g), y = packUnorm2x16(b, a)   shaded colour, straight alpha, 16 bit
- *   z = floatBitsToUint(gl_FragCoord.z)                window depth
+ *   z = floatBitsToUint(oit_canonical_depth())         window depth (common/canonical_depth.glsl)
  *   w = gl_PrimitiveID                                 triangle index (depth tie-break)
  * Its next pointers are uint i of OIT_SSBO_FRAGMENT_NEXT (list as filled) and of
  * OIT_SSBO_FRAGMENT_SORTED_NEXT (list sorted front to back); OIT_LIST_END ends a list. */
@@ -122,6 +122,13 @@
 #define OIT_UNIFORM_DISTANCE_MODE 56
 #define OIT_UNIFORM_DISTANCE_SKIP 57
 #define OIT_UNIFORM_DISTANCE_NORM 58
+/* the sort depth of every exact algorithm (common/canonical_depth.glsl): the
+ * matrix that takes a model-space plane to normalized device coordinates,
+ * transpose(inverse(projection * modelview)) (mat4, 40..43) */
+#define OIT_UNIFORM_PLANE_TO_NDC 40
+/* a plane whose NDC depth slope exceeds 1e6 (in millionths: |c| <= this x 1e-6 x
+ * (|a| + |b|)) is seen edge-on: the rasterizer's depth is kept */
+#define OIT_EDGE_ON_PLANE_PPM 1
 /* focus shapes (oit_focus_shape in oit.h) */
 #define OIT_FOCUS_SHAPE_NONE 0
 #define OIT_FOCUS_SHAPE_POINT 1
@@ -183,6 +190,19 @@
 #define OIT_TEXUNIT_IB_COMPONENTS 14   /* samplerBuffer rgba32f over the component table */
 #define OIT_TEXUNIT_IB_NODES 15        /* usamplerBuffer rgba32ui over the nodes (fields) */
 #define OIT_TEXUNIT_IB_TRIANGLE_REACH 19 /* samplerBuffer r32f: oit_model.triangle_reach */
+/* coplanar clusters (oit_model.planes), bound by oit_gl_draw_scene */
+#define OIT_TEXUNIT_TRIANGLE_PLANES 20 /* usamplerBuffer r32ui: each triangle's plane */
+#define OIT_TEXUNIT_PLANES 21          /* samplerBuffer rgba32f: model-space planes (n, d) */
+/* depth peeling in (depth, triangle) order (dp/peel_order.glsl): the previous
+ * layer's triangle, and this layer's nearest depth (the key pass's result) */
+#define OIT_TEXUNIT_TIE_PREVIOUS 22
+#define OIT_TEXUNIT_DEPTH_NEAREST 23
+/* A layer's triangle is kept in a 32-bit float depth texture as the float whose
+ * bits are this bias + the triangle index: positive normal floats order as
+ * their bits, so the depth test LESS picks the lowest triangle; the largest
+ * index that stays <= 1.0 is 0x3F800000 - bias - 1 */
+#define OIT_DP_TIE_BIAS 8388608
+#define OIT_DP_MAX_TRIANGLES 1056964607
 #define OIT_SSBO_IB_TRIANGLES 13       /* the triangle table, written by ib/triangles.comp */
 #define OIT_IB_TRIANGLE_BYTES 32       /* ids (3 uint) + component, eye-space plane (4 float) */
 #define OIT_IB_NODE_BYTES 16

@@ -3,6 +3,7 @@
 // The colour targets receive 0, which their under-blending leaves unchanged.
 #include "common/oit_shared.h"
 #include "common/shade.glsl"
+#include "common/canonical_depth.glsl"
 
 layout(location = 0) out vec2 out_minmax;
 layout(location = 1) out vec4 out_front;
@@ -12,7 +13,8 @@ void main()
 {
     if (oit_shade_fragment().a <= 0.0)
         discard; // hidden parts (opacity 0) are not layers
-    out_minmax = vec2(-gl_FragCoord.z, gl_FragCoord.z);
+    float z = oit_canonical_depth();
+    out_minmax = vec2(-z, z);
     out_front = vec4(0.0);
     out_back = vec4(0.0);
 }

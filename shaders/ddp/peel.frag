@@ -8,9 +8,11 @@
 // ignore. Every fragment at exactly the near (far) depth is peeled in the same
 // pass and blended in drawing order, so coplanar fragments are all kept.
 // Depths are compared exactly: texelFetch of 32-bit floats written from
-// gl_FragCoord.z of the same (invariant) vertex shader.
+// oit_canonical_depth() (common/canonical_depth.glsl), the same arithmetic in
+// every program.
 #include "common/oit_shared.h"
 #include "common/shade.glsl"
+#include "common/canonical_depth.glsl"
 
 layout(location = OIT_UNIFORM_DDP_PEEL_BACK) uniform int peel_back;
 layout(binding = OIT_TEXUNIT_DEPTH_MINMAX) uniform sampler2D minmax;
@@ -21,7 +23,7 @@ layout(location = 2) out vec4 out_back;
 
 void main()
 {
-    float z = gl_FragCoord.z;
+    float z = oit_canonical_depth();
     vec2 left = texelFetch(minmax, ivec2(gl_FragCoord.xy), 0).xy;
     float near = -left.x, far = left.y;
     if (z < near || z > far)

@@ -8,6 +8,7 @@
 #extension GL_ARB_ES3_1_compatibility : enable
 #include "common/oit_shared.h"
 #include "common/shade.glsl"
+#include "common/canonical_depth.glsl"
 #include "ib/ib_common.glsl"
 
 layout(location = OIT_UNIFORM_IB_POOL_CAPACITY) uniform uint pool_capacity;
@@ -23,6 +24,6 @@ void main()
     if (node >= pool_capacity)
         return;
     uint next = imageAtomicExchange(ib_heads, ivec2(gl_FragCoord.xy), node);
-    ib_nodes[node] = uvec4(floatBitsToUint(gl_FragCoord.z), uint(gl_PrimitiveID),
+    ib_nodes[node] = uvec4(floatBitsToUint(oit_canonical_depth()), uint(gl_PrimitiveID),
                            oit_pack_normal(v_eye_normal), next);
 }

@@ -6,6 +6,7 @@
 #extension GL_ARB_ES3_1_compatibility : enable
 #include "common/oit_shared.h"
 #include "common/shade.glsl"
+#include "common/canonical_depth.glsl"
 #include "ll/ll_nodes.glsl"
 
 layout(location = OIT_UNIFORM_LL_POOL_CAPACITY) uniform uint pool_capacity;
@@ -22,6 +23,6 @@ void main()
     uint node = atomicAdd(ll_counters[OIT_FRAME_COUNTER_FRAGMENTS], 1u);
     if (node >= pool_capacity)
         return;
-    ll_nodes[node] = ll_pack_node(colour, gl_FragCoord.z, uint(gl_PrimitiveID));
+    ll_nodes[node] = ll_pack_node(colour, oit_canonical_depth(), uint(gl_PrimitiveID));
     ll_next[node] = imageAtomicExchange(ll_heads, ivec2(gl_FragCoord.xy), node);
 }

@@ -289,8 +289,9 @@ static int command_info(int argc, char **argv)
         printf("{\"model\": ");
         json_string(stdout, model_path);
         json_warnings(stdout, &m);
-        printf(", \"vertices\": %u, \"welded_vertices\": %u, \"triangles\": %u, \"components\": %u",
-               m.vertex_count, m.welded_count, m.triangle_count, m.component_count);
+        printf(", \"vertices\": %u, \"welded_vertices\": %u, \"triangles\": %u, \"planes\": %u, "
+               "\"components\": %u",
+               m.vertex_count, m.welded_count, m.triangle_count, m.plane_count, m.component_count);
         printf(", \"bounds_min\": [%g, %g, %g], \"bounds_max\": [%g, %g, %g]", m.bounds_min[0],
                m.bounds_min[1], m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);
         printf(", \"centre\": [%g, %g, %g], \"radius\": %g, \"longest_edge\": %.9g, \"parts\": [",
@@ -308,7 +309,7 @@ static int command_info(int argc, char **argv)
     } else {
         printf("model       %s\n", model_path);
         printf("vertices    %u (%u distinct positions)\n", m.vertex_count, m.welded_count);
-        printf("triangles   %u\n", m.triangle_count);
+        printf("triangles   %u (%u distinct planes)\n", m.triangle_count, m.plane_count);
         printf("components  %u\n", m.component_count);
         printf("bounds      (%g, %g, %g) .. (%g, %g, %g)\n", m.bounds_min[0], m.bounds_min[1],
                m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);

@@ -4,7 +4,11 @@
  * It rasterizes the model the way GL does (clip in homogeneous space, perspective
  * divide, viewport transform, sample at pixel centres with a fill rule, no culling),
  * keeps every fragment, sorts each pixel's fragments by (window depth as float,
- * triangle index) and composites them front to back in double precision.
+ * triangle index) and composites them front to back in double precision. The
+ * window depth is the canonical one of every exact algorithm: the triangle's
+ * coplanar plane (oit_model.planes) at the pixel centre, computed here in
+ * double (common/canonical_depth.glsl does it in float), so coincident faces
+ * tie exactly and order by triangle index.
  *
  * Rasterization details chosen to match Mesa's llvmpipe:
  * - window coordinates are snapped to 1/256 pixel (llvmpipe's 8 subpixel bits) and
@@ -29,6 +33,7 @@
 #include <time.h>
 
 #include "oit.h"
+#include "oit_shared.h"
 
 /* llvmpipe's subpixel precision: 8 bits. */
 #define SUBPIXEL_BITS 8
@@ -53,7 +58,7 @@
 #define INSERTION_SORT_LIMIT 24
 
 typedef struct reference_fragment {
-    float depth;       /* window depth, as gl_FragCoord.z */
+    float depth;       /* canonical window depth, as oit_canonical_depth() */
     uint32_t triangle; /* gl_PrimitiveID: ties in depth sort by it */
     float rgb[3];      /* shaded colour */
     float alpha;
@@ -103,6 +108,11 @@ typedef struct raster_context {
      * whose alpha is 0 are not stored (so the counting pass evaluates it too) */
     bool per_fragment_alpha;
     double inverse_modelview[16];
+    /* canonical depth (common/canonical_depth.glsl): the current triangle's
+     * coplanar plane in normalized device coordinates, unless it is seen edge-on */
+    double plane_to_ndc[16];
+    double ndc_plane[4];
+    bool use_plane;
 } raster_context;
 
 /* ------------------------------------------------------------------ timing */
@@ -275,6 +285,15 @@ static void store_fragment(const raster_context *ctx, size_t pixel, int64_t x, i
     if (!(alpha > 0.0f))
         return; /* alpha 0 is never stored (the counting pass skipped it too) */
     reference_fragment *f = &ctx->fragments[ctx->pixel_offsets[pixel] + ctx->pixel_counts[pixel]++];
+    if (ctx->use_plane) {
+        /* the plane's depth at the pixel centre, as oit_canonical_depth() */
+        const double *q = ctx->ndc_plane;
+        double ndc_x = ((double)x + 0.5) * 2.0 / ctx->width - 1.0;
+        double ndc_y = ((double)y + 0.5) * 2.0 / ctx->height - 1.0;
+        double ndc_z = -(q[0] * ndc_x + q[1] * ndc_y + q[3]) / q[2];
+        depth = ndc_z * 0.5 + 0.5;
+        depth = depth < 0.0 ? 0.0 : (depth > 1.0 ? 1.0 : depth);
+    }
     f->depth = (float)depth;
     f->triangle = ctx->triangle;
     oit_shade(ctx->frame, ctx->colour, normal, eye, f->rgb);
@@ -468,6 +487,16 @@ static void rasterize_model(raster_context *ctx, const oit_model *model, const c
         ctx->colour = component->colour;
         if (!(ctx->alpha > 0.0f))
             continue; /* hidden parts and opacity 0: never stored */
+        ctx->use_plane = false;
+        if (ctx->fill && model->triangle_plane && model->planes) {
+            const float *plane = model->planes + (size_t)model->triangle_plane[t] * 4;
+            const double *m = ctx->plane_to_ndc;
+            for (int row = 0; row < 4; ++row)
+                ctx->ndc_plane[row] = m[row] * plane[0] + m[4 + row] * plane[1] +
+                                      m[8 + row] * plane[2] + m[12 + row] * plane[3];
+            const double *q = ctx->ndc_plane;
+            ctx->use_plane = fabs(q[2]) > OIT_EDGE_ON_PLANE_PPM * 1e-6 * (fabs(q[0]) + fabs(q[1]));
+        }
         rasterize_triangle(ctx, &vertices[index[0]], &vertices[index[1]], &vertices[index[2]]);
     }
 }
@@ -863,6 +892,7 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
         .guard_band_y = GUARD_BAND_PIXELS / alg->height,
         .per_fragment_alpha = frame->local.focus_shape != OIT_FOCUS_NONE,
     };
+    oit_plane_to_ndc_double(frame, ctx.plane_to_ndc);
     if (ctx.per_fragment_alpha && !oit_local_inverse_modelview(frame->modelview, ctx.inverse_modelview))
         return oit_fail(err, OIT_E_INPUT,
                         "reference: the modelview is singular, so focus shapes (model coordinates) "

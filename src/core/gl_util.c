@@ -578,6 +578,11 @@ void oit_gl_set_frame_uniforms(const oit_frame_settings *frame)
         glUniform3fv(OIT_UNIFORM_BACKGROUND, 1, frame->background);
     if (uniform_active(p, "u_viewport", OIT_UNIFORM_VIEWPORT))
         glUniform2i(OIT_UNIFORM_VIEWPORT, frame->width, frame->height);
+    if (uniform_active(p, "u_plane_to_ndc", OIT_UNIFORM_PLANE_TO_NDC)) {
+        float plane_to_ndc[16];
+        oit_plane_to_ndc(frame, plane_to_ndc);
+        glUniformMatrix4fv(OIT_UNIFORM_PLANE_TO_NDC, 1, GL_FALSE, plane_to_ndc);
+    }
     set_local_uniforms(p, &frame->local, frame);
 }
 
@@ -587,6 +592,10 @@ void oit_gl_draw_scene(const oit_scene *scene)
         return;
     glBindVertexArray(scene->vertex_array);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PLANES);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->plane_texture);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_TRIANGLE_PLANES);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->triangle_plane_texture);
     glDrawElements(GL_TRIANGLES, (GLsizei)scene->index_count, GL_UNSIGNED_INT, NULL);
     glBindVertexArray(0);
 }

@@ -18,9 +18,15 @@ float oit_local_focus_region(const oit_frame_settings *frame)
 /* General 4x4 inverse by cofactors, in double. */
 bool oit_local_inverse_modelview(const float modelview[16], double out[16])
 {
-    double m[16], inv[16];
+    double m[16];
     for (int i = 0; i < 16; ++i)
         m[i] = modelview[i];
+    return oit_mat4_inverse_double(m, out);
+}
+
+bool oit_mat4_inverse_double(const double m[16], double out[16])
+{
+    double inv[16];
     inv[0] = m[5] * m[10] * m[15] - m[5] * m[11] * m[14] - m[9] * m[6] * m[15] +
              m[9] * m[7] * m[14] + m[13] * m[6] * m[11] - m[13] * m[7] * m[10];
     inv[4] = -m[4] * m[10] * m[15] + m[4] * m[11] * m[14] + m[8] * m[6] * m[15] -

@@ -193,6 +193,36 @@ oit_status oit_default_camera(const oit_model *model, int width, int height, flo
     return OIT_OK;
 }
 
+void oit_plane_to_ndc_double(const oit_frame_settings *frame, double out[16])
+{
+    /* planes transform with the inverse transpose: for clip = M p, a plane
+     * with q . (p, 1) = 0 becomes (M^-T q) . clip = 0 */
+    double mvp[16], inverse[16];
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row) {
+            double sum = 0.0;
+            for (int k = 0; k < 4; ++k)
+                sum += (double)frame->projection[k * 4 + row] * frame->modelview[col * 4 + k];
+            mvp[col * 4 + row] = sum;
+        }
+    if (!oit_mat4_inverse_double(mvp, inverse)) {
+        for (int i = 0; i < 16; ++i)
+            out[i] = (i % 5 == 0) ? 1.0 : 0.0;
+        return;
+    }
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row)
+            out[col * 4 + row] = inverse[row * 4 + col];
+}
+
+void oit_plane_to_ndc(const oit_frame_settings *frame, float out[16])
+{
+    double m[16];
+    oit_plane_to_ndc_double(frame, m);
+    for (int i = 0; i < 16; ++i)
+        out[i] = (float)m[i];
+}
+
 void oit_shade(const oit_frame_settings *frame, const float colour[3], const float eye_normal[3],
                const float eye_position[3], float out_rgb[3])
 {

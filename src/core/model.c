@@ -63,6 +63,8 @@ void oit_model_free(oit_model *model)
     free(model->components);
     free(model->triangle_reach);
     free(model->warnings);
+    free(model->planes);
+    free(model->triangle_plane);
     memset(model, 0, sizeof *model);
 }
 
@@ -418,6 +420,165 @@ static oit_status join_identical_vertices(oit_model *model, float *texture_coord
     return OIT_OK;
 }
 
+/* ------------------------------------------------------- coplanar clusters */
+
+typedef struct plane_cluster {
+    double normal[3], d; /* the seed triangle's plane, in double */
+    int32_t key[4];      /* its bucket */
+    uint32_t next;       /* next cluster in the same hash chain + 1, 0 = none */
+} plane_cluster;
+
+typedef struct triangle_area {
+    double area2;
+    uint32_t triangle;
+} triangle_area;
+
+static int larger_area_first(const void *a, const void *b)
+{
+    const triangle_area *x = a, *y = b;
+    if (x->area2 != y->area2)
+        return x->area2 > y->area2 ? -1 : 1;
+    return x->triangle < y->triangle ? -1 : (x->triangle > y->triangle);
+}
+
+/* Buckets: normals in steps of 1/256 per component, offsets in steps of
+ * 1024 tolerances, both far coarser than the noise of coplanar triangles;
+ * a lookup tries, per dimension, the bucket and its nearer neighbour. */
+#define PLANE_NORMAL_STEPS 256.0
+#define PLANE_OFFSET_STEPS 1024.0
+
+static uint64_t bucket_hash(const int32_t key[4])
+{
+    return hash_words((const uint32_t *)(const void *)key, 4);
+}
+
+/* A triangle joins a cluster when its three vertices lie within the
+ * tolerance of the cluster's plane: then every point of it does, so its
+ * depth differs from the plane's by at most that. Seeds are taken largest
+ * first, as large triangles have the most accurate normals. */
+static oit_status cluster_planes(oit_model *model, oit_error *err)
+{
+    uint32_t n = model->triangle_count;
+    const float *p = model->positions;
+    double size = model->radius + sqrt((double)model->centre[0] * model->centre[0] +
+                                       (double)model->centre[1] * model->centre[1] +
+                                       (double)model->centre[2] * model->centre[2]);
+    double tolerance = OIT_COPLANAR_TOLERANCE * (size > 0.0 ? size : 1.0);
+    /* a generic direction: which of n and -n is the canonical normal */
+    const double generic[3] = {0.3479, 0.5638, 0.7490};
+
+    free(model->planes);
+    free(model->triangle_plane);
+    model->planes = NULL;
+    model->triangle_plane = alloc_array(n, sizeof *model->triangle_plane);
+    triangle_area *order = alloc_array(n, sizeof *order);
+    double *plane_of = alloc_array((uint64_t)n * 4, sizeof *plane_of);
+    plane_cluster *clusters = alloc_array(n, sizeof *clusters);
+    uint64_t capacity = 16;
+    while (capacity < (uint64_t)n * 2)
+        capacity *= 2;
+    uint32_t *heads = calloc_array(capacity, sizeof *heads);
+    oit_status status = OIT_OK;
+    if (!model->triangle_plane || !order || !plane_of || !clusters || !heads) {
+        status = oit_fail(err, OIT_E_RUNTIME, "out of memory finding coplanar faces (%u triangles)", n);
+        goto done;
+    }
+    for (uint32_t t = 0; t < n; ++t) {
+        const uint32_t *tri = model->indices + (size_t)t * 3;
+        const float *a = p + (size_t)tri[0] * 3, *b = p + (size_t)tri[1] * 3, *c = p + (size_t)tri[2] * 3;
+        double e1[3] = {(double)b[0] - a[0], (double)b[1] - a[1], (double)b[2] - a[2]};
+        double e2[3] = {(double)c[0] - a[0], (double)c[1] - a[1], (double)c[2] - a[2]};
+        double normal[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                            e1[0] * e2[1] - e1[1] * e2[0]};
+        double length = sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+        double *plane = plane_of + (size_t)t * 4;
+        if (!(length > 0.0) || !isfinite(length)) {
+            /* zero area: GL draws nothing; any plane through it will do */
+            plane[0] = plane[1] = 0.0;
+            plane[2] = 1.0;
+            length = 0.0;
+        } else {
+            double sign = normal[0] * generic[0] + normal[1] * generic[1] + normal[2] * generic[2] < 0.0
+                              ? -1.0 : 1.0;
+            for (int k = 0; k < 3; ++k)
+                plane[k] = sign * normal[k] / length;
+        }
+        double centroid[3];
+        for (int k = 0; k < 3; ++k)
+            centroid[k] = ((double)a[k] + b[k] + c[k]) / 3.0;
+        plane[3] = -(plane[0] * centroid[0] + plane[1] * centroid[1] + plane[2] * centroid[2]);
+        order[t].area2 = length;
+        order[t].triangle = t;
+    }
+    qsort(order, n, sizeof *order, larger_area_first);
+
+    uint64_t mask = capacity - 1;
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        uint32_t t = order[i].triangle;
+        const double *plane = plane_of + (size_t)t * 4;
+        const uint32_t *tri = model->indices + (size_t)t * 3;
+        double scaled[4] = {plane[0] * PLANE_NORMAL_STEPS, plane[1] * PLANE_NORMAL_STEPS,
+                            plane[2] * PLANE_NORMAL_STEPS,
+                            plane[3] / (tolerance * PLANE_OFFSET_STEPS)};
+        int32_t own[4], nearer[4];
+        for (int k = 0; k < 4; ++k) {
+            double f = floor(scaled[k]);
+            own[k] = (int32_t)f;
+            nearer[k] = scaled[k] - f < 0.5 ? own[k] - 1 : own[k] + 1;
+        }
+        uint32_t found = UINT32_MAX;
+        for (int probe = 0; probe < 16 && found == UINT32_MAX && order[i].area2 > 0.0; ++probe) {
+            int32_t key[4];
+            for (int k = 0; k < 4; ++k)
+                key[k] = (probe >> k) & 1 ? nearer[k] : own[k];
+            for (uint32_t c = heads[bucket_hash(key) & mask]; c && found == UINT32_MAX;
+                 c = clusters[c - 1].next) {
+                const plane_cluster *cluster = &clusters[c - 1];
+                if (memcmp(cluster->key, key, sizeof key) != 0)
+                    continue;
+                bool inside = true;
+                for (int v = 0; v < 3 && inside; ++v) {
+                    const float *q = p + (size_t)tri[v] * 3;
+                    double distance = cluster->normal[0] * q[0] + cluster->normal[1] * q[1] +
+                                      cluster->normal[2] * q[2] + cluster->d;
+                    inside = fabs(distance) <= tolerance;
+                }
+                if (inside)
+                    found = c - 1;
+            }
+        }
+        if (found == UINT32_MAX) {
+            found = count++;
+            plane_cluster *cluster = &clusters[found];
+            memcpy(cluster->normal, plane, 3 * sizeof(double));
+            cluster->d = plane[3];
+            memcpy(cluster->key, own, sizeof own);
+            uint64_t slot = bucket_hash(own) & mask;
+            cluster->next = heads[slot];
+            heads[slot] = found + 1;
+        }
+        model->triangle_plane[t] = found;
+    }
+    model->plane_count = count;
+    model->planes = alloc_array((uint64_t)count * 4, sizeof *model->planes);
+    if (!model->planes) {
+        status = oit_fail(err, OIT_E_RUNTIME, "out of memory for %u planes", count);
+        goto done;
+    }
+    for (uint32_t c = 0; c < count; ++c) {
+        for (int k = 0; k < 3; ++k)
+            model->planes[(size_t)c * 4 + k] = (float)clusters[c].normal[k];
+        model->planes[(size_t)c * 4 + 3] = (float)clusters[c].d;
+    }
+done:
+    free(order);
+    free(plane_of);
+    free(clusters);
+    free(heads);
+    return status;
+}
+
 /* The triangle ranges must tile [0, triangle_count) in order, so that every
  * triangle has exactly one component. */
 static oit_status check_components(oit_model *model, oit_error *err)
@@ -612,7 +773,7 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
         model->triangle_reach[t] = reach;
     }
     free(vertex_reach);
-    return OIT_OK;
+    return cluster_planes(model, err);
 }
 
 /* -------------------------------------------------------------- loading */

@@ -9,8 +9,11 @@
  * - Matrices are float[16] in OpenGL's column-major order (m[col * 4 + row]),
  *   column-vector convention: clip = projection * modelview * v.
  * - Images are RGBA8, top row first (as PNG stores them).
- * - Window depth is gl_FragCoord.z in [0, 1]; fragments are ordered by
- *   (depth, triangle index) so equal depths always sort the same way.
+ * - Fragments are ordered by (depth, triangle index). The depth is the
+ *   canonical one (common/canonical_depth.glsl): the window depth, in [0, 1],
+ *   of the fragment's coplanar plane (oit_model.planes) at the pixel centre,
+ *   so faces in one plane tie exactly, whatever their triangulation, and
+ *   then order by triangle index.
  * - Compositing is front to back in floating point; colour is quantized once.
  */
 #ifndef OIT_H
@@ -77,6 +80,14 @@ typedef struct oit_model {
     float radius;
     float longest_edge; /* the longest triangle edge (model space), the largest of the
                            components' */
+    /* Coplanar clusters (oit_model_finish): triangles whose three vertices lie
+     * within OIT_COPLANAR_TOLERANCE x (radius + |centre|) of one plane share
+     * it, and every exact algorithm and the reference take a fragment's sort
+     * depth from its triangle's plane at the pixel centre, so coincident
+     * faces tie bit for bit and then order by triangle index. */
+    uint32_t plane_count;
+    float *planes;            /* 4 per plane: unit normal xyz, d (n . p + d = 0), model space */
+    uint32_t *triangle_plane; /* per triangle: its plane */
     /* What the import skipped, repaired or could not check, one line each
      * ("FILE: what"): a model that loads is never silently incomplete. At most
      * OIT_MODEL_WARNING_LIMIT; repeats are counted in their line, and the last
@@ -90,6 +101,11 @@ typedef struct oit_model {
 } oit_model;
 
 #define OIT_MODEL_WARNING_LIMIT 16
+/* Coplanar tolerance, relative to the model's size (radius + |centre|): two
+ * float ulps (2^-22), so faces that are coplanar in the file and rounded to
+ * float still tie, while faces 1e-3 apart in a model 1,600 units across stay
+ * apart (docs/algorithms.md, "Ties and precision"). */
+#define OIT_COPLANAR_TOLERANCE 2.384185791015625e-07
 
 /* Import any format Assimp reads. Bad files give OIT_E_INPUT and a message
  * naming the file and the problem. */
@@ -267,6 +283,12 @@ oit_status oit_matrices_validate(const float modelview[16], const float projecti
 oit_status oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
                               float elevation_degrees, float modelview[16], float projection[16],
                               oit_error *err);
+/* The matrix that takes a model-space plane (a, b, c, d) to normalized device
+ * coordinates: transpose(inverse(projection * modelview)), computed in double,
+ * column-major; the identity if that product is singular (canonical depth,
+ * common/canonical_depth.glsl). */
+void oit_plane_to_ndc_double(const oit_frame_settings *frame, double out[16]);
+void oit_plane_to_ndc(const oit_frame_settings *frame, float out[16]);
 /* The per-fragment shading shared by every algorithm and the reference. */
 void oit_shade(const oit_frame_settings *frame, const float colour[3], const float eye_normal[3],
                const float eye_position[3], float out_rgb[3]);
@@ -274,6 +296,8 @@ void oit_shade(const oit_frame_settings *frame, const float colour[3], const flo
 /* Local modulation (local_modulation.c, twin of shaders/common/local_modulation.glsl).
  * The focus shapes' fall-off length, in model units. */
 float oit_local_focus_region(const oit_frame_settings *frame);
+/* The inverse of a column-major 4x4 in double; false (and zeros) if singular. */
+bool oit_mat4_inverse_double(const double m[16], double out[16]);
 /* The inverse of the modelview (model <- eye), column-major; false if singular. */
 bool oit_local_inverse_modelview(const float modelview[16], double out[16]);
 /* alpha times the component's opacity and the focus factor at model position p. */
@@ -354,6 +378,10 @@ typedef struct oit_scene {
     unsigned index_buffer;
     unsigned component_buffer;  /* SSBO at OIT_SSBO_COMPONENTS */
     unsigned triangle_reach_buffer; /* oit_model.triangle_reach, one float per triangle */
+    /* oit_model.planes and .triangle_plane, and buffer textures over them
+     * (OIT_TEXUNIT_PLANES, OIT_TEXUNIT_TRIANGLE_PLANES: common/canonical_depth.glsl) */
+    unsigned plane_buffer, triangle_plane_buffer;
+    unsigned plane_texture, triangle_plane_texture;
     uint32_t index_count;
     uint64_t gpu_bytes;
 } oit_scene;

@@ -95,6 +95,29 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
     glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)reach_bytes, model->triangle_reach, GL_STATIC_DRAW);
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
     bytes += reach_bytes;
+    /* coplanar clusters: each triangle's plane, and the planes (canonical_depth.glsl) */
+    const float no_plane[4] = {0.0f, 0.0f, 1.0f, 0.0f};
+    const uint32_t plane_zero = 0;
+    bool has_planes = model->planes && model->triangle_plane && model->plane_count > 0;
+    size_t plane_bytes = has_planes ? (size_t)model->plane_count * 4 * sizeof(float) : sizeof no_plane;
+    size_t triangle_plane_bytes = has_planes ? (size_t)model->triangle_count * sizeof(uint32_t) : sizeof plane_zero;
+    glGenBuffers(1, &scene->plane_buffer);
+    glBindBuffer(GL_TEXTURE_BUFFER, scene->plane_buffer);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)plane_bytes, has_planes ? (const void *)model->planes : no_plane,
+                 GL_STATIC_DRAW);
+    glGenBuffers(1, &scene->triangle_plane_buffer);
+    glBindBuffer(GL_TEXTURE_BUFFER, scene->triangle_plane_buffer);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)triangle_plane_bytes,
+                 has_planes ? (const void *)model->triangle_plane : &plane_zero, GL_STATIC_DRAW);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    bytes += plane_bytes + triangle_plane_bytes;
+    glGenTextures(1, &scene->plane_texture);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->plane_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, scene->plane_buffer);
+    glGenTextures(1, &scene->triangle_plane_texture);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->triangle_plane_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32UI, scene->triangle_plane_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
     free(component_data);
     free(identity_ids);
 
@@ -115,6 +138,10 @@ void oit_scene_release(oit_scene *scene)
         glDeleteBuffers(1, &scene->index_buffer);
         glDeleteBuffers(1, &scene->component_buffer);
         glDeleteBuffers(1, &scene->triangle_reach_buffer);
+        glDeleteTextures(1, &scene->plane_texture);
+        glDeleteTextures(1, &scene->triangle_plane_texture);
+        glDeleteBuffers(1, &scene->plane_buffer);
+        glDeleteBuffers(1, &scene->triangle_plane_buffer);
     }
     memset(scene, 0, sizeof *scene);
 }
