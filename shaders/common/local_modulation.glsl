@@ -24,12 +24,24 @@ layout(location = OIT_UNIFORM_DISTANCE_MODE) uniform int u_distance_mode; // -1:
 layout(location = OIT_UNIFORM_DISTANCE_SKIP) uniform int u_distance_skip;
 layout(location = OIT_UNIFORM_DISTANCE_NORM) uniform float u_distance_norm;
 
-// Linear eye depth of window depth z at a pixel centre (as ib_eye_depth).
-float oit_eye_depth(vec2 pixel_centre, float z)
+// The pixel's ray in eye space: its points at NDC depth -1 and +1, where the
+// canonical depth (common/canonical_depth.glsl) is 0 and 1.
+void oit_pixel_ray(vec2 pixel_centre, out vec3 near_point, out vec3 far_point)
 {
-    vec4 ndc = vec4(2.0 * pixel_centre / vec2(u_viewport) - 1.0, 2.0 * z - 1.0, 1.0);
-    vec4 eye = u_local_inverse_projection * ndc;
-    return -eye.z / eye.w;
+    precise vec2 ndc = pixel_centre * (2.0 / vec2(u_viewport)) - 1.0;
+    precise vec4 near_h = u_local_inverse_projection * vec4(ndc, -1.0, 1.0);
+    precise vec4 far_h = u_local_inverse_projection * vec4(ndc, 1.0, 1.0);
+    near_point = near_h.xyz / near_h.w;
+    far_point = far_h.xyz / far_h.w;
+}
+
+// Linear eye depth (in front of the eye, along -z) of canonical depth s at a
+// pixel centre (as ib_eye_depth).
+float oit_eye_depth(vec2 pixel_centre, float s)
+{
+    vec3 near_point, far_point;
+    oit_pixel_ray(pixel_centre, near_point, far_point);
+    return -(near_point.z + s * (far_point.z - near_point.z));
 }
 
 // The distance modulation's opacity: saturate(distance / norm).

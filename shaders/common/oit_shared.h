@@ -37,7 +37,7 @@
 /* ---- per-pixel linked lists (alg_ll.c, shaders/ll/ll_nodes.glsl) ----
  * Node i of the fragment pool is one uvec4 in OIT_SSBO_FRAGMENT_NODES:
  *   x = packUnorm2x16(r, g), y = packUnorm2x16(b, a)   shaded colour, straight alpha, 16 bit
- *   z = floatBitsToUint(oit_canonical_depth())         window depth (common/canonical_depth.glsl)
+ *   z = floatBitsToUint(oit_canonical_depth())         depth along the pixel's ray, [0, 1]
  *   w = gl_PrimitiveID                                 triangle index (depth tie-break)
  * Its next pointers are uint i of OIT_SSBO_FRAGMENT_NEXT (list as filled) and of
  * OIT_SSBO_FRAGMENT_SORTED_NEXT (list sorted front to back); OIT_LIST_END ends a list. */
@@ -123,11 +123,11 @@
 #define OIT_UNIFORM_DISTANCE_SKIP 57
 #define OIT_UNIFORM_DISTANCE_NORM 58
 /* the sort depth of every exact algorithm (common/canonical_depth.glsl): the
- * matrix that takes a model-space plane to normalized device coordinates,
- * transpose(inverse(projection * modelview)) (mat4, 40..43) */
-#define OIT_UNIFORM_PLANE_TO_NDC 40
-/* a plane whose NDC depth slope exceeds 1e6 (in millionths: |c| <= this x 1e-6 x
- * (|a| + |b|)) is seen edge-on: the rasterizer's depth is kept */
+ * matrix that takes a model-space plane to eye space,
+ * transpose(inverse(modelview)) (mat4, 40..43) */
+#define OIT_UNIFORM_PLANE_TO_EYE 40
+/* a plane is seen edge-on from a pixel when its normal is within 1e-6 (in
+ * millionths) of perpendicular to the pixel's ray: the interpolated depth is kept */
 #define OIT_EDGE_ON_PLANE_PPM 1
 /* focus shapes (oit_focus_shape in oit.h) */
 #define OIT_FOCUS_SHAPE_NONE 0

@@ -123,17 +123,26 @@ const uint IB_NONE = uint(OIT_IB_NO_NEIGHBOUR);
 
 // ---- eye space from pixel and window depth
 
-vec3 ib_eye_position(vec2 pixel_centre, float window_depth)
+// The eye position at canonical depth s (common/canonical_depth.glsl): s runs
+// linearly along the pixel's ray from its near-plane point (NDC depth -1) to
+// its far-plane point (+1).
+vec3 ib_ray_point(vec2 pixel_centre, float ndc_depth)
 {
-    vec4 ndc = vec4(2.0 * pixel_centre / vec2(u_viewport) - 1.0, 2.0 * window_depth - 1.0, 1.0);
+    vec4 ndc = vec4(2.0 * pixel_centre / vec2(u_viewport) - 1.0, ndc_depth, 1.0);
     vec4 eye = ib_inverse_projection * ndc;
     return eye.xyz / eye.w;
 }
 
-// Linear eye depth (distance in front of the eye along -z).
-float ib_eye_depth(vec2 pixel_centre, float window_depth)
+vec3 ib_eye_position(vec2 pixel_centre, float depth)
 {
-    return -ib_eye_position(pixel_centre, window_depth).z;
+    vec3 near_point = ib_ray_point(pixel_centre, -1.0);
+    return near_point + depth * (ib_ray_point(pixel_centre, 1.0) - near_point);
+}
+
+// Linear eye depth (distance in front of the eye along -z).
+float ib_eye_depth(vec2 pixel_centre, float depth)
+{
+    return -ib_eye_position(pixel_centre, depth).z;
 }
 
 // ---- the depth order: window depth, then triangle index

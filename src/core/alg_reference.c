@@ -109,9 +109,10 @@ typedef struct raster_context {
     bool per_fragment_alpha;
     double inverse_modelview[16];
     /* canonical depth (common/canonical_depth.glsl): the current triangle's
-     * coplanar plane in normalized device coordinates, unless it is seen edge-on */
-    double plane_to_ndc[16];
-    double ndc_plane[4];
+     * coplanar plane in eye space, and the inverse projection for each pixel's ray */
+    double plane_to_eye[16];
+    double inverse_projection[16];
+    double eye_plane[4];
     bool use_plane;
 } raster_context;
 
@@ -265,6 +266,52 @@ static float fragment_inputs(const raster_context *ctx, int64_t x, int64_t y,
     return (float)oit_local_alpha(ctx->frame, ctx->material_alpha, ctx->component, model);
 }
 
+/* The eye-space points of pixel (x, y)'s centre at NDC depth -1 and +1: the
+ * ray along which the canonical depth runs from 0 to 1 (oit_pixel_ray in
+ * common/local_modulation.glsl). */
+static void pixel_ray(const double inverse_projection[16], int width, int height, int64_t x,
+                      int64_t y, double near_point[3], double far_point[3])
+{
+    double ndc_x = ((double)x + 0.5) * 2.0 / width - 1.0, ndc_y = ((double)y + 0.5) * 2.0 / height - 1.0;
+    for (int end = 0; end < 2; ++end) {
+        double ndc[4] = {ndc_x, ndc_y, end ? 1.0 : -1.0, 1.0}, h[4] = {0.0, 0.0, 0.0, 0.0};
+        for (int row = 0; row < 4; ++row)
+            for (int col = 0; col < 4; ++col)
+                h[row] += inverse_projection[col * 4 + row] * ndc[col];
+        double *out = end ? far_point : near_point;
+        for (int k = 0; k < 3; ++k)
+            out[k] = h[k] / h[3];
+    }
+}
+
+/* The canonical depth of the current triangle at pixel (x, y), as
+ * oit_canonical_depth() (common/canonical_depth.glsl) computes it in float:
+ * where its coplanar plane meets the pixel's ray, as a fraction of the ray
+ * from the near-plane point to the far-plane point. A plane seen edge-on
+ * takes the interpolated eye position's projection on the ray instead. */
+static double canonical_depth(const raster_context *ctx, int64_t x, int64_t y, const float eye[3])
+{
+    double near_point[3], far_point[3], along[3];
+    pixel_ray(ctx->inverse_projection, ctx->width, ctx->height, x, y, near_point, far_point);
+    for (int k = 0; k < 3; ++k)
+        along[k] = far_point[k] - near_point[k];
+    const double *q = ctx->eye_plane;
+    double slope = q[0] * along[0] + q[1] * along[1] + q[2] * along[2];
+    double normal_length = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    double along_length2 = along[0] * along[0] + along[1] * along[1] + along[2] * along[2];
+    double s;
+    if (ctx->use_plane &&
+        fabs(slope) > OIT_EDGE_ON_PLANE_PPM * 1e-6 * normal_length * sqrt(along_length2)) {
+        s = -(q[0] * near_point[0] + q[1] * near_point[1] + q[2] * near_point[2] + q[3]) / slope;
+    } else {
+        s = 0.0;
+        for (int k = 0; k < 3; ++k)
+            s += ((double)eye[k] - near_point[k]) * along[k];
+        s /= along_length2;
+    }
+    return s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+}
+
 /* Counting pass: would this fragment be stored (alpha > 0)? */
 static bool fragment_kept(const raster_context *ctx, int64_t x, int64_t y,
                           const window_vertex v[3], const interpolation_plane *plane,
@@ -285,16 +332,7 @@ static void store_fragment(const raster_context *ctx, size_t pixel, int64_t x, i
     if (!(alpha > 0.0f))
         return; /* alpha 0 is never stored (the counting pass skipped it too) */
     reference_fragment *f = &ctx->fragments[ctx->pixel_offsets[pixel] + ctx->pixel_counts[pixel]++];
-    if (ctx->use_plane) {
-        /* the plane's depth at the pixel centre, as oit_canonical_depth() */
-        const double *q = ctx->ndc_plane;
-        double ndc_x = ((double)x + 0.5) * 2.0 / ctx->width - 1.0;
-        double ndc_y = ((double)y + 0.5) * 2.0 / ctx->height - 1.0;
-        double ndc_z = -(q[0] * ndc_x + q[1] * ndc_y + q[3]) / q[2];
-        depth = ndc_z * 0.5 + 0.5;
-        depth = depth < 0.0 ? 0.0 : (depth > 1.0 ? 1.0 : depth);
-    }
-    f->depth = (float)depth;
+    f->depth = (float)canonical_depth(ctx, x, y, eye);
     f->triangle = ctx->triangle;
     oit_shade(ctx->frame, ctx->colour, normal, eye, f->rgb);
     oit_local_contrast(ctx->frame, f->rgb);
@@ -487,15 +525,13 @@ static void rasterize_model(raster_context *ctx, const oit_model *model, const c
         ctx->colour = component->colour;
         if (!(ctx->alpha > 0.0f))
             continue; /* hidden parts and opacity 0: never stored */
-        ctx->use_plane = false;
-        if (ctx->fill && model->triangle_plane && model->planes) {
+        ctx->use_plane = ctx->fill && model->triangle_plane && model->planes;
+        if (ctx->use_plane) {
             const float *plane = model->planes + (size_t)model->triangle_plane[t] * 4;
-            const double *m = ctx->plane_to_ndc;
+            const double *m = ctx->plane_to_eye;
             for (int row = 0; row < 4; ++row)
-                ctx->ndc_plane[row] = m[row] * plane[0] + m[4 + row] * plane[1] +
+                ctx->eye_plane[row] = m[row] * plane[0] + m[4 + row] * plane[1] +
                                       m[8 + row] * plane[2] + m[12 + row] * plane[3];
-            const double *q = ctx->ndc_plane;
-            ctx->use_plane = fabs(q[2]) > OIT_EDGE_ON_PLANE_PPM * 1e-6 * (fabs(q[0]) + fabs(q[1]));
         }
         rasterize_triangle(ctx, &vertices[index[0]], &vertices[index[1]], &vertices[index[2]]);
     }
@@ -537,16 +573,11 @@ static uint8_t quantize(double value)
 /* Linear eye depth of window depth z at the pixel centre (x, y), through the
  * inverse projection, as the GPU algorithms compute it (ib_eye_depth). */
 static double eye_depth(const double inverse_projection[16], int width, int height, int x, int y,
-                        float z)
+                        float s)
 {
-    double ndc[4] = {2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0,
-                     2.0 * (double)z - 1.0, 1.0};
-    double eye_z = 0.0, eye_w = 0.0;
-    for (int col = 0; col < 4; ++col) {
-        eye_z += inverse_projection[col * 4 + 2] * ndc[col];
-        eye_w += inverse_projection[col * 4 + 3] * ndc[col];
-    }
-    return -eye_z / eye_w;
+    double near_point[3], far_point[3];
+    pixel_ray(inverse_projection, width, height, x, y, near_point, far_point);
+    return -(near_point[2] + (double)s * (far_point[2] - near_point[2]));
 }
 
 /* The distance modulation (docs/modulation.md; the same definition as ib's
@@ -892,7 +923,8 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
         .guard_band_y = GUARD_BAND_PIXELS / alg->height,
         .per_fragment_alpha = frame->local.focus_shape != OIT_FOCUS_NONE,
     };
-    oit_plane_to_ndc_double(frame, ctx.plane_to_ndc);
+    oit_plane_to_eye_double(frame, ctx.plane_to_eye);
+    oit_local_inverse_modelview(frame->projection, ctx.inverse_projection); /* validated regular */
     if (ctx.per_fragment_alpha && !oit_local_inverse_modelview(frame->modelview, ctx.inverse_modelview))
         return oit_fail(err, OIT_E_INPUT,
                         "reference: the modelview is singular, so focus shapes (model coordinates) "

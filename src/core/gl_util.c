@@ -578,10 +578,10 @@ void oit_gl_set_frame_uniforms(const oit_frame_settings *frame)
         glUniform3fv(OIT_UNIFORM_BACKGROUND, 1, frame->background);
     if (uniform_active(p, "u_viewport", OIT_UNIFORM_VIEWPORT))
         glUniform2i(OIT_UNIFORM_VIEWPORT, frame->width, frame->height);
-    if (uniform_active(p, "u_plane_to_ndc", OIT_UNIFORM_PLANE_TO_NDC)) {
-        float plane_to_ndc[16];
-        oit_plane_to_ndc(frame, plane_to_ndc);
-        glUniformMatrix4fv(OIT_UNIFORM_PLANE_TO_NDC, 1, GL_FALSE, plane_to_ndc);
+    if (uniform_active(p, "u_plane_to_eye", OIT_UNIFORM_PLANE_TO_EYE)) {
+        float plane_to_eye[16];
+        oit_plane_to_eye(frame, plane_to_eye);
+        glUniformMatrix4fv(OIT_UNIFORM_PLANE_TO_EYE, 1, GL_FALSE, plane_to_eye);
     }
     set_local_uniforms(p, &frame->local, frame);
 }

@@ -193,19 +193,12 @@ oit_status oit_default_camera(const oit_model *model, int width, int height, flo
     return OIT_OK;
 }
 
-void oit_plane_to_ndc_double(const oit_frame_settings *frame, double out[16])
+void oit_plane_to_eye_double(const oit_frame_settings *frame, double out[16])
 {
-    /* planes transform with the inverse transpose: for clip = M p, a plane
-     * with q . (p, 1) = 0 becomes (M^-T q) . clip = 0 */
-    double mvp[16], inverse[16];
-    for (int col = 0; col < 4; ++col)
-        for (int row = 0; row < 4; ++row) {
-            double sum = 0.0;
-            for (int k = 0; k < 4; ++k)
-                sum += (double)frame->projection[k * 4 + row] * frame->modelview[col * 4 + k];
-            mvp[col * 4 + row] = sum;
-        }
-    if (!oit_mat4_inverse_double(mvp, inverse)) {
+    /* planes transform with the inverse transpose: for eye = M p, a plane
+     * with q . (p, 1) = 0 becomes (M^-T q) . (eye, 1) = 0 */
+    double inverse[16];
+    if (!oit_local_inverse_modelview(frame->modelview, inverse)) {
         for (int i = 0; i < 16; ++i)
             out[i] = (i % 5 == 0) ? 1.0 : 0.0;
         return;
@@ -215,10 +208,10 @@ void oit_plane_to_ndc_double(const oit_frame_settings *frame, double out[16])
             out[col * 4 + row] = inverse[row * 4 + col];
 }
 
-void oit_plane_to_ndc(const oit_frame_settings *frame, float out[16])
+void oit_plane_to_eye(const oit_frame_settings *frame, float out[16])
 {
     double m[16];
-    oit_plane_to_ndc_double(frame, m);
+    oit_plane_to_eye_double(frame, m);
     for (int i = 0; i < 16; ++i)
         out[i] = (float)m[i];
 }

@@ -10,10 +10,13 @@
  *   column-vector convention: clip = projection * modelview * v.
  * - Images are RGBA8, top row first (as PNG stores them).
  * - Fragments are ordered by (depth, triangle index). The depth is the
- *   canonical one (common/canonical_depth.glsl): the window depth, in [0, 1],
- *   of the fragment's coplanar plane (oit_model.planes) at the pixel centre,
- *   so faces in one plane tie exactly, whatever their triangulation, and
- *   then order by triangle index.
+ *   canonical one (common/canonical_depth.glsl): where the fragment's coplanar
+ *   plane (oit_model.planes) meets the pixel centre's eye-space ray, as the
+ *   fraction s in [0, 1] of the ray from its near-plane point to its
+ *   far-plane point. Faces in one plane tie exactly, whatever their
+ *   triangulation, and then order by triangle index; s is linear in eye
+ *   depth, so floats separate surfaces 1e-3 apart at 800 units even with
+ *   the near plane at 0.01.
  * - Compositing is front to back in floating point; colour is quantized once.
  */
 #ifndef OIT_H
@@ -283,12 +286,12 @@ oit_status oit_matrices_validate(const float modelview[16], const float projecti
 oit_status oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
                               float elevation_degrees, float modelview[16], float projection[16],
                               oit_error *err);
-/* The matrix that takes a model-space plane (a, b, c, d) to normalized device
- * coordinates: transpose(inverse(projection * modelview)), computed in double,
- * column-major; the identity if that product is singular (canonical depth,
+/* The matrix that takes a model-space plane (a, b, c, d) to eye space:
+ * transpose(inverse(modelview)), computed in double, column-major; the
+ * identity if the modelview is singular (canonical depth,
  * common/canonical_depth.glsl). */
-void oit_plane_to_ndc_double(const oit_frame_settings *frame, double out[16]);
-void oit_plane_to_ndc(const oit_frame_settings *frame, float out[16]);
+void oit_plane_to_eye_double(const oit_frame_settings *frame, double out[16]);
+void oit_plane_to_eye(const oit_frame_settings *frame, float out[16]);
 /* The per-fragment shading shared by every algorithm and the reference. */
 void oit_shade(const oit_frame_settings *frame, const float colour[3], const float eye_normal[3],
                const float eye_position[3], float out_rgb[3]);
