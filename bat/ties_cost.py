@@ -42,7 +42,7 @@ def commit_of(oit):
     directory = os.path.dirname(os.path.realpath(oit))
     while directory != "/" and not os.path.exists(os.path.join(directory, ".git")):
         directory = os.path.dirname(directory)
-    result = subprocess.run(["git", "-C", directory, "rev-parse", "--short", "HEAD"], capture_output=True,
+    result = subprocess.run(["git", "-C", directory, "describe", "--always", "--dirty"], capture_output=True,
                             text=True)
     return result.stdout.strip() or "unknown"
 
@@ -91,7 +91,7 @@ def main():
         f"Median CPU frame time (wall time of a whole frame) over {args.frames} frames after one warm-up, "
         f"{args.size}, headlight shading, alpha 0.5, the two builds alternating per run. The change: "
         "coplanar clusters and the canonical plane depth in every exact algorithm, depth along the pixel's "
-        "ray instead of window depth, and dp's second geometry pass per layer "
+        "ray instead of window depth, and dp's tie target (the previous layer's triangle) "
         "([algorithms.md](../algorithms.md), \"Ties and precision\").",
         "",
         "| scene | " + " | ".join(f"{a} before | {a} after | {a} ratio" for a in ALGORITHMS) + " |",

@@ -193,16 +193,11 @@
 /* coplanar clusters (oit_model.planes), bound by oit_gl_draw_scene */
 #define OIT_TEXUNIT_TRIANGLE_PLANES 20 /* usamplerBuffer r32ui: each triangle's plane */
 #define OIT_TEXUNIT_PLANES 21          /* samplerBuffer rgba32f: model-space planes (n, d) */
-/* depth peeling in (depth, triangle) order (dp/peel_order.glsl): the previous
- * layer's triangle, and this layer's nearest depth (the key pass's result) */
+/* depth peeling in (depth, triangle) order (dp/peel.frag): the previous
+ * layer's triangle (usampler2D, R32UI), written at colour location
+ * OIT_DP_TIE_LOCATION of every peel framebuffer */
 #define OIT_TEXUNIT_TIE_PREVIOUS 22
-#define OIT_TEXUNIT_DEPTH_NEAREST 23
-/* A layer's triangle is kept in a 32-bit float depth texture as the float whose
- * bits are this bias + the triangle index: positive normal floats order as
- * their bits, so the depth test LESS picks the lowest triangle; the largest
- * index that stays <= 1.0 is 0x3F800000 - bias - 1 */
-#define OIT_DP_TIE_BIAS 8388608
-#define OIT_DP_MAX_TRIANGLES 1056964607
+#define OIT_DP_TIE_LOCATION 2
 #define OIT_SSBO_IB_TRIANGLES 13       /* the triangle table, written by ib/triangles.comp */
 #define OIT_IB_TRIANGLE_BYTES 32       /* ids (3 uint) + component, eye-space plane (4 float) */
 #define OIT_IB_NODE_BYTES 16

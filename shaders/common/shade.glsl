@@ -29,11 +29,18 @@ vec3 oit_shade_rgb(vec3 colour, vec3 eye_normal, vec3 eye_position)
     return oit_local_contrast(colour * factor);
 }
 
-// The shaded colour and opacity of the current fragment, local modulation applied
-// (per-component opacity, focus shapes, contrast: common/local_modulation.glsl).
+// The current fragment's opacity, local modulation applied (per-component
+// opacity, focus shapes: common/local_modulation.glsl); passes that only ask
+// whether a fragment is stored need no more (0: hidden, never a layer).
+float oit_fragment_alpha()
+{
+    return oit_local_alpha(clamp(u_alpha * oit_components[v_component].a, 0.0, 1.0), v_component,
+                           v_eye_position);
+}
+
+// The shaded colour and opacity of the current fragment (contrast too).
 vec4 oit_shade_fragment()
 {
-    vec4 material = oit_components[v_component];
-    float alpha = oit_local_alpha(clamp(u_alpha * material.a, 0.0, 1.0), v_component, v_eye_position);
-    return vec4(oit_shade_rgb(material.rgb, v_eye_normal, v_eye_position), alpha);
+    return vec4(oit_shade_rgb(oit_components[v_component].rgb, v_eye_normal, v_eye_position),
+                oit_fragment_alpha());
 }

@@ -11,7 +11,7 @@ layout(location = 2) out vec4 out_back;
 
 void main()
 {
-    if (oit_shade_fragment().a <= 0.0)
+    if (oit_fragment_alpha() <= 0.0)
         discard; // hidden parts (opacity 0) are not layers
     float z = oit_canonical_depth();
     out_minmax = vec2(-z, z);

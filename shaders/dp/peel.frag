@@ -1,37 +1,50 @@
-// peel.frag: the second of a depth-peeling layer's geometry passes (depth test
-// LESS). Of the fragments at the layer's depth (peel_key.frag found it; read
-// with texelFetch from a 32-bit float texture and compared exactly with the
-// same oit_canonical_depth() that wrote it) and after the previous layer in
-// (depth, triangle) order, the depth test keeps the lowest triangle: its index
-// is written as the depth (dp_encode_tie), and its colour lands in the layer
-// target. So coincident faces are peeled one after the other in triangle
-// order, as every exact algorithm and the reference composite them.
+// peel.frag: one depth-peeling layer (geometry pass, depth test LESS).
+// Layers follow (depth, triangle index), the order every exact algorithm and
+// the reference composite in, with the depth from oit_canonical_depth()
+// (common/canonical_depth.glsl: coincident faces tie exactly). A fragment is a
+// candidate if it comes after the previous layer's (depth, triangle): behind
+// its depth, or at exactly its depth (read with texelFetch from a 32-bit float
+// texture and compared with the same oit_canonical_depth() that wrote it) with
+// a larger triangle index. Among the candidates the depth test LESS keeps the
+// nearest, and among equal depths the first drawn, which is the lowest
+// triangle: GL applies the depth test in primitive order, and the model is one
+// draw call in triangle order. So coincident faces are peeled one after the
+// other instead of all but one being lost, as in plain depth peeling. The
+// winner's triangle index goes to the tie target for the next pass.
 // With DP_NEIGHBOURS defined (dp/peel_neighbours.frag: curvature, dist-curv)
 // it also writes the layer's normal and component for blend_curvature.frag.
 #include "common/oit_shared.h"
 #include "common/shade.glsl"
 #include "common/canonical_depth.glsl"
-#include "dp/peel_order.glsl"
 #ifdef DP_NEIGHBOURS
 #include "common/octahedral.glsl"
 #endif
 
-layout(binding = OIT_TEXUNIT_DEPTH_NEAREST) uniform sampler2D nearest_depth;
+layout(location = OIT_UNIFORM_DP_HAS_PREVIOUS) uniform int has_previous;
+layout(binding = OIT_TEXUNIT_DEPTH_PREVIOUS) uniform sampler2D previous_depth;
+layout(binding = OIT_TEXUNIT_TIE_PREVIOUS) uniform usampler2D previous_tie;
 
 layout(location = 0) out vec4 out_layer; // premultiplied colour, alpha
 #ifdef DP_NEIGHBOURS
 layout(location = 1) out uvec4 out_normal; // octahedral normal, component + 1
 #endif
+layout(location = OIT_DP_TIE_LOCATION) out uint out_tie; // triangle index
 
 void main()
 {
     float z = oit_canonical_depth();
-    if (z != texelFetch(nearest_depth, ivec2(gl_FragCoord.xy), 0).r || !dp_behind_previous(z))
-        discard;
+    if (has_previous != 0) {
+        ivec2 pixel = ivec2(gl_FragCoord.xy);
+        float previous = texelFetch(previous_depth, pixel, 0).r;
+        if (z < previous ||
+            (z == previous && uint(gl_PrimitiveID) <= texelFetch(previous_tie, pixel, 0).r))
+            discard;
+    }
     vec4 colour = oit_shade_fragment();
     if (colour.a <= 0.0)
         discard; // hidden parts (opacity 0) are not layers
-    gl_FragDepth = dp_encode_tie(uint(gl_PrimitiveID));
+    gl_FragDepth = z; // stored exactly as compared in the next pass
+    out_tie = uint(gl_PrimitiveID);
 #ifdef DP_NEIGHBOURS
     // curvature sets the opacity later: straight colour and the local factor
     out_layer = vec4(colour.rgb, oit_local_alpha(1.0, v_component, v_eye_position));

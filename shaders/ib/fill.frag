@@ -17,8 +17,7 @@ void main()
 {
     if (IB_HELPER_INVOCATION)
         return;
-    vec4 material = oit_components[v_component];
-    if (oit_local_alpha(clamp(u_alpha * material.a, 0.0, 1.0), v_component, v_eye_position) <= 0.0)
+    if (oit_fragment_alpha() <= 0.0)
         return; // hidden parts (opacity 0, local modulation included) are not stored
     uint node = atomicAdd(ib_counters[OIT_FRAME_COUNTER_FRAGMENTS], 1u);
     if (node >= pool_capacity)

@@ -1,9 +1,10 @@
 /*
  * alg_dp.c: depth peeling (Everitt 2001), front to back.
  *
- * Every layer costs two geometry passes (see "Equal depths" below): they keep
- * the fragment that comes next after the previous layer's in (depth,
- * triangle) order, whose colour lands in the layer target. A full-screen pass blends the layer under the float
+ * Every layer costs one geometry pass. The peel shader discards fragments at
+ * or before the previous layer in (depth, triangle) order (see "Equal depths"
+ * below); the ordinary depth test (LESS) then keeps the nearest of the rest,
+ * whose colour lands in the layer target. A full-screen pass blends the layer under the float
  * accumulation (rgb = premultiplied colour so far, a = transmittance T). The
  * loop ends when an occlusion query sees no samples or at the layer limit;
  * a final pass adds T * background and writes the RGBA8 output. By default
@@ -39,16 +40,17 @@
  *
  * Equal depths: layers follow (depth, triangle index), the order of every
  * exact algorithm and the reference, so coincident faces are not lost as in
- * plain depth peeling. Depth is oit_canonical_depth() (common/
- * canonical_depth.glsl: each coplanar cluster's plane at the pixel centre),
- * so faces in one plane tie exactly. One depth test cannot order by two keys,
- * so a layer takes two geometry passes: the key pass (dp/peel_key.frag, depth
- * only) finds the nearest depth after the previous layer's (depth, triangle);
- * the peel pass (dp/peel.frag) keeps the fragments at exactly that depth and
- * lets the depth test pick the lowest triangle, written as a depth value
- * (dp/peel_order.glsl). The z-fighting-aware variants of Vasilakis & Fudos
- * (2011) count coplanar fragments instead; this form needs no counter and
- * handles any number of them.
+ * plain depth peeling, whose strict "behind the previous layer" test keeps
+ * one of them. Depth is oit_canonical_depth() (common/canonical_depth.glsl:
+ * each coplanar cluster's plane at the pixel centre), so faces in one plane
+ * tie exactly. The peel also writes the winner's triangle index into a tie
+ * target (R32UI, two in turn like the depth textures), and a fragment is a
+ * candidate when it comes after the previous layer's (depth, triangle). Among
+ * candidates at equal depth the depth test LESS keeps the first drawn, which
+ * is the lowest triangle (GL applies per-fragment tests in primitive order;
+ * the model is one draw call), so one geometry pass per layer still suffices.
+ * (The z-fighting-aware variants of Vasilakis & Fudos 2011 count coplanar
+ * fragments instead; this needs no counter and handles any number of them.)
  */
 #include <limits.h>
 #include <stdio.h>
@@ -68,8 +70,7 @@ typedef struct dp_state {
     oit_stage_timer timer;
     oit_stats stats;
 
-    GLuint key_program;     /* geometry.vert + dp/peel_key.frag: a layer's depth */
-    GLuint peel_program;    /* geometry.vert + dp/peel.frag: its lowest triangle there */
+    GLuint peel_program;    /* geometry.vert + dp/peel.frag */
     GLuint blend_program;   /* fullscreen.vert + dp/blend_layer.frag */
     GLuint compose_program; /* fullscreen.vert + dp/compose.frag */
     GLuint samples_query;   /* GL_ANY_SAMPLES_PASSED of the peel pass */
@@ -79,12 +80,10 @@ typedef struct dp_state {
     GLuint blend_curvature_program; /* fullscreen.vert + dp/blend_curvature.frag */
 
     /* Two (depth, triangle) pairs used in turn: one is read (previous layer)
-     * while the other is written. depth[i] is the key pass's depth attachment
-     * (key_framebuffer[i]), tie[i] the peel pass's (every peel FBO i): the
-     * layer's triangle, encoded (dp/peel_order.glsl). */
+     * while the other is written by the current peel: depth[i] its depth
+     * attachment, tie[i] its colour attachment OIT_DP_TIE_LOCATION. */
     GLuint depth[2];          /* GL_DEPTH_COMPONENT32F */
-    GLuint tie[2];            /* GL_DEPTH_COMPONENT32F */
-    GLuint key_framebuffer[2];
+    GLuint tie[2];            /* GL_R32UI: the layer's triangle index */
     GLuint layer_colour;      /* GL_RGBA32F, premultiplied layer colour, in both peel FBOs */
     GLuint peel_framebuffer[2];
     /* distance modulation only (allocated on first use): peel FBO i writes
@@ -100,14 +99,14 @@ typedef struct dp_state {
      * beside layer_colour (curvature) or distance_colour[i] (dist-curv) */
     bool normal_targets;
     GLuint layer_normal[2];
-    GLuint curvature_peel_framebuffer[2]; /* layer_colour, layer_normal[i], tie[i] */
-    GLuint dist_curv_peel_framebuffer[2]; /* distance_colour[i], layer_normal[i], tie[i] */
+    GLuint curvature_peel_framebuffer[2]; /* layer_colour, layer_normal[i], tie[i], depth[i] */
+    GLuint dist_curv_peel_framebuffer[2]; /* distance_colour[i], layer_normal[i], tie[i], depth[i] */
     GLuint accumulation;      /* GL_RGBA32F: rgb = sum T*a*c, a = T */
     GLuint accumulation_framebuffer;
     int width, height;
 } dp_state;
 
-/* Bytes per pixel of the targets: 2 depth and 2 triangle (4 each), the layer
+/* Bytes per pixel of the targets: 2 depth and 2 tie (4 each), the layer
  * colour and the accumulation (16 each), the RGBA8 output (4). */
 #define DP_BYTES_PER_PIXEL (4 * 4 + 16 + 16 + 4)
 /* with the distance modulation: two layer colours (16 each) and the R32F maximum */
@@ -118,7 +117,6 @@ typedef struct dp_state {
 static void dp_release_targets(dp_state *s)
 {
     glDeleteFramebuffers(2, s->peel_framebuffer);
-    glDeleteFramebuffers(2, s->key_framebuffer);
     glDeleteFramebuffers(1, &s->accumulation_framebuffer);
     glDeleteTextures(2, s->depth);
     glDeleteTextures(2, s->tie);
@@ -132,8 +130,7 @@ static void dp_release_targets(dp_state *s)
     glDeleteFramebuffers(2, s->dist_curv_peel_framebuffer);
     glDeleteTextures(2, s->layer_normal);
     for (int i = 0; i < 2; ++i)
-        s->peel_framebuffer[i] = s->depth[i] = s->tie[i] = s->key_framebuffer[i] =
-            s->distance_peel_framebuffer[i] =
+        s->peel_framebuffer[i] = s->depth[i] = s->tie[i] = s->distance_peel_framebuffer[i] =
             s->distance_colour[i] = s->layer_normal[i] = s->curvature_peel_framebuffer[i] =
                 s->dist_curv_peel_framebuffer[i] = 0;
     s->distance_max = s->distance_max_framebuffer = 0;
@@ -188,9 +185,6 @@ static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **
         oit_gl_program(config->shader_dir, "common/geometry.vert", "dp/peel.frag",
                        &s->peel_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/geometry.vert", "dp/peel_key.frag",
-                                &s->key_program, err);
-    if (status == OIT_OK)
         status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
                                 "dp/blend_layer.frag", &s->blend_program, err);
     if (status == OIT_OK)
@@ -228,23 +222,22 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
     if (status != OIT_OK)
         return status;
 
+    /* every peel framebuffer: colour 0, (normal 1,) tie OIT_DP_TIE_LOCATION */
+    _Static_assert(OIT_DP_TIE_LOCATION == 2, "the draw buffer lists below put the tie at 2");
+    static const GLenum colour_and_tie[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_COLOR_ATTACHMENT2};
+    static const GLenum three_targets[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                            GL_COLOR_ATTACHMENT2};
     s->layer_colour = oit_gl_texture_2d(GL_RGBA32F, width, height);
     for (int i = 0; i < 2; ++i) {
         s->depth[i] = oit_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
-        s->tie[i] = oit_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
-        glGenFramebuffers(1, &s->key_framebuffer[i]);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->key_framebuffer[i]);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
-        glDrawBuffer(GL_NONE);
-        glReadBuffer(GL_NONE);
-        status = dp_check_framebuffer("peel key", err);
-        if (status != OIT_OK)
-            break;
+        s->tie[i] = oit_gl_texture_2d(GL_R32UI, width, height);
         glGenFramebuffers(1, &s->peel_framebuffer[i]);
         glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                                s->layer_colour, 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->tie[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
+        glDrawBuffers(3, colour_and_tie);
         status = dp_check_framebuffer("peel", err);
         if (status != OIT_OK)
             break;
@@ -263,7 +256,9 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glBindFramebuffer(GL_FRAMEBUFFER, s->distance_peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                                s->distance_colour[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->tie[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
+        glDrawBuffers(3, colour_and_tie);
         status = dp_check_framebuffer("distance peel", err);
     }
     if (status == OIT_OK && s->distance_targets) {
@@ -274,7 +269,6 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
                                s->distance_max, 0);
         status = dp_check_framebuffer("distance maximum", err);
     }
-    static const GLenum two_targets[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     for (int i = 0; status == OIT_OK && s->normal_targets && i < 2; ++i) {
         s->layer_normal[i] = oit_gl_texture_2d(GL_RG32UI, width, height);
         glGenFramebuffers(1, &s->curvature_peel_framebuffer[i]);
@@ -283,8 +277,9 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
                                s->layer_colour, 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
                                s->layer_normal[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->tie[i], 0);
-        glDrawBuffers(2, two_targets);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
+        glDrawBuffers(3, three_targets);
         status = dp_check_framebuffer("curvature peel", err);
         if (status != OIT_OK || !s->distance_targets)
             continue;
@@ -294,8 +289,9 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
                                s->distance_colour[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
                                s->layer_normal[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->tie[i], 0);
-        glDrawBuffers(2, two_targets);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
+        glDrawBuffers(3, three_targets);
         status = dp_check_framebuffer("dist-curv peel", err);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -366,40 +362,33 @@ static void dp_blend_curvature(dp_state *s, const oit_frame_settings *frame, GLu
     glDisable(GL_BLEND);
 }
 
-/* The key pass of layer `layer`: into depth[layer & 1], the nearest depth of
- * the fragments after layer - 1 in (depth, triangle) order; with a query,
- * whether there were any. */
-static void dp_key_pass(dp_state *s, const oit_scene *scene, const oit_frame_settings *frame,
-                        int layer, GLuint query)
-{
-    static const GLfloat far_depth = 1.0f;
-    const int current = layer & 1, previous = current ^ 1;
-    glBindFramebuffer(GL_FRAMEBUFFER, s->key_framebuffer[current]);
-    glDepthMask(GL_TRUE);
-    glClearBufferfv(GL_DEPTH, 0, &far_depth);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glUseProgram(s->key_program);
-    oit_gl_set_frame_uniforms(frame);
-    glUniform1i(OIT_UNIFORM_DP_HAS_PREVIOUS, layer > 0);
-    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
-    glBindTexture(GL_TEXTURE_2D, s->depth[previous]);
-    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_TIE_PREVIOUS);
-    glBindTexture(GL_TEXTURE_2D, s->tie[previous]);
-    if (query)
-        glBeginQuery(GL_ANY_SAMPLES_PASSED, query);
-    oit_gl_draw_scene(scene);
-    if (query)
-        glEndQuery(GL_ANY_SAMPLES_PASSED);
-    glDisable(GL_DEPTH_TEST);
-}
-
-/* After the cap: is any fragment left after layer `layers - 1`? One more key
- * pass with a query, only when the cap was reached. */
+/* After the cap: is any fragment left behind layer `layers - 1`? One more
+ * peel test with colour writes off, only when the cap was reached. */
 static bool dp_fragments_left(dp_state *s, const oit_scene *scene, const oit_frame_settings *frame,
                               int layers)
 {
-    dp_key_pass(s, scene, frame, layers, s->samples_query);
+    static const GLfloat far_depth = 1.0f;
+    const int current = layers & 1, previous = current ^ 1;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[current]);
+    glDepthMask(GL_TRUE);
+    glClearBufferfv(GL_DEPTH, 0, &far_depth);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_TIE_PREVIOUS);
+    glBindTexture(GL_TEXTURE_2D, s->tie[previous]);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(s->peel_program);
+    oit_gl_set_frame_uniforms(frame);
+    glUniform1i(OIT_UNIFORM_DP_HAS_PREVIOUS, 1);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
+    glBindTexture(GL_TEXTURE_2D, s->depth[previous]);
+    glBeginQuery(GL_ANY_SAMPLES_PASSED, s->samples_query);
+    oit_gl_draw_scene(scene);
+    glEndQuery(GL_ANY_SAMPLES_PASSED);
+    glDisable(GL_DEPTH_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
     GLuint any_samples = 0;
     glGetQueryObjectuiv(s->samples_query, GL_QUERY_RESULT, &any_samples);
     return any_samples != 0;
@@ -412,6 +401,7 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
     static const GLfloat empty_layer[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     static const GLuint no_normal[4] = {0u, 0u, 0u, 0u}; /* component + 1 = 0: no fragment */
     static const GLfloat far_depth = 1.0f;
+    static const GLuint no_triangle[4] = {UINT32_MAX, 0u, 0u, 0u}; /* after every triangle */
     const bool distance = sweep == DP_SWEEP_DISTANCE_MAX || sweep == DP_SWEEP_DISTANCE_BLEND;
     const bool neighbours = dp_needs_neighbours(frame);
     const char *prefix = sweep == DP_SWEEP_DISTANCE_MAX ? "distance_peel" : "peel";
@@ -427,9 +417,7 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
         oit_timer_stage_begin(&s->timer, stage);
         const int current = layer & 1, previous = current ^ 1;
 
-        /* Peel, in (depth, triangle) order after the previous layer: the
-         * nearest depth, then the lowest triangle at that depth. */
-        dp_key_pass(s, scene, frame, layer, 0);
+        /* Peel: the next fragment after the previous layer in (depth, triangle) order. */
         GLuint framebuffer = s->peel_framebuffer[current];
         if (sweep == DP_SWEEP_CURVATURE)
             framebuffer = s->curvature_peel_framebuffer[current];
@@ -442,6 +430,7 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
         glClearBufferfv(GL_COLOR, 0, empty_layer);
         if (neighbours)
             glClearBufferuiv(GL_COLOR, 1, no_normal);
+        glClearBufferuiv(GL_COLOR, OIT_DP_TIE_LOCATION, no_triangle);
         glClearBufferfv(GL_DEPTH, 0, &far_depth);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -452,8 +441,6 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
         glBindTexture(GL_TEXTURE_2D, s->depth[previous]);
         glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_TIE_PREVIOUS);
         glBindTexture(GL_TEXTURE_2D, s->tie[previous]);
-        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_NEAREST);
-        glBindTexture(GL_TEXTURE_2D, s->depth[current]);
         glBeginQuery(GL_ANY_SAMPLES_PASSED, s->samples_query);
         oit_gl_draw_scene(scene);
         glEndQuery(GL_ANY_SAMPLES_PASSED);
@@ -585,11 +572,6 @@ static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
     dp_state *s = (dp_state *)alg;
     if (!scene->has_gpu)
         return oit_fail(err, OIT_E_INPUT, "dp: the scene has no GPU buffers");
-    if (scene->model && scene->model->triangle_count > (uint32_t)OIT_DP_MAX_TRIANGLES + 1u)
-        return oit_fail(err, OIT_E_INPUT,
-                        "dp: %u triangles: a layer's triangle is kept as a depth value, which "
-                        "holds at most %u (use ll or ddp)",
-                        scene->model->triangle_count, (unsigned)OIT_DP_MAX_TRIANGLES + 1u);
     const oit_modulation *m = &frame->modulation;
     /* dist-curv needs the distance (delayed blending) and the neighbours */
     const bool distance = m->mode == OIT_MODULATE_DISTANCE || m->mode == OIT_MODULATE_DIST_CURV;
@@ -682,7 +664,6 @@ static void dp_destroy(oit_algorithm *alg)
     dp_release_targets(s);
     oit_gl_output_release(&s->output);
     glDeleteProgram(s->peel_program);
-    glDeleteProgram(s->key_program);
     glDeleteProgram(s->blend_program);
     glDeleteProgram(s->compose_program);
     glDeleteProgram(s->blend_distance_program);
