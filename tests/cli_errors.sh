@@ -57,4 +57,16 @@ expect_exit 1 "" -- "$oit" compare "$work/a.png" "$work/b.png" --tolerance 2
 expect_exit 2 "size|32x32" -- "$oit" compare "$work/a.png" "$work/small.png"
 expect_exit 2 "PNG" -- "$oit" compare "$work/a.png" "$work/garbage.bin"
 expect_exit 2 "missing.png" -- "$oit" compare "$work/a.png" "$work/missing.png"
+# --- special files and failing writes: no hang, nothing lost ---
+mkfifo "$work/fifo.png" "$work/fifo.txt"
+expect_exit 2 "fifo.png: not a regular file" -- "$oit" compare "$work/a.png" "$work/fifo.png"
+expect_exit 2 "fifo.txt: not a regular file" -- "$oit" bench --scene-list "$work/fifo.txt" --algorithms blend --sizes 16x16
+expect_exit 3 "--csv /dev/full: writing failed" -- "$oit" bench --model "$model" --algorithms blend --sizes 16x16 \
+    --frames 1 --warmup 0 --quiet --csv /dev/full
+# a PNG that cannot be written whole (here: past a 1 KB file-size limit) leaves the previous file
+echo previous >"$work/keep.png"
+expect_exit 3 "keep.png: cannot write" -- bash -c 'trap "" XFSZ; ulimit -f 1; exec "$@"' _ \
+    "$oit" render --model "$model" --algorithm blend --size 128x128 --out "$work/keep.png"
+[ "$(cat "$work/keep.png")" = previous ] || fail "a failed PNG write must leave the previous file"
+[ -z "$(ls "$work" | grep 'keep.png.tmp')" ] || fail "a failed PNG write must remove its temporary file"
 echo "all error cases behaved"

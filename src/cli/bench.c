@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/utsname.h>
 #include <time.h>
 #include <unistd.h>
@@ -194,6 +195,9 @@ static oit_status scene_add(scene_list *list, const render_options *base, int to
 static oit_status scene_list_read(scene_list *list, const render_options *base, const char *path,
                                   oit_error *err)
 {
+    struct stat info;
+    if (stat(path, &info) == 0 && !S_ISREG(info.st_mode)) /* a FIFO would block forever */
+        return oit_fail(err, OIT_E_INPUT, "--scene-list %s: not a regular file", path);
     FILE *file = fopen(path, "r");
     if (!file)
         return oit_fail(err, OIT_E_INPUT, "--scene-list %s: %s", path, strerror(errno));
@@ -752,13 +756,29 @@ static oit_status bench_scenes(const bench_settings *b, scene_list *scenes, int 
     return status;
 }
 
-static void bench_output_close(bench_output *out)
+/* Closes the outputs; a write that failed anywhere (a full disk) is an
+ * error naming the file, not an exit 0 with a short file. */
+static oit_status bench_output_close(bench_output *out, const bench_settings *b, oit_error *err)
 {
-    if (out->csv && out->csv != stdout)
-        fclose(out->csv);
-    if (out->json && out->json != stdout)
-        fclose(out->json);
+    oit_status status = OIT_OK;
+    FILE *files[2] = {out->csv, out->json};
+    const char *flags[2] = {"--csv", "--json"};
+    const char *paths[2] = {b->csv_path ? b->csv_path : "-", b->json_path ? b->json_path : "-"};
+    for (int k = 0; k < 2; ++k) {
+        if (!files[k])
+            continue;
+        bool failed = fflush(files[k]) != 0 || ferror(files[k]);
+        int error = errno;
+        if (files[k] != stdout && fclose(files[k]) != 0 && !failed) {
+            failed = true;
+            error = errno;
+        }
+        if (failed && status == OIT_OK)
+            status = oit_fail(err, OIT_E_RUNTIME, "%s %s: writing failed: %s", flags[k], paths[k],
+                              strerror(error));
+    }
     out->csv = out->json = NULL;
+    return status;
 }
 
 static oit_status bench_output_open(const bench_settings *b, bench_output *out, oit_error *err)
@@ -775,7 +795,8 @@ static oit_status bench_output_open(const bench_settings *b, bench_output *out, 
         out->json = strcmp(b->json_path, "-") == 0 ? stdout : fopen(b->json_path, "w");
     if (b->json_path && !out->json) {
         oit_status status = oit_fail(err, OIT_E_INPUT, "--json: cannot write %s: %s", b->json_path, strerror(errno));
-        bench_output_close(out);
+        oit_error ignored;
+        bench_output_close(out, b, &ignored);
         return status;
     }
     return OIT_OK;
@@ -943,7 +964,12 @@ int command_bench(int argc, char **argv)
         }
         bench_output_end(&out, failures);
     }
-    bench_output_close(&out);
+    oit_error close_err;
+    oit_status close_status = bench_output_close(&out, b, &close_err);
+    if (status == OIT_OK && close_status != OIT_OK) {
+        status = close_status;
+        err = close_err;
+    }
     session_close(&s);
     scene_list_free(&scenes);
     free(b);

@@ -1,4 +1,5 @@
 /* image.c: RGBA8 images, PNG input and output (libpng), image comparison. */
+#define _POSIX_C_SOURCE 200809L /* mkstemp, fdopen, fchmod */
 #include <errno.h>
 #include <math.h>
 #include <setjmp.h>
@@ -8,6 +9,7 @@
 
 #include <png.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "oit.h"
 
@@ -58,14 +60,33 @@ static void on_png_warning(png_structp png, png_const_charp message)
     (void)message; /* warnings (e.g. bad ancillary chunks) are not errors */
 }
 
+/* Writes the PNG into a temporary file beside path, then renames it over
+ * path: a write that fails (a full disk) leaves the previous file whole. */
 oit_status oit_png_write(const char *path, const oit_image *image, oit_error *err)
 {
     const char *volatile name = path; /* volatile: used after longjmp */
     if (!image || !image->rgba || image->width <= 0 || image->height <= 0)
         return oit_fail(err, OIT_E_INPUT, "%s: no image to write", name);
-    FILE *file = fopen(path, "wb");
-    if (!file)
-        return oit_fail(err, OIT_E_INPUT, "%s: cannot write: %s", name, strerror(errno));
+    size_t temporary_size = strlen(path) + 16;
+    char *volatile temporary = malloc(temporary_size);
+    if (!temporary)
+        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
+    snprintf(temporary, temporary_size, "%s.tmp.XXXXXX", path);
+    int descriptor = mkstemp(temporary);
+    FILE *file = descriptor >= 0 ? fdopen(descriptor, "wb") : NULL;
+    if (!file) {
+        int error = errno;
+        if (descriptor >= 0) {
+            close(descriptor);
+            remove(temporary);
+        }
+        free(temporary);
+        return oit_fail(err, OIT_E_INPUT, "%s: cannot write: %s", name, strerror(error));
+    }
+    /* mkstemp makes the file 0600; a PNG is for others to read too */
+    mode_t mask = umask(0);
+    umask(mask);
+    fchmod(descriptor, 0666 & ~mask);
 
     png_context context = {{0}};
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &context, on_png_error,
@@ -77,14 +98,16 @@ oit_status oit_png_write(const char *path, const oit_image *image, oit_error *er
     if (!png || !info) {
         png_destroy_write_struct(&png, &info);
         fclose(file);
-        remove(path);
+        remove(temporary);
+        free(temporary);
         return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
     }
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
         free(rows);
         fclose(file);
-        remove(path); /* no half-written files */
+        remove(temporary); /* no half-written files; the previous one stays */
+        free(temporary);
         return oit_fail(err, OIT_E_RUNTIME, "%s: cannot write PNG: %s", name, context.message);
     }
     rows = malloc((size_t)image->height * sizeof *rows);
@@ -102,11 +125,22 @@ oit_status oit_png_write(const char *path, const oit_image *image, oit_error *er
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
     free(rows);
-    if (fclose(file) != 0) {
-        int error = errno;
-        remove(path);
+    bool failed = fflush(file) != 0 || ferror(file);
+    int error = errno;
+    if (fclose(file) != 0 && !failed) {
+        failed = true;
+        error = errno;
+    }
+    if (!failed && rename(temporary, path) != 0) {
+        failed = true;
+        error = errno;
+    }
+    if (failed) {
+        remove(temporary);
+        free(temporary);
         return oit_fail(err, OIT_E_RUNTIME, "%s: cannot write: %s", name, strerror(error));
     }
+    free(temporary);
     return OIT_OK;
 }
 
@@ -118,6 +152,9 @@ oit_status oit_png_read(const char *path, oit_image *image, oit_error *err)
     struct stat status;
     if (stat(path, &status) == 0 && S_ISDIR(status.st_mode))
         return oit_fail(err, OIT_E_INPUT, "%s: is a directory, not a PNG file", name);
+    /* a FIFO or a device would block or never end */
+    if (stat(path, &status) == 0 && !S_ISREG(status.st_mode))
+        return oit_fail(err, OIT_E_INPUT, "%s: not a regular file", name);
     FILE *file = fopen(path, "rb");
     if (!file)
         return oit_fail(err, OIT_E_INPUT, "%s: cannot open: %s", name, strerror(errno));
