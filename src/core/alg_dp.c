@@ -362,36 +362,47 @@ static void dp_blend_curvature(dp_state *s, const oit_frame_settings *frame, GLu
     glDisable(GL_BLEND);
 }
 
-/* After the cap: is any fragment left behind layer `layers - 1`? One more
- * peel test with colour writes off, only when the cap was reached. */
-static bool dp_fragments_left(dp_state *s, const oit_scene *scene, const oit_frame_settings *frame,
-                              int layers)
+/* The peel of layer `layer` into the bound framebuffer (depth test LESS,
+ * after the previous layer in (depth, triangle) order); waits for and
+ * returns whether any fragment passed. Waiting is inherent to the algorithm:
+ * the next pass depends on it. */
+static bool dp_draw_peel(dp_state *s, const oit_scene *scene, const oit_frame_settings *frame,
+                         GLuint program, int layer)
 {
-    static const GLfloat far_depth = 1.0f;
-    const int current = layers & 1, previous = current ^ 1;
-    glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[current]);
-    glDepthMask(GL_TRUE);
-    glClearBufferfv(GL_DEPTH, 0, &far_depth);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_TIE_PREVIOUS);
-    glBindTexture(GL_TEXTURE_2D, s->tie[previous]);
-    glDepthMask(GL_FALSE);
+    const int previous = (layer & 1) ^ 1;
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    glUseProgram(s->peel_program);
+    glUseProgram(program);
     oit_gl_set_frame_uniforms(frame);
-    glUniform1i(OIT_UNIFORM_DP_HAS_PREVIOUS, 1);
+    glUniform1i(OIT_UNIFORM_DP_HAS_PREVIOUS, layer > 0);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
     glBindTexture(GL_TEXTURE_2D, s->depth[previous]);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_TIE_PREVIOUS);
+    glBindTexture(GL_TEXTURE_2D, s->tie[previous]);
     glBeginQuery(GL_ANY_SAMPLES_PASSED, s->samples_query);
     oit_gl_draw_scene(scene);
     glEndQuery(GL_ANY_SAMPLES_PASSED);
     glDisable(GL_DEPTH_TEST);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthMask(GL_TRUE);
     GLuint any_samples = 0;
     glGetQueryObjectuiv(s->samples_query, GL_QUERY_RESULT, &any_samples);
     return any_samples != 0;
+}
+
+/* After the cap: is any fragment left behind layer `layers - 1`? One more
+ * peel test with colour and depth writes off, only when the cap was reached. */
+static bool dp_fragments_left(dp_state *s, const oit_scene *scene, const oit_frame_settings *frame,
+                              int layers)
+{
+    static const GLfloat far_depth = 1.0f;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[layers & 1]);
+    glDepthMask(GL_TRUE);
+    glClearBufferfv(GL_DEPTH, 0, &far_depth);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    bool left = dp_draw_peel(s, scene, frame, s->peel_program, layers);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    return left;
 }
 
 static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_frame_settings *frame,
@@ -432,26 +443,11 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
             glClearBufferuiv(GL_COLOR, 1, no_normal);
         glClearBufferuiv(GL_COLOR, OIT_DP_TIE_LOCATION, no_triangle);
         glClearBufferfv(GL_DEPTH, 0, &far_depth);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glUseProgram(neighbours ? s->peel_neighbours_program : s->peel_program);
-        oit_gl_set_frame_uniforms(frame);
-        glUniform1i(OIT_UNIFORM_DP_HAS_PREVIOUS, layer > 0);
-        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
-        glBindTexture(GL_TEXTURE_2D, s->depth[previous]);
-        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_TIE_PREVIOUS);
-        glBindTexture(GL_TEXTURE_2D, s->tie[previous]);
-        glBeginQuery(GL_ANY_SAMPLES_PASSED, s->samples_query);
-        oit_gl_draw_scene(scene);
-        glEndQuery(GL_ANY_SAMPLES_PASSED);
-        glDisable(GL_DEPTH_TEST);
-
-        /* Waiting here is inherent to the algorithm: the next pass depends on it. */
-        GLuint any_samples = 0;
-        glGetQueryObjectuiv(s->samples_query, GL_QUERY_RESULT, &any_samples);
+        const bool any_samples = dp_draw_peel(
+            s, scene, frame, neighbours ? s->peel_neighbours_program : s->peel_program, layer);
         if (any_samples)
             ++layers;
-        last_had_samples = any_samples != 0;
+        last_had_samples = any_samples;
         if (any_samples && sweep == DP_SWEEP_PLAIN) {
             /* Blend the layer under the accumulation: rgb += T * (a c), T *= 1 - a. */
             glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
