@@ -3,12 +3,13 @@
  *
  * It rasterizes the model the way GL does (clip in homogeneous space, perspective
  * divide, viewport transform, sample at pixel centres with a fill rule, no culling),
- * keeps every fragment, sorts each pixel's fragments by (window depth as float,
+ * keeps every fragment, sorts each pixel's fragments by (depth as float,
  * triangle index) and composites them front to back in double precision. The
- * window depth is the canonical one of every exact algorithm: the triangle's
- * coplanar plane (oit_model.planes) at the pixel centre, computed here in
- * double (common/canonical_depth.glsl does it in float), so coincident faces
- * tie exactly and order by triangle index.
+ * depth is the canonical one of every exact algorithm: where the triangle's
+ * coplanar plane (oit_model.planes) meets the pixel centre's ray, as a fraction
+ * of the ray from the near to the far plane, computed here in double
+ * (common/canonical_depth.glsl does it in float), so coincident faces tie
+ * exactly and order by triangle index.
  *
  * Rasterization details chosen to match Mesa's llvmpipe:
  * - window coordinates are snapped to 1/256 pixel (llvmpipe's 8 subpixel bits) and
@@ -19,11 +20,10 @@
  *   on a horizontal edge with the triangle above it is inside (see edge_is_inclusive);
  * - x/y are clipped only against a wide guard band, so ordinary triangles are never
  *   split and keep their exact edges; near/far (-w <= z <= w) are clipped as in GL.
- * - snapping decides coverage only: window depth (linear in screen space, rounded
- *   to float) and the perspective-correct eye position and eye normal are
- *   interpolated from the unsnapped window positions, as llvmpipe's attribute
- *   planes are. Coverage then matches llvmpipe pixel for pixel, ties included;
- *   depth agrees to about 1e-6 (llvmpipe evaluates its planes in float).
+ * - snapping decides coverage only: the perspective-correct eye position and
+ *   eye normal are interpolated from the unsnapped window positions, as
+ *   llvmpipe's attribute planes are. Coverage then matches llvmpipe pixel for
+ *   pixel, ties included.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -58,7 +58,7 @@
 #define INSERTION_SORT_LIMIT 24
 
 typedef struct reference_fragment {
-    float depth;       /* canonical window depth, as oit_canonical_depth() */
+    float depth;       /* canonical depth along the pixel's ray, as oit_canonical_depth() */
     uint32_t triangle; /* gl_PrimitiveID: ties in depth sort by it */
     float rgb[3];      /* shaded colour */
     float alpha;
@@ -173,7 +173,6 @@ static bool edge_is_inclusive(int64_t dx, int64_t dy)
 typedef struct window_vertex {
     double window_x, window_y; /* window position before snapping */
     int64_t x, y;              /* snapped window position, 1/256 pixel: coverage */
-    double z;                  /* window depth */
     double inv_w;              /* 1 / clip w, for perspective-correct interpolation */
     const clip_vertex *attributes;
 } window_vertex;
@@ -181,12 +180,11 @@ typedef struct window_vertex {
 static void to_window(const raster_context *ctx, const clip_vertex *v, window_vertex *out)
 {
     double inv_w = 1.0 / v->clip[3];
-    double ndc_x = v->clip[0] * inv_w, ndc_y = v->clip[1] * inv_w, ndc_z = v->clip[2] * inv_w;
+    double ndc_x = v->clip[0] * inv_w, ndc_y = v->clip[1] * inv_w;
     out->window_x = (ndc_x * 0.5 + 0.5) * ctx->width;
     out->window_y = (ndc_y * 0.5 + 0.5) * ctx->height;
     out->x = llround(out->window_x * SUBPIXEL_ONE);
     out->y = llround(out->window_y * SUBPIXEL_ONE);
-    out->z = ndc_z * 0.5 + 0.5;
     out->inv_w = inv_w;
     out->attributes = v;
 }
@@ -222,12 +220,11 @@ static void interpolation_setup(const window_vertex v[3], int64_t snapped_area2,
     }
 }
 
-/* Interpolates depth, eye position and eye normal at pixel (x, y); returns the
- * fragment's opacity after local modulation. */
+/* Interpolates the eye position and eye normal at pixel (x, y); returns the
+ * fragment's opacity after local modulation. (Its depth is canonical_depth's.) */
 static float fragment_inputs(const raster_context *ctx, int64_t x, int64_t y,
                              const window_vertex v[3], const interpolation_plane *plane,
-                             const int64_t edge[3], double *depth_out, float eye[3],
-                             float normal[3])
+                             const int64_t edge[3], float eye[3], float normal[3])
 {
     double b[3];
     if (plane->use_snapped) {
@@ -238,10 +235,6 @@ static float fragment_inputs(const raster_context *ctx, int64_t x, int64_t y,
         for (int i = 0; i < 3; ++i)
             b[i] = plane->step_x[i] * centre_x + plane->step_y[i] * centre_y + plane->offset[i];
     }
-    /* screen-space linear depth, as GL */
-    double depth = b[0] * v[0].z + b[1] * v[1].z + b[2] * v[2].z;
-    depth = depth < 0.0 ? 0.0 : (depth > 1.0 ? 1.0 : depth);
-
     /* perspective-correct weights */
     double p0 = b[0] * v[0].inv_w, p1 = b[1] * v[1].inv_w, p2 = b[2] * v[2].inv_w;
     double sum = p0 + p1 + p2;
@@ -255,7 +248,6 @@ static float fragment_inputs(const raster_context *ctx, int64_t x, int64_t y,
         eye[i] = (float)(p0 * a0->eye[i] + p1 * a1->eye[i] + p2 * a2->eye[i]);
         normal[i] = (float)(p0 * a0->normal[i] + p1 * a1->normal[i] + p2 * a2->normal[i]);
     }
-    *depth_out = depth;
     if (!ctx->per_fragment_alpha)
         return ctx->alpha;
     /* the model position from the (float) eye position, as the shaders do */
@@ -317,18 +309,16 @@ static bool fragment_kept(const raster_context *ctx, int64_t x, int64_t y,
                           const window_vertex v[3], const interpolation_plane *plane,
                           const int64_t edge[3])
 {
-    double depth;
     float eye[3], normal[3];
-    return fragment_inputs(ctx, x, y, v, plane, edge, &depth, eye, normal) > 0.0f;
+    return fragment_inputs(ctx, x, y, v, plane, edge, eye, normal) > 0.0f;
 }
 
 static void store_fragment(const raster_context *ctx, size_t pixel, int64_t x, int64_t y,
                            const window_vertex v[3], const interpolation_plane *plane,
                            const int64_t edge[3])
 {
-    double depth;
     float eye[3], normal[3];
-    float alpha = fragment_inputs(ctx, x, y, v, plane, edge, &depth, eye, normal);
+    float alpha = fragment_inputs(ctx, x, y, v, plane, edge, eye, normal);
     if (!(alpha > 0.0f))
         return; /* alpha 0 is never stored (the counting pass skipped it too) */
     reference_fragment *f = &ctx->fragments[ctx->pixel_offsets[pixel] + ctx->pixel_counts[pixel]++];
