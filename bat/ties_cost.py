@@ -16,11 +16,11 @@ the repository root with a build of the commit before the change:
 import argparse
 import datetime
 import json
-import os
 import statistics
 import subprocess
 import sys
 import tempfile
+from pages import commit_of, scene_models
 
 GENERATED = ["gearbox", "onion", "spheres", "menger"]
 REAL_MODELS = {
@@ -36,15 +36,6 @@ def run(command):
     if result.returncode != 0:
         sys.exit(f"failed ({result.returncode}): {' '.join(command)}\n{result.stderr}")
     return result.stdout
-
-
-def commit_of(oit):
-    directory = os.path.dirname(os.path.realpath(oit))
-    while directory != "/" and not os.path.exists(os.path.join(directory, ".git")):
-        directory = os.path.dirname(directory)
-    result = subprocess.run(["git", "-C", directory, "describe", "--always", "--dirty"], capture_output=True,
-                            text=True)
-    return result.stdout.strip() or "unknown"
 
 
 def frame_ms(oit, model, orbit, algorithm, size, frames):
@@ -64,13 +55,7 @@ def main():
     parser.add_argument("--out", default="docs/generated/ties_cost.md")
     args = parser.parse_args()
 
-    work = tempfile.mkdtemp(prefix="oit-ties-cost-")
-    models = {}
-    for scene in GENERATED:
-        path = os.path.join(work, scene + ".obj")
-        run([args.after, "gen", scene, "--out", path])
-        models[scene] = path
-    models.update({k: v for k, v in REAL_MODELS.items() if os.path.exists(v)})
+    models = scene_models(args.after, GENERATED, REAL_MODELS, tempfile.mkdtemp(prefix="oit-ties-cost-"))
 
     results = {}  # (scene, view, algorithm) -> (before, after)
     for scene, model in models.items():
