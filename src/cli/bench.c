@@ -482,11 +482,11 @@ static void write_row(bench_output *out, const bench_scene *scene, const session
 {
     const oit_stats *st = &r->last;
     const oit_model *m = &s->model;
-    if (r->ok && st->truncated)
-        fprintf(stderr,
-                "oit: warning: %s, %s: --max-layers %d cut the frame short: pixels with more "
-                "layers lost their farther fragments\n",
-                scene->name, label, scene->options.config.max_layers);
+    if (r->ok) {
+        char what[OIT_NAME_SIZE * 2];
+        snprintf(what, sizeof what, "%s, %s", scene->name, label);
+        warn_if_truncated(what, &scene->options.config, st);
+    }
     if (out->csv) {
         FILE *f = out->csv;
         csv_field(f, scene->name);

@@ -162,7 +162,7 @@ static int command_render(int argc, char **argv)
     if (status == OIT_OK)
         status = render_frames(&s, &o, &result, &err);
     if (status == OIT_OK)
-        warn_if_truncated(&o, &result.stats);
+        warn_if_truncated(o.algorithm->name, &o.config, &result.stats);
     if (status == OIT_OK && o.out_path)
         status = oit_png_write(o.out_path, &result.image, &err);
     if (status == OIT_OK) {

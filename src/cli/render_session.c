@@ -318,13 +318,7 @@ oit_status session_open(session *s, const char *model_path, oit_backend backend,
     memset(s, 0, sizeof *s);
     s->backend = backend;
     s->debug = debug;
-    oit_status status = oit_model_load(model_path, &s->model, err);
-    if (status != OIT_OK)
-        return status;
-    print_model_warnings(&s->model);
-    s->model_loaded = true;
-    oit_scene_cpu(&s->cpu_scene, &s->model);
-    return OIT_OK;
+    return session_set_model(s, model_path, err);
 }
 
 oit_status session_need_gl(session *s, oit_error *err)
@@ -582,13 +576,13 @@ void json_warnings(FILE *out, const oit_model *model)
     fputc(']', out);
 }
 
-void warn_if_truncated(const render_options *o, const oit_stats *stats)
+void warn_if_truncated(const char *what, const oit_algorithm_config *config, const oit_stats *stats)
 {
     if (stats->truncated)
         fprintf(stderr,
                 "oit: warning: %s: --max-layers %d cut the frame short: pixels with more layers "
                 "lost their farther fragments (\"truncated\": true)\n",
-                o->algorithm->name, o->config.max_layers);
+                what, config->max_layers);
 }
 
 void print_model_warnings(const oit_model *model)

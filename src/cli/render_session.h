@@ -117,8 +117,8 @@ oit_status check_output_path(const char *flag, const char *path, oit_error *err)
 void json_string(FILE *out, const char *text);
 /* ', "warnings": [...]': the model's import warnings (oit_model.warnings). */
 void json_warnings(FILE *out, const oit_model *model);
-/* "oit: warning: ..." on stderr when a frame left fragments out (stats.truncated). */
-void warn_if_truncated(const render_options *o, const oit_stats *stats);
+/* "oit: warning: WHAT: ..." on stderr when a frame left fragments out (stats.truncated). */
+void warn_if_truncated(const char *what, const oit_algorithm_config *config, const oit_stats *stats);
 /* Each import warning as "oit: warning: ..." on stderr. */
 void print_model_warnings(const oit_model *model);
 double stages_total(const oit_stats *stats);
