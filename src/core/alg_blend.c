@@ -78,6 +78,8 @@ static oit_status blend_resize(oit_algorithm *alg, int width, int height, oit_er
 
 static oit_status stage_check(const oit_algorithm *alg, const char *stage, oit_error *err)
 {
+    if (alg->timer.cancelled)
+        return oit_timer_status(&alg->timer, err);
     return alg->config.debug ? oit_gl_check(stage, err) : OIT_OK;
 }
 
@@ -107,7 +109,7 @@ static oit_status blend_render(oit_algorithm *alg, const oit_scene *scene,
     uint64_t memory_bytes = alg->stats.memory_bytes;
     oit_stats_reset(&alg->stats);
     alg->stats.memory_bytes = memory_bytes;
-    oit_timer_frame_begin(&alg->timer);
+    oit_timer_frame_begin(&alg->timer, frame);
 
     oit_timer_stage_begin(&alg->timer, "draw");
     glBindFramebuffer(GL_FRAMEBUFFER, alg->accumulation_framebuffer);

@@ -535,6 +535,8 @@ static oit_status ib_reserve_triangles(ib_state *s, uint64_t triangles, oit_erro
 
 static oit_status ib_check(const ib_state *s, const char *stage, oit_error *err)
 {
+    if (s->timer.cancelled)
+        return oit_timer_status(&s->timer, err);
     return s->config.debug ? oit_gl_check(stage, err) : OIT_OK;
 }
 
@@ -674,7 +676,7 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
 
     oit_stats stats;
     oit_stats_reset(&stats);
-    oit_timer_frame_begin(&s->timer);
+    oit_timer_frame_begin(&s->timer, frame);
 
     glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
     glViewport(0, 0, s->output.width, s->output.height);

@@ -326,6 +326,8 @@ static oit_status ll_check_view(const oit_modulation *modulation, oit_error *err
 /* In debug mode, check for GL errors after each stage. */
 static oit_status ll_check(const ll_state *s, const char *stage, oit_error *err)
 {
+    if (s->timer.cancelled)
+        return oit_timer_status(&s->timer, err);
     return s->config.debug ? oit_gl_check(stage, err) : OIT_OK;
 }
 
@@ -372,7 +374,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
 
     oit_stats stats;
     oit_stats_reset(&stats);
-    oit_timer_frame_begin(&s->timer);
+    oit_timer_frame_begin(&s->timer, frame);
 
     glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
     glViewport(0, 0, s->output.width, s->output.height);

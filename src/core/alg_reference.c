@@ -872,6 +872,9 @@ static oit_status check_view(const oit_modulation *modulation, oit_error *err)
     return OIT_OK;
 }
 
+static bool reference_continue(const oit_frame_settings *frame, const char *pass, int *passes_done);
+static oit_status reference_cancelled(const char *pass, int passes_done, oit_error *err);
+
 static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
                                    const oit_frame_settings *frame, oit_error *err)
 {
@@ -924,6 +927,9 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
     memset(alg->pixel_counts, 0, pixels * sizeof *alg->pixel_counts);
     if (model->triangle_count > 0)
         rasterize_model(&ctx, model, alg->vertices);
+    int passes_done = 0;
+    if (!reference_continue(frame, "count", &passes_done))
+        return reference_cancelled("count", passes_done, err);
 
     uint64_t total = 0, max_list = 0;
     oit_stats *stats = &alg->stats;
@@ -950,6 +956,8 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
         rasterize_model(&ctx, model, alg->vertices);
     }
     add_stage(&alg->stats, "rasterize", thread_cpu_ms() - stage_start);
+    if (!reference_continue(frame, "rasterize", &passes_done))
+        return reference_cancelled("rasterize", passes_done, err);
 
     stage_start = thread_cpu_ms();
     bool distance_mode = frame->modulation.mode == OIT_MODULATE_DISTANCE;
@@ -976,6 +984,20 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
         sizeof *alg->pixel_counts + sizeof *alg->pixel_offsets + 4;
     alg->stats.cpu_ms = wall_ms() - frame_start;
     return OIT_OK;
+}
+
+/* The frame's progress callback (oit_progress) after each pass: the GPU
+ * algorithms ask it from their stage timer, the reference here. */
+static bool reference_continue(const oit_frame_settings *frame, const char *pass, int *passes_done)
+{
+    ++*passes_done;
+    return !frame->progress.report || frame->progress.report(frame->progress.user, pass, *passes_done);
+}
+
+static oit_status reference_cancelled(const char *pass, int passes_done, oit_error *err)
+{
+    return oit_fail(err, OIT_CANCELLED, "the frame was cancelled after stage %s (%d stages done)", pass,
+                    passes_done);
 }
 
 static oit_status reference_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)

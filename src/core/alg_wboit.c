@@ -45,6 +45,8 @@ static void wboit_release_targets(wboit_state *s)
 /* With config.debug, check for GL errors after each stage. */
 static oit_status wboit_stage_check(const wboit_state *s, const char *stage, oit_error *err)
 {
+    if (s->timer.cancelled)
+        return oit_timer_status(&s->timer, err);
     if (!s->config.debug)
         return OIT_OK;
     char where[64];
@@ -141,7 +143,7 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
     }
     oit_status status = OIT_OK;
     oit_stats_reset(&s->stats);
-    oit_timer_frame_begin(&s->timer);
+    oit_timer_frame_begin(&s->timer, frame);
 
     glViewport(0, 0, s->width, s->height);
     glDisable(GL_CULL_FACE);

@@ -307,10 +307,16 @@ void oit_timer_destroy(oit_stage_timer *timer)
     memset(timer, 0, sizeof *timer);
 }
 
-void oit_timer_frame_begin(oit_stage_timer *timer)
+void oit_timer_frame_begin(oit_stage_timer *timer, const oit_frame_settings *frame)
 {
     timer->count = 0;
     timer->stage_open = false;
+    memset(&timer->progress, 0, sizeof timer->progress);
+    if (frame)
+        timer->progress = frame->progress;
+    timer->stages_done = 0;
+    timer->cancelled = false;
+    timer->cancelled_after[0] = '\0';
     if (timer->wall_clock)
         glFinish(); /* earlier work must not count towards the first stage */
     timer->cpu_start_ms = oit_now_ms();
@@ -366,6 +372,22 @@ void oit_timer_stage_end(oit_stage_timer *timer)
     if (!last_slot_running(timer))
         slot_stop(timer, timer->count - 1);
     timer->stage_open = false;
+    ++timer->stages_done;
+    if (timer->progress.report && !timer->cancelled) {
+        const char *name = timer->names[timer->count > 0 ? timer->count - 1 : 0];
+        if (!timer->progress.report(timer->progress.user, name, timer->stages_done)) {
+            timer->cancelled = true;
+            snprintf(timer->cancelled_after, sizeof timer->cancelled_after, "%s", name);
+        }
+    }
+}
+
+oit_status oit_timer_status(const oit_stage_timer *timer, oit_error *err)
+{
+    if (!timer->cancelled)
+        return OIT_OK;
+    return oit_fail(err, OIT_CANCELLED, "the frame was cancelled after stage %s (%d stages done)",
+                    timer->cancelled_after, timer->stages_done);
 }
 
 void oit_timer_frame_end(oit_stage_timer *timer, oit_stats *stats)

@@ -46,16 +46,27 @@ typedef struct oit_stage_timer {
     bool wall_clock;
     double stage_start_ms;
     double wall_ms[OIT_MAX_STAGES];
+    /* the frame's progress callback (oit_progress), asked after every stage */
+    oit_progress progress;
+    int stages_done;
+    bool cancelled;
+    char cancelled_after[OIT_STAGE_NAME_SIZE];
 } oit_stage_timer;
 
 double oit_now_ms(void); /* monotonic clock */
 void oit_timer_create(oit_stage_timer *timer);
 void oit_timer_destroy(oit_stage_timer *timer);
-void oit_timer_frame_begin(oit_stage_timer *timer);
+/* frame may be NULL (no progress callback). */
+void oit_timer_frame_begin(oit_stage_timer *timer, const oit_frame_settings *frame);
 /* Stages are sequential: begin closes an open stage first. Past
  * OIT_MAX_STAGES the last stage absorbs the rest. */
 void oit_timer_stage_begin(oit_stage_timer *timer, const char *name);
 void oit_timer_stage_end(oit_stage_timer *timer);
+/* OIT_CANCELLED (with a message naming the last stage done) once the
+ * frame's progress callback has asked to stop; OIT_OK before. Every
+ * algorithm's per-stage check calls it, so a frame stops at the next stage
+ * boundary (between peels for dp and ddp). */
+oit_status oit_timer_status(const oit_stage_timer *timer, oit_error *err);
 /* Waits for the GPU, fills stats->stages/stage_count/cpu_ms. */
 void oit_timer_frame_end(oit_stage_timer *timer, oit_stats *stats);
 

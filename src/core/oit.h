@@ -35,7 +35,9 @@ extern "C" {
 typedef enum oit_status {
     OIT_OK = 0,
     OIT_E_INPUT = 2,   /* bad usage or input (maps to exit status 2) */
-    OIT_E_RUNTIME = 3  /* GL or runtime failure (maps to exit status 3) */
+    OIT_E_RUNTIME = 3, /* GL or runtime failure (maps to exit status 3) */
+    OIT_CANCELLED = 4  /* not a failure: the frame's progress callback asked to stop
+                          (oit_progress); the algorithm stays usable */
 } oit_status;
 
 #define OIT_ERROR_MESSAGE_SIZE 512
@@ -247,6 +249,18 @@ typedef struct oit_local_modulation {
  * OIT_LOCAL_MAX_COMPONENTS in oit_shared.h). */
 #define OIT_LOCAL_COMPONENT_LIMIT 1024
 
+/* Progress of one frame, for shells that render off their GUI thread (the
+ * workbench). report is called after every stage (every peel of dp and ddp,
+ * every fill, sort, compose...; the reference: after counting and after
+ * rasterizing) with the
+ * stage's name and the number of stages done so far; returning false
+ * abandons the frame at that point, and render() returns OIT_CANCELLED.
+ * Called on the rendering thread; a zeroed struct means no callback. */
+typedef struct oit_progress {
+    bool (*report)(void *user, const char *stage, int stages_done);
+    void *user;
+} oit_progress;
+
 typedef struct oit_frame_settings {
     int width, height;
     float modelview[16];  /* column-major */
@@ -256,6 +270,7 @@ typedef struct oit_frame_settings {
     float background[3];
     oit_modulation modulation;
     oit_local_modulation local;
+    oit_progress progress;
 } oit_frame_settings;
 
 /* Matrix helpers (matrix.c). */
