@@ -8,7 +8,6 @@
 #include <QRegularExpression>
 #include <QScreen>
 #include <QSettings>
-#include <QSurfaceFormat>
 #include <QTimer>
 
 #include <cstdio>
@@ -29,15 +28,6 @@ int fail(const QString &message)
 
 int main(int argc, char **argv)
 {
-    // Qt's contexts are OpenGL 4.3 core, as the core's algorithms need.
-    QSurfaceFormat format;
-    format.setRenderableType(QSurfaceFormat::OpenGL);
-    format.setVersion(4, 3);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    format.setDepthBufferSize(0);
-    format.setStencilBufferSize(0);
-    QSurfaceFormat::setDefaultFormat(format);
-
     // --help and --version answer without a display
     bool help_only = false;
     for (int i = 1; i < argc; ++i)
@@ -131,10 +121,15 @@ int main(int argc, char **argv)
             app.quit();
         });
         QObject::connect(&window, &MainWindow::model_loaded, &app, [&window, &app, &exit_code, out] {
-            auto grab = [&window, &app, &exit_code, out] {
-                window.view()->repaint();
+            // frames render off the GUI thread: grab once the full frame is shown (or failed)
+            auto *poll = new QTimer(&app);
+            QObject::connect(poll, &QTimer::timeout, &app, [&window, &app, &exit_code, out, poll] {
+                if (!window.view()->settled() && window.last_error().isEmpty())
+                    return;
+                poll->stop();
                 QCoreApplication::processEvents();
                 QImage image = window.grab().toImage();
+                FrameResultPointer last = window.view()->last_result();
                 if (image.isNull() || !image.save(out, "PNG")) {
                     exit_code = fail("cannot write the screenshot " + out);
                 } else if (!window.last_error().isEmpty()) {
@@ -142,11 +137,15 @@ int main(int argc, char **argv)
                     fail("the frame failed: " + window.last_error());
                     exit_code = 3;
                 } else {
+                    if (last)
+                        for (const QString &message : last->left_out)
+                            std::fprintf(stderr, "oit-workbench: warning: %s left out: %s\n",
+                                         last->algorithm.c_str(), message.toLocal8Bit().constData());
                     std::printf("%s\n", out.toLocal8Bit().constData());
                 }
                 app.quit();
-            };
-            QTimer::singleShot(200, &app, grab);
+            });
+            poll->start(20);
         });
     }
     int status = app.exec();

@@ -2,144 +2,115 @@
 #include "render_view.h"
 
 #include <QCoreApplication>
+#include <QEventLoop>
 #include <QKeyEvent>
 #include <QMouseEvent>
-#include <QOpenGLContext>
-#include <QOpenGLExtraFunctions>
+#include <QPainter>
 #include <QTimer>
 #include <QWheelEvent>
 
+#include <algorithm>
 #include <cstring>
-
-#include "gl_setup.h"
 
 namespace {
 
-// What makes an algorithm instance reusable: its name and its configuration.
-std::string algorithm_key(const RenderSettings &s)
+// OIT_BACKEND=osmesa picks the OSMesa context (as `oit --backend osmesa`); EGL otherwise.
+oit_backend backend_from_environment()
 {
-    return s.algorithm + "/" + std::to_string(int(s.config.ll_sort)) + "/" +
-           std::to_string(s.config.max_memory_bytes) + "/" + std::to_string(s.config.max_layers) + "/" +
-           std::to_string(s.config.initial_fragment_capacity) + "/" + std::to_string(s.config.debug);
+    return qEnvironmentVariable("OIT_BACKEND") == "osmesa" ? OIT_BACKEND_OSMESA : OIT_BACKEND_EGL;
 }
 
-// The GL state a fresh context has, which is what `oit render` starts from.
-// Qt's context has been used by Qt and by other algorithms before; the core's
-// algorithms set what they change, but not always what they merely rely on
-// (dp clears its depth target with glClearBufferfv, which obeys glDepthMask,
-// and ll leaves the mask off), so each frame starts from the defaults.
-void reset_gl_state(QOpenGLExtraFunctions *gl)
+QString seconds_text(double ms)
 {
-    gl->glDepthMask(GL_TRUE);
-    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    gl->glStencilMask(0xffffffffu);
-    gl->glDisable(GL_BLEND);
-    gl->glDisable(GL_DEPTH_TEST);
-    gl->glDisable(GL_CULL_FACE);
-    gl->glDisable(GL_SCISSOR_TEST);
-    gl->glDisable(GL_STENCIL_TEST);
-    gl->glBlendEquation(GL_FUNC_ADD);
-    gl->glBlendFunc(GL_ONE, GL_ZERO);
-    gl->glDepthFunc(GL_LESS);
-    gl->glActiveTexture(GL_TEXTURE0);
-    gl->glBindTexture(GL_TEXTURE_2D, 0);
-    gl->glUseProgram(0);
-    gl->glBindVertexArray(0);
-    gl->glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-    gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    return ms < 1000.0 ? QString("%1 ms").arg(ms, 0, 'f', 0) : QString("%1 s").arg(ms / 1000.0, 0, 'f', 1);
 }
 
 } // namespace
 
-RenderView::RenderView(QWidget *parent) : QOpenGLWidget(parent)
+RenderView::RenderView(QWidget *parent) : QWidget(parent)
 {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(64, 64);
+    setAttribute(Qt::WA_OpaquePaintEvent);
+    oit_stats_reset(&last_stats_);
     walk_timer_ = new QTimer(this);
     walk_timer_->setInterval(33);
     connect(walk_timer_, &QTimer::timeout, this, &RenderView::walk_tick);
-    oit_stats_reset(&last_stats_);
-}
+    rest_timer_ = new QTimer(this);
+    rest_timer_->setSingleShot(true);
+    rest_timer_->setInterval(kRestMs);
+    connect(rest_timer_, &QTimer::timeout, this, [this] {
+        if (interacting())
+            rest_timer_->start(); // still dragging or walking: stay coarse
+        else
+            submit(1, true);
+    });
+    // while a frame runs: the overlay's clock, and the start-up budget
+    progress_timer_ = new QTimer(this);
+    progress_timer_->setInterval(100);
+    connect(progress_timer_, &QTimer::timeout, this, [this] {
+        if (!rendering()) {
+            progress_timer_->stop();
+            progress_text_.clear();
+            update();
+            return;
+        }
+        double elapsed = running_clock_.isValid() ? double(running_clock_.elapsed()) : 0.0;
+        if (full_frame_budget_ms_ > 0.0 && latest_is_full_ && running_job_id_ == latest_id_ &&
+            elapsed > full_frame_budget_ms_) {
+            double budget = full_frame_budget_ms_;
+            full_frame_budget_ms_ = 0.0;
+            worker_->cancel();
+            rest_timer_->stop();
+            emit frame_cancelled(QString("the full frame took longer than %1 with the restored settings (%2); "
+                                         "showing the coarse frame: Render (F5) renders it in full")
+                                     .arg(seconds_text(budget), QString::fromStdString(settings.algorithm)));
+        }
+        if (elapsed > kProgressAfterMs)
+            update();
+    });
 
-RenderView::~RenderView()
-{
-    // the context outlives this part of the object: its aboutToBeDestroyed
-    // must not call back into members that are gone
-    if (context())
-        disconnect(context(), nullptr, this, nullptr);
-    if (gl_ready_) {
-        makeCurrent();
-        release_gl();
-        doneCurrent();
-    }
-}
-
-void RenderView::release_gl()
-{
-    destroy_algorithm();
-    if (scene_uploaded_)
-        oit_scene_release(&gpu_scene_);
-    scene_uploaded_ = false;
-    if (blit_framebuffer_) {
-        QOpenGLExtraFunctions *gl = context()->extraFunctions();
-        gl->glDeleteFramebuffers(1, &blit_framebuffer_);
-        gl->glDeleteTextures(1, &blit_texture_);
-        blit_framebuffer_ = blit_texture_ = 0;
-    }
-}
-
-void RenderView::initializeGL()
-{
-    std::string error;
-    if (!workbench_gl_init(renderer_, error)) {
-        gl_error_ = error;
-        emit render_failed(QString::fromStdString(error));
-        return;
-    }
     char dir[4096];
     oit_error err{};
     std::string argv0 = QCoreApplication::applicationFilePath().toStdString();
     if (oit_find_shader_dir(argv0.c_str(), dir, sizeof dir, &err) != OIT_OK) {
         gl_error_ = err.message;
-        emit render_failed(QString::fromUtf8(err.message));
         return;
     }
     shader_dir_ = dir;
-    gl_ready_ = true;
-    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, [this] {
-        makeCurrent();
-        release_gl();
-        doneCurrent();
-        gl_ready_ = false;
-    });
-    if (model_ && !set_model(model_, error))
-        emit render_failed(QString::fromStdString(error));
+    worker_.reset(new RenderWorker(backend_from_environment(), shader_dir_));
+    gl_ready_ = worker_->context_error().isEmpty();
+    renderer_ = worker_->renderer().toStdString();
+    gl_error_ = worker_->context_error().toStdString();
+    connect(worker_.get(), &RenderWorker::progress, this,
+            [this](quint64 id, const QString &stage, int stages_done, double elapsed_ms) {
+                if (id < latest_coarse_id_ && id != export_id_)
+                    return; // a frame already superseded
+                if (stage == "start") {
+                    running_clock_.restart();
+                    running_job_id_ = id;
+                }
+                QString what = id == export_id_ ? "export" : id == latest_coarse_id_ ? "coarse frame" : "full frame";
+                progress_text_ = QString("%1 %2: %3, %4 stages, %5 — Esc cancels")
+                                     .arg(QString::fromStdString(settings.algorithm), what, stage)
+                                     .arg(stages_done)
+                                     .arg(seconds_text(elapsed_ms));
+                emit frame_progress(stage, stages_done, elapsed_ms);
+            });
+    connect(worker_.get(), &RenderWorker::frame_done, this, &RenderView::frame_done);
 }
 
-bool RenderView::set_model(const oit_model *model, std::string &error)
+RenderView::~RenderView()
 {
-    model_ = model;
-    if (!gl_ready_)
-        return true; // uploaded by initializeGL
-    makeCurrent();
-    destroy_algorithm(); // algorithms may keep buffers sized for the last scene
-    if (scene_uploaded_)
-        oit_scene_release(&gpu_scene_);
-    scene_uploaded_ = false;
-    oit_error err{};
-    oit_status status = oit_scene_upload(&gpu_scene_, model, &err);
-    doneCurrent();
-    if (status != OIT_OK) {
-        error = err.message;
-        model_ = nullptr;
-        return false;
-    }
-    scene_uploaded_ = true;
-    oit_scene_cpu(&cpu_scene_, model);
-    update();
-    return true;
+    worker_.reset(); // abandons the frame and joins the thread before the model goes
+}
+
+void RenderView::set_model(std::shared_ptr<const oit_model> model)
+{
+    model_ = std::move(model);
+    last_full_ms_ = -1.0; // a new model: its cost is unknown
+    coarse_scale_ = 2;
+    request_frame(true);
 }
 
 void RenderView::reset_camera()
@@ -151,7 +122,7 @@ void RenderView::reset_camera()
     camera.orthographic = false;
     camera.frame(*model_, size.width(), size.height());
     emit camera_changed();
-    update();
+    request_frame(true);
 }
 
 QSize RenderView::pixel_size() const
@@ -162,17 +133,23 @@ QSize RenderView::pixel_size() const
 
 QSize RenderView::render_size() const
 {
-    QSize full = pixel_size();
-    bool interacting = buttons_ != Qt::NoButton || !walk_keys_.isEmpty();
-    if (!fast_interaction_ || !interacting)
-        return full;
-    return QSize(std::max(1, (full.width() + 1) / 2), std::max(1, (full.height() + 1) / 2));
+    return shown_.isNull() ? pixel_size() : shown_.size();
 }
 
-void RenderView::set_fast_interaction(bool on)
+bool RenderView::interacting() const
 {
-    fast_interaction_ = on;
-    update();
+    return buttons_ != Qt::NoButton || !walk_keys_.isEmpty();
+}
+
+bool RenderView::rendering() const
+{
+    return worker_ && worker_->busy();
+}
+
+bool RenderView::settled() const
+{
+    return model_ && worker_ && !worker_->busy() && !rest_timer_->isActive() && latest_is_full_ &&
+           last_result_ && last_result_->id == latest_id_;
 }
 
 oit_frame_settings RenderView::current_frame(std::vector<float> &storage) const
@@ -181,185 +158,226 @@ oit_frame_settings RenderView::current_frame(std::vector<float> &storage) const
     return make_frame(settings, *model_, camera, size.width(), size.height(), storage);
 }
 
-void RenderView::destroy_algorithm()
+FrameJob RenderView::make_job(int width, int height, int coarse_scale) const
 {
-    if (algorithm_)
-        ops_->destroy(algorithm_);
-    algorithm_ = nullptr;
-    ops_ = nullptr;
-    algorithm_key_.clear();
-    algorithm_width_ = algorithm_height_ = 0;
+    FrameJob job;
+    job.model = model_;
+    job.algorithm = settings.algorithm;
+    job.config = settings.config;
+    job.frame = make_frame(settings, *model_, camera, width, height, job.component_alpha);
+    job.frame.local.component_alpha = nullptr; // the worker points it at its copy
+    job.coarse_scale = coarse_scale;
+    return job;
 }
 
-bool RenderView::ensure_algorithm(std::string &error)
+void RenderView::request_frame(bool interactive)
 {
-    oit_error err{};
-    if (!algorithm_ || algorithm_key_ != algorithm_key(settings)) {
-        destroy_algorithm();
-        const oit_algorithm_ops *ops = oit_algorithm_find(settings.algorithm.c_str());
-        if (!ops) {
-            error = "unknown algorithm '" + settings.algorithm + "'";
-            return false;
-        }
-        oit_algorithm_config config = settings.config;
-        config.shader_dir = shader_dir_.c_str();
-        if (ops->create(&config, &algorithm_, &err) != OIT_OK) {
-            algorithm_ = nullptr;
-            error = err.message;
-            return false;
-        }
-        ops_ = ops;
-        algorithm_key_ = algorithm_key(settings);
-    }
-    QSize size = render_size();
-    if (size.width() != algorithm_width_ || size.height() != algorithm_height_) {
-        if (ops_->resize(algorithm_, size.width(), size.height(), &err) != OIT_OK) {
-            error = err.message;
-            destroy_algorithm();
-            return false;
-        }
-        algorithm_width_ = size.width();
-        algorithm_height_ = size.height();
-    }
-    return true;
-}
-
-void RenderView::paintGL()
-{
-    QOpenGLExtraFunctions *gl = context()->extraFunctions();
-    auto clear = [&] {
-        gl->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
-        gl->glClearColor(0.35f, 0.35f, 0.38f, 1.0f);
-        gl->glClear(GL_COLOR_BUFFER_BIT);
-    };
-    if (!gl_ready_ || !model_ || !scene_uploaded_) {
-        clear();
-        return;
-    }
-    std::string error;
-    if (!ensure_algorithm(error)) {
-        clear();
-        emit render_failed(QString::fromStdString(error));
-        return;
-    }
-    std::vector<float> storage;
-    QSize size = render_size();
-    oit_frame_settings frame = make_frame(settings, *model_, camera, size.width(), size.height(), storage);
-    oit_error err{};
-    const oit_scene *scene = ops_->uses_gl ? &gpu_scene_ : &cpu_scene_;
-    oit_image image{};
-    reset_gl_state(gl);
-    oit_status status = ops_->render(algorithm_, scene, &frame, &err);
-    if (status == OIT_OK)
-        status = ops_->read_image(algorithm_, &image, &err);
-    if (status != OIT_OK) {
-        // a failed frame (an exhausted memory budget...) leaves the algorithm unusable
-        destroy_algorithm();
-        clear();
-        emit render_failed(QString::fromUtf8(err.message));
-        return;
-    }
-    ops_->stats(algorithm_, &last_stats_);
-    if (last_stats_.overflow_retries > 0)
-        overflow_total_ += long(last_stats_.overflow_retries);
-    show_image(image);
-    last_image_ = QImage(image.rgba, image.width, image.height, QImage::Format_RGBA8888).copy();
-    oit_image_free(&image);
-
-    if (fps_clock_.isValid() && continuous_) {
-        double ms = double(fps_clock_.nsecsElapsed()) / 1e6;
-        fps_ = ms > 0.0 ? 1000.0 / ms : 0.0;
-    } else {
-        fps_ = last_stats_.cpu_ms > 0.0 ? 1000.0 / last_stats_.cpu_ms : 0.0;
-    }
-    fps_clock_.start();
-    emit frame_rendered();
-    if (continuous_)
+    if (!model_ || !worker_) {
         update();
+        return;
+    }
+    bool slow = last_full_ms_ < 0.0 || last_full_ms_ > slow_frame_ms_;
+    if (interactive && progressive_ && slow) {
+        submit(coarse_scale_);
+        rest_timer_->start();
+    } else {
+        rest_timer_->stop();
+        submit(1);
+    }
 }
 
-// The read-back image goes into a texture and is blitted to the widget's
-// framebuffer, flipped (the image is top row first, GL's origin is the bottom).
-void RenderView::show_image(const oit_image &image)
+void RenderView::submit(int coarse_scale, bool refinement)
 {
-    QOpenGLExtraFunctions *gl = context()->extraFunctions();
-    if (!blit_texture_) {
-        gl->glGenTextures(1, &blit_texture_);
-        gl->glGenFramebuffers(1, &blit_framebuffer_);
+    QSize full = pixel_size();
+    int width = std::max(1, full.width() / coarse_scale), height = std::max(1, full.height() / coarse_scale);
+    if (!rendering())
+        running_clock_.restart();
+    FrameJob job = make_job(width, height, coarse_scale);
+    job.refinement = refinement;
+    latest_id_ = worker_->submit(std::move(job));
+    latest_is_full_ = coarse_scale == 1;
+    if (!latest_is_full_)
+        latest_coarse_id_ = latest_id_;
+    if (!progress_timer_->isActive())
+        progress_timer_->start();
+}
+
+void RenderView::cancel_frame()
+{
+    if (!worker_)
+        return;
+    bool was_rendering = rendering() || rest_timer_->isActive();
+    rest_timer_->stop();
+    worker_->cancel();
+    if (was_rendering)
+        emit frame_cancelled("cancelled: the view keeps the last frame; Render (F5) starts it again");
+}
+
+void RenderView::frame_done(FrameResultPointer result)
+{
+    if (result->kind == FrameJob::Kind::Export) {
+        if (result->id == export_id_)
+            export_result_ = result;
+        return;
     }
-    gl->glBindTexture(GL_TEXTURE_2D, blit_texture_);
-    if (blit_width_ != image.width || blit_height_ != image.height) {
-        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                         nullptr);
-        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        blit_width_ = image.width;
-        blit_height_ = image.height;
+    if (result->status == OIT_CANCELLED)
+        return; // superseded, or cancelled (cancel_frame said so already)
+    if (result->status != OIT_OK) {
+        if (result->id == latest_id_) {
+            last_result_ = result;
+            shown_ = QImage();
+            update();
+            emit render_failed(result->error);
+        }
+        return;
     }
-    gl->glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl->glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    gl->glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba);
-    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, blit_framebuffer_);
-    gl->glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, blit_texture_, 0);
-    gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
-    gl->glDisable(GL_SCISSOR_TEST);
-    QSize full = pixel_size(); // larger than the image while interacting at half resolution
-    bool scaled = full.width() != image.width || full.height() != image.height;
-    gl->glBlitFramebuffer(0, 0, image.width, image.height, 0, full.height(), full.width(), 0, GL_COLOR_BUFFER_BIT,
-                          scaled ? GL_LINEAR : GL_NEAREST);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
-    gl->glViewport(0, 0, full.width(), full.height());
+    last_result_ = result;
+    shown_ = result->image;
+    QStringList left_out;
+    for (const QString &message : result->left_out)
+        left_out << message;
+    if (result->coarse_scale == 1) {
+        last_image_ = result->image;
+        last_stats_ = result->stats;
+        last_full_ms_ = result->wall_ms;
+        shown_full_id_ = result->id;
+        if (last_stats_.overflow_retries > 0)
+            overflow_total_ += long(last_stats_.overflow_retries);
+        if (fps_clock_.isValid() && continuous_) {
+            double ms = double(fps_clock_.nsecsElapsed()) / 1e6;
+            fps_ = ms > 0.0 ? 1000.0 / ms : 0.0;
+        } else {
+            fps_ = last_stats_.cpu_ms > 0.0 ? 1000.0 / last_stats_.cpu_ms : 0.0;
+        }
+        fps_clock_.start();
+        full_frame_budget_ms_ = 0.0; // the budget guards the first full frame only
+        update();
+        emit options_left_out(left_out);
+        emit frame_rendered();
+        if (continuous_ && result->id == latest_id_)
+            submit(1);
+    } else {
+        // coarser when a coarse frame is itself slow, finer when it is cheap
+        if (result->wall_ms > 150.0 && coarse_scale_ < 8)
+            coarse_scale_ *= 2;
+        else if (result->wall_ms < 30.0 && coarse_scale_ > 2)
+            coarse_scale_ /= 2;
+        update();
+        emit options_left_out(left_out);
+        emit coarse_frame_rendered();
+    }
 }
 
 bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,
                                   std::string &error)
 {
-    if (!gl_ready_ || !model_ || !scene_uploaded_) {
-        error = gl_ready_ ? "no model is loaded" : "no OpenGL context: " + gl_error_;
+    if (!model_) {
+        error = "no model is loaded";
         return false;
     }
-    const oit_algorithm_ops *ops = oit_algorithm_find(settings.algorithm.c_str());
-    if (!ops) {
-        error = "unknown algorithm '" + settings.algorithm + "'";
+    if (!worker_) {
+        error = "no OpenGL context: " + gl_error_;
         return false;
     }
-    makeCurrent();
-    std::vector<float> storage;
-    frame = make_frame(settings, *model_, camera, width, height, storage);
-    oit_algorithm_config config = settings.config;
-    config.shader_dir = shader_dir_.c_str();
+    if (export_id_) {
+        error = "an export is already running";
+        return false;
+    }
+    FrameJob job = make_job(width, height, 1);
+    job.kind = FrameJob::Kind::Export;
+    frame = job.frame;
+    export_result_.reset();
+    QEventLoop loop;
+    QMetaObject::Connection done = connect(worker_.get(), &RenderWorker::frame_done, &loop,
+                                           [this, &loop](FrameResultPointer) {
+                                               if (export_result_)
+                                                   loop.quit();
+                                           });
+    export_id_ = worker_->submit(std::move(job));
+    if (!progress_timer_->isActive())
+        progress_timer_->start();
+    // the view's own frame_done slot (connected first) stores the result
+    loop.exec();
+    disconnect(done);
+    FrameResultPointer result = export_result_;
+    export_result_.reset();
+    export_id_ = 0;
+    if (result->status != OIT_OK) {
+        error = result->error.toStdString();
+        return false;
+    }
     oit_error err{};
-    oit_algorithm *alg = nullptr;
-    oit_status status = ops->create(&config, &alg, &err);
-    if (status == OIT_OK)
-        status = ops->resize(alg, width, height, &err);
-    reset_gl_state(context()->extraFunctions());
-    if (status == OIT_OK)
-        status = ops->render(alg, ops->uses_gl ? &gpu_scene_ : &cpu_scene_, &frame, &err);
-    if (status == OIT_OK)
-        status = ops->read_image(alg, &image, &err);
-    if (alg)
-        ops->destroy(alg);
-    doneCurrent();
-    frame.local.component_alpha = nullptr; // storage ends here
-    if (status != OIT_OK)
+    if (oit_image_alloc(&image, result->image.width(), result->image.height(), &err) != OIT_OK) {
         error = err.message;
-    return status == OIT_OK;
+        return false;
+    }
+    for (int row = 0; row < image.height; ++row)
+        std::memcpy(image.rgba + size_t(row) * size_t(image.width) * 4, result->image.constScanLine(row),
+                    size_t(image.width) * 4);
+    frame.modulation = result->modulation;
+    frame.local.focus_shape = result->focus_shape;
+    return true;
 }
 
 void RenderView::set_continuous(bool on)
 {
     continuous_ = on;
     fps_clock_.invalidate();
-    update();
+    request_frame(false);
+}
+
+void RenderView::set_progressive(bool on)
+{
+    progressive_ = on;
+    request_frame(false);
+}
+
+// ------------------------------------------------------------------ painting
+
+void RenderView::paintEvent(QPaintEvent *)
+{
+    QPainter painter(this);
+    if (shown_.isNull()) {
+        painter.fillRect(rect(), QColor(89, 89, 97));
+    } else if (shown_.size() == pixel_size()) {
+        QImage image = shown_;
+        image.setDevicePixelRatio(devicePixelRatioF());
+        painter.drawImage(QPoint(0, 0), image);
+    } else {
+        // a coarse frame (or one from before a resize), scaled up
+        painter.setRenderHint(QPainter::SmoothPixmapTransform);
+        painter.drawImage(rect(), shown_);
+    }
+    QString text;
+    if (!gl_error_.empty() && !gl_ready_)
+        text = "no OpenGL context: " + QString::fromStdString(gl_error_);
+    else if (last_result_ && last_result_->status != OIT_OK && last_result_->id == latest_id_)
+        text = "render failed: " + last_result_->error;
+    else if (rendering() && running_clock_.isValid() && running_clock_.elapsed() > kProgressAfterMs &&
+             !progress_text_.isEmpty())
+        text = progress_text_;
+    if (!text.isEmpty()) {
+        QFontMetrics metrics(font());
+        QRect box = metrics.boundingRect(QRect(8, 0, width() - 16, height()), Qt::TextWordWrap, text);
+        box.moveBottom(height() - 8);
+        painter.fillRect(box.adjusted(-4, -3, 4, 3), QColor(0, 0, 0, 170));
+        painter.setPen(Qt::white);
+        painter.drawText(box, Qt::TextWordWrap, text);
+    }
+}
+
+void RenderView::resizeEvent(QResizeEvent *event)
+{
+    QWidget::resizeEvent(event);
+    request_frame(true);
 }
 
 // ------------------------------------------------------------------ input
 
 void RenderView::mousePressEvent(QMouseEvent *event)
 {
-    last_mouse_ = event->pos();
+    last_mouse_ = press_position_ = event->pos();
+    dragged_ = false;
     buttons_ = event->buttons();
     setFocus();
 }
@@ -368,6 +386,9 @@ void RenderView::mouseMoveEvent(QMouseEvent *event)
 {
     if (!model_ || buttons_ == Qt::NoButton)
         return;
+    if (!dragged_ && (event->pos() - press_position_).manhattanLength() < 3)
+        return; // a click that trembles is still a click
+    dragged_ = true;
     qreal ratio = devicePixelRatioF();
     glm::vec2 from(float(last_mouse_.x() * ratio), float(last_mouse_.y() * ratio));
     glm::vec2 to(float(event->pos().x() * ratio), float(event->pos().y() * ratio));
@@ -382,14 +403,17 @@ void RenderView::mouseMoveEvent(QMouseEvent *event)
         camera.look(to - from);
     last_mouse_ = event->pos();
     emit camera_changed();
-    update();
+    request_frame(true);
 }
 
 void RenderView::mouseReleaseEvent(QMouseEvent *event)
 {
+    bool click = !dragged_ && (buttons_ & Qt::LeftButton) && !(event->buttons() & Qt::LeftButton);
     buttons_ = event->buttons();
-    if (fast_interaction_)
-        update(); // the full resolution again
+    if (click) {
+        qreal ratio = devicePixelRatioF();
+        emit clicked(QPoint(int(event->pos().x() * ratio), int(event->pos().y() * ratio)));
+    }
 }
 
 void RenderView::wheelEvent(QWheelEvent *event)
@@ -398,7 +422,7 @@ void RenderView::wheelEvent(QWheelEvent *event)
     if (steps != 0.0f && model_) {
         camera.zoom(steps);
         emit camera_changed();
-        update();
+        request_frame(true);
     }
     event->accept();
 }
@@ -406,7 +430,12 @@ void RenderView::wheelEvent(QWheelEvent *event)
 void RenderView::keyPressEvent(QKeyEvent *event)
 {
     static const int walk_keys[] = {Qt::Key_W, Qt::Key_A, Qt::Key_S, Qt::Key_D, Qt::Key_Q, Qt::Key_E};
-    if (camera.mode() == Camera::Mode::Walk && std::find(std::begin(walk_keys), std::end(walk_keys), event->key()) != std::end(walk_keys)) {
+    if (event->key() == Qt::Key_Escape) {
+        cancel_frame();
+        return;
+    }
+    if (camera.mode() == Camera::Mode::Walk &&
+        std::find(std::begin(walk_keys), std::end(walk_keys), event->key()) != std::end(walk_keys)) {
         if (!event->isAutoRepeat()) {
             walk_keys_.insert(event->key());
             walk_tick(); // one step at once, then smoothly while held
@@ -414,26 +443,24 @@ void RenderView::keyPressEvent(QKeyEvent *event)
         }
         return;
     }
-    QOpenGLWidget::keyPressEvent(event);
+    QWidget::keyPressEvent(event);
 }
 
 void RenderView::keyReleaseEvent(QKeyEvent *event)
 {
     if (!event->isAutoRepeat()) {
         walk_keys_.remove(event->key());
-        if (walk_keys_.isEmpty()) {
+        if (walk_keys_.isEmpty())
             walk_timer_->stop();
-            update(); // the full resolution again
-        }
     }
-    QOpenGLWidget::keyReleaseEvent(event);
+    QWidget::keyReleaseEvent(event);
 }
 
 void RenderView::focusOutEvent(QFocusEvent *event)
 {
     walk_keys_.clear();
     walk_timer_->stop();
-    QOpenGLWidget::focusOutEvent(event);
+    QWidget::focusOutEvent(event);
 }
 
 void RenderView::walk_tick()
@@ -446,5 +473,5 @@ void RenderView::walk_tick()
     d.z = float(walk_keys_.contains(Qt::Key_W)) - float(walk_keys_.contains(Qt::Key_S));
     camera.walk(d);
     emit camera_changed();
-    update();
+    request_frame(true);
 }

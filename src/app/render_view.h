@@ -1,72 +1,103 @@
-// render_view.h: the render view. A QOpenGLWidget (4.3 core) whose context
-// runs the core's algorithms: the scene is uploaded here, every frame renders
-// into the algorithm's RGBA8 output, is read back (that image is also what
-// tests and Export PNG see) and blitted to the widget.
+// render_view.h: the render view. A plain widget that shows the last frame
+// the RenderWorker finished (render_worker.h) and turns mouse and keys into
+// camera moves and frame requests; it never renders and never waits.
+//
+// Progressive frames: while the user interacts (drags, walks, moves a slider,
+// types in a spin box) and full frames are slow, the view asks for a coarse
+// frame (1/coarse_scale of the pixels per side, adapted to its cost) and,
+// once the input has rested for kRestMs, for the full frame. A frame running
+// longer than kProgressAfterMs shows its stage and peel count over the image.
 #pragma once
 
 #include <QElapsedTimer>
 #include <QImage>
-#include <QOpenGLWidget>
 #include <QPoint>
 #include <QSet>
+#include <QWidget>
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "camera.h"
 #include "oit.h"
+#include "render_worker.h"
 #include "settings.h"
 
 class QTimer;
 
-class RenderView : public QOpenGLWidget {
+class RenderView : public QWidget {
     Q_OBJECT
 public:
+    static constexpr int kRestMs = 200;           // input at rest: refine to the full frame
+    static constexpr double kSlowFrameMs = 60.0;  // full frames slower than this go coarse first
+    static constexpr int kProgressAfterMs = 300;  // then the overlay shows the frame's progress
+
     explicit RenderView(QWidget *parent = nullptr);
     ~RenderView() override;
 
     RenderSettings settings;
     Camera camera;
 
-    // Upload a model (GUI thread; the model stays owned by the caller and must
-    // outlive the view's use of it). Returns false with a message.
-    bool set_model(const oit_model *model, std::string &error);
-    const oit_model *model() const { return model_; }
+    // The model to show (shared with the worker, which uploads it with the next frame).
+    void set_model(std::shared_ptr<const oit_model> model);
+    const oit_model *model() const { return model_.get(); }
     // Frame the model again with the default three-quarter view.
     void reset_camera();
 
-    // Render the current settings offscreen at any size into image (the
-    // matrices used are returned in frame). The on-screen algorithm is untouched.
+    // Ask for a new frame of the current settings: coarse first when frames are
+    // slow and the user is interacting, refined when the input rests.
+    void request_frame(bool interactive = true);
+    // Abandon the running frame (and the refinement); the view keeps its image.
+    void cancel_frame();
+    // Render at width x height into image off the view (an export); frame
+    // returns the matrices. Waits in a local event loop (the GUI stays live).
     bool render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,
                           std::string &error);
     // The frame the view shows now (its size in pixels and its matrices).
     oit_frame_settings current_frame(std::vector<float> &storage) const;
     QSize pixel_size() const;
+    QSize render_size() const; // the size of the last frame shown
 
+    // The last full frame (and what the widget shows when no coarse frame is up).
     const QImage &last_image() const { return last_image_; }
     const oit_stats &last_stats() const { return last_stats_; }
+    // The last result of any kind (coarse or full) that reached the view.
+    FrameResultPointer last_result() const { return last_result_; }
     double measured_fps() const { return fps_; }
     long total_overflow_retries() const { return overflow_total_; }
     const std::string &renderer() const { return renderer_; }
     const std::string &shader_dir() const { return shader_dir_; }
     bool gl_ready() const { return gl_ready_; }
     const std::string &gl_error() const { return gl_error_; }
+    RenderWorker *worker() const { return worker_.get(); }
+    // Nothing waits or runs and the full frame of the current settings is shown.
+    bool settled() const;
+    // A frame is running or waiting.
+    bool rendering() const;
+    int coarse_scale() const { return coarse_scale_; }
+    // Full frames slower than this go coarse first while interacting (tests set 0).
+    void set_slow_frame_ms(double ms) { slow_frame_ms_ = ms; }
 
     void set_continuous(bool on);
-    // While the mouse drags or walk keys are held, render at half resolution
-    // (scaled up on screen); the full resolution returns on release.
-    void set_fast_interaction(bool on);
-    // The size the algorithm renders at now (pixel_size, or half of it while interacting).
-    QSize render_size() const;
+    void set_progressive(bool on);
+    bool progressive() const { return progressive_; }
+    // The next full frame is cancelled if it runs longer than budget_ms (start-up).
+    void set_full_frame_budget(double budget_ms) { full_frame_budget_ms_ = budget_ms; }
 
 signals:
-    void frame_rendered();
+    void frame_rendered();        // a full frame is shown (stats follow it)
+    void coarse_frame_rendered(); // a coarse frame is shown
     void render_failed(const QString &message);
+    void frame_cancelled(const QString &why);
+    void frame_progress(const QString &stage, int stages_done, double elapsed_ms);
+    void options_left_out(const QStringList &messages); // empty: everything applied
     void camera_changed();
+    void clicked(const QPoint &pixel); // a click without a drag (pixel coordinates)
 
 protected:
-    void initializeGL() override;
-    void paintGL() override;
+    void paintEvent(QPaintEvent *event) override;
+    void resizeEvent(QResizeEvent *event) override;
     void mousePressEvent(QMouseEvent *event) override;
     void mouseMoveEvent(QMouseEvent *event) override;
     void mouseReleaseEvent(QMouseEvent *event) override;
@@ -76,36 +107,44 @@ protected:
     void focusOutEvent(QFocusEvent *event) override;
 
 private:
-    bool ensure_algorithm(std::string &error);
-    void destroy_algorithm();
-    void release_gl();
+    FrameJob make_job(int width, int height, int coarse_scale) const;
+    void submit(int coarse_scale, bool refinement = false);
+    void frame_done(FrameResultPointer result);
     void walk_tick();
-    void show_image(const oit_image &image);
+    bool interacting() const;
 
-    const oit_model *model_ = nullptr;
-    oit_scene gpu_scene_{};
-    oit_scene cpu_scene_{};
-    bool scene_uploaded_ = false;
-
-    const oit_algorithm_ops *ops_ = nullptr;
-    oit_algorithm *algorithm_ = nullptr;
-    std::string algorithm_key_;
-    int algorithm_width_ = 0, algorithm_height_ = 0;
-
+    std::shared_ptr<const oit_model> model_;
+    std::unique_ptr<RenderWorker> worker_;
     bool gl_ready_ = false;
     std::string gl_error_, renderer_, shader_dir_;
-    unsigned blit_texture_ = 0, blit_framebuffer_ = 0;
-    int blit_width_ = 0, blit_height_ = 0;
 
+    uint64_t latest_id_ = 0;      // the newest view job submitted
+    uint64_t latest_coarse_id_ = 0;
+    uint64_t running_job_id_ = 0; // from the worker's progress
+    bool latest_is_full_ = false;
+    uint64_t shown_full_id_ = 0;  // the full frame on screen
+    uint64_t export_id_ = 0;
+    FrameResultPointer export_result_;
+    QImage shown_;                // what paintEvent draws (coarse or full)
     QImage last_image_;
+    FrameResultPointer last_result_;
     oit_stats last_stats_{};
     long overflow_total_ = 0;
+    double last_full_ms_ = -1.0;  // unknown until a full frame finished
+    double slow_frame_ms_ = kSlowFrameMs;
+    int coarse_scale_ = 2;
+    bool progressive_ = true;
     bool continuous_ = false;
-    bool fast_interaction_ = true;
+    double full_frame_budget_ms_ = 0.0;
     QElapsedTimer fps_clock_;
     double fps_ = 0.0;
+    QString progress_text_;
+    QElapsedTimer running_clock_;
+    QTimer *rest_timer_ = nullptr;
+    QTimer *progress_timer_ = nullptr;
 
-    QPoint last_mouse_;
+    QPoint last_mouse_, press_position_;
+    bool dragged_ = false;
     Qt::MouseButtons buttons_ = Qt::NoButton;
     QSet<int> walk_keys_;
     QTimer *walk_timer_ = nullptr;

@@ -45,8 +45,14 @@ expect_error "--size" --size 12 --screenshot "$work/never.png"
 printf '{\n  "alpha": 2\n}\n' > "$work/bad-preset.json"
 expect_error "bad-preset.json:2:" --preset "$work/bad-preset.json" --screenshot "$work/never.png"
 [ ! -e "$work/never.png" ] || fail "a screenshot was written after an error"
-# a frame the algorithm refuses (dp has no heatmap): the window shows it, the exit status too
+# an option the algorithm cannot express (dp has no heatmap) is left out, never a
+# grey view: the frame renders and one warning line names what was left out
 printf '{"view": "heatmap"}\n' > "$work/heatmap.json"
-expect_error --status 3 "frame failed: dp:" --algorithm dp --preset "$work/heatmap.json" --size 64x64 \
-  --screenshot "$work/failed-frame.png"
+run --algorithm dp --preset "$work/heatmap.json" --size 64x64 --screenshot "$work/left-out.png" \
+  > "$work/stdout.txt" 2> "$work/stderr.txt" || fail "dp with a heatmap preset failed instead of leaving it out"
+grep -q "^oit-workbench: warning: dp left out: dp: buffer views are ll's and ib's (view 'heatmap')" "$work/stderr.txt" \
+  || { cat "$work/stderr.txt" >&2; fail "no warning naming the heatmap dp left out"; }
+# no OpenGL context (a driver that does not exist): the frame fails with exit 3
+GALLIUM_DRIVER=nonesuch LIBGL_ALWAYS_SOFTWARE=1 expect_error --status 3 "frame failed: no OpenGL context" \
+  --size 64x64 --screenshot "$work/no-context.png"
 echo "command line: ok"

@@ -1,0 +1,353 @@
+// render_worker.cpp: see render_worker.h.
+#include <GL/glew.h>
+
+#include "render_worker.h"
+
+#include <chrono>
+#include <cstring>
+
+namespace {
+
+double now_ms()
+{
+    using namespace std::chrono;
+    return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
+}
+
+// What makes an algorithm instance reusable: its name, its configuration and
+// whether it serves coarse or full frames (two sizes that would otherwise
+// reallocate every buffer on each switch).
+std::string algorithm_key(const FrameJob &job)
+{
+    const oit_algorithm_config &c = job.config;
+    return job.algorithm + "/" + std::to_string(int(c.ll_sort)) + "/" + std::to_string(c.max_memory_bytes) + "/" +
+           std::to_string(c.max_layers) + "/" + std::to_string(c.initial_fragment_capacity) + "/" +
+           std::to_string(c.debug) + "/" + std::to_string(c.neighbour_quality) + "/" +
+           (job.coarse_scale > 1 ? "coarse" : "full");
+}
+
+// The GL state of a fresh context, which is what `oit render` starts from:
+// the algorithms set what they change, but not always what they merely rely
+// on, and this context has served other algorithms before.
+void reset_gl_state()
+{
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glStencilMask(0xffffffffu);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glDepthFunc(GL_LESS);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glUseProgram(0);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+}
+
+// One option the algorithm refused, dropped: false when nothing is left to drop.
+bool drop_one_option(oit_frame_settings &frame)
+{
+    oit_modulation &m = frame.modulation;
+    if (m.view != OIT_VIEW_COLOUR) {
+        m.view = OIT_VIEW_COLOUR;
+        m.view_parameter = 0;
+        return true;
+    }
+    if (m.mode != OIT_MODULATE_NONE) {
+        m.mode = OIT_MODULATE_NONE;
+        return true;
+    }
+    if (m.distance != OIT_DISTANCE_ADJACENT) {
+        m.distance = OIT_DISTANCE_ADJACENT;
+        return true;
+    }
+    if (frame.local.focus_shape != OIT_FOCUS_NONE) {
+        frame.local.focus_shape = OIT_FOCUS_NONE;
+        return true;
+    }
+    return false;
+}
+
+} // namespace
+
+struct RenderWorker::Running {
+    RenderWorker *worker;
+    const FrameJob *job;
+    double start_ms;
+    double last_progress_ms;
+};
+
+RenderWorker::RenderWorker(oit_backend backend, const std::string &shader_dir, QObject *parent)
+    : QObject(parent), backend_(backend), shader_dir_(shader_dir)
+{
+    qRegisterMetaType<FrameResultPointer>("FrameResultPointer");
+    thread_ = std::thread([this] { run(); });
+    std::unique_lock<std::mutex> lock(mutex_);
+    wake_.wait(lock, [this] { return context_attempted_; });
+}
+
+RenderWorker::~RenderWorker()
+{
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = true;
+        cancel_up_to_ = next_id_;
+    }
+    wake_.notify_all();
+    thread_.join();
+}
+
+uint64_t RenderWorker::submit(FrameJob job)
+{
+    uint64_t id;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        id = job.id = next_id_++;
+        if (job.kind == FrameJob::Kind::View)
+            pending_view_.reset(new FrameJob(std::move(job)));
+        else
+            pending_exports_.push_back(std::move(job));
+    }
+    wake_.notify_all();
+    return id;
+}
+
+void RenderWorker::cancel()
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    cancel_up_to_ = next_id_ - 1;
+    pending_view_.reset();
+    pending_exports_.clear();
+}
+
+bool RenderWorker::busy() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    return running_ || pending_view_ || !pending_exports_.empty();
+}
+
+void RenderWorker::run()
+{
+    oit_error err{};
+    QString renderer, error;
+    if (oit_gl_context_create(backend_, false, &context_, &err) == OIT_OK)
+        renderer = QString::fromUtf8(oit_gl_renderer_string());
+    else
+        error = QString::fromUtf8(err.message);
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        renderer_ = renderer;
+        context_error_ = error;
+        context_attempted_ = true;
+    }
+    wake_.notify_all();
+
+    for (;;) {
+        FrameJob job;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            wake_.wait(lock, [this] { return stopping_ || pending_view_ || !pending_exports_.empty(); });
+            if (stopping_)
+                break;
+            // exports first: the user asked for them explicitly and waits on them
+            if (!pending_exports_.empty()) {
+                job = std::move(pending_exports_.front());
+                pending_exports_.pop_front();
+            } else {
+                job = std::move(*pending_view_);
+                pending_view_.reset();
+            }
+            running_ = true;
+            running_id_ = job.id;
+        }
+        render_job(job);
+        std::lock_guard<std::mutex> lock(mutex_);
+        running_ = false;
+        running_id_ = 0;
+    }
+    release_gl();
+    if (context_)
+        oit_gl_context_destroy(context_);
+    context_ = nullptr;
+}
+
+bool RenderWorker::progress_callback(void *user, const char *stage, int stages_done)
+{
+    auto *running = static_cast<Running *>(user);
+    return running->worker->keep_going(*running, stage, stages_done);
+}
+
+bool RenderWorker::keep_going(Running &running, const char *stage, int stages_done)
+{
+    double now = now_ms(), elapsed = now - running.start_ms;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (stopping_ || running.job->id <= cancel_up_to_)
+            return false;
+        if (running.job->kind == FrameJob::Kind::View && pending_view_) {
+            bool coarse = running.job->coarse_scale > 1;
+            bool own_refinement = coarse && pending_view_->refinement;
+            if (!own_refinement && (!coarse || elapsed > kCoarseGraceMs))
+                return false; // superseded
+        }
+    }
+    if (now - running.last_progress_ms >= kProgressIntervalMs) {
+        running.last_progress_ms = now;
+        emit progress(running.job->id, QString::fromUtf8(stage), stages_done, elapsed);
+    }
+    return true;
+}
+
+RenderWorker::CachedAlgorithm *RenderWorker::algorithm_for(const FrameJob &job, const oit_algorithm_ops *ops,
+                                                           oit_error *err)
+{
+    std::string key = algorithm_key(job);
+    for (CachedAlgorithm &cached : cache_)
+        if (cached.key == key) {
+            cached.last_used = ++use_counter_;
+            return &cached;
+        }
+    // at most a few instances: each holds buffers the size of its frames
+    const size_t limit = 4;
+    while (cache_.size() >= limit) {
+        auto oldest = cache_.begin();
+        for (auto it = cache_.begin(); it != cache_.end(); ++it)
+            if (it->last_used < oldest->last_used)
+                oldest = it;
+        oldest->ops->destroy(oldest->algorithm);
+        cache_.erase(oldest);
+    }
+    oit_algorithm_config config = job.config;
+    config.shader_dir = shader_dir_.c_str();
+    oit_algorithm *algorithm = nullptr;
+    if (ops->create(&config, &algorithm, err) != OIT_OK)
+        return nullptr;
+    cache_.push_back({key, ops, algorithm, ++use_counter_, 0, 0});
+    return &cache_.back();
+}
+
+void RenderWorker::release_gl()
+{
+    for (CachedAlgorithm &cached : cache_)
+        cached.ops->destroy(cached.algorithm);
+    cache_.clear();
+    if (scene_uploaded_)
+        oit_scene_release(&gpu_scene_);
+    scene_uploaded_ = false;
+    uploaded_model_.reset();
+}
+
+void RenderWorker::render_job(FrameJob &job)
+{
+    auto result = std::make_shared<FrameResult>();
+    result->id = job.id;
+    result->kind = job.kind;
+    result->coarse_scale = job.coarse_scale;
+    result->algorithm = job.algorithm;
+    oit_stats_reset(&result->stats);
+    Running running{this, &job, now_ms(), 0.0};
+    auto finish = [&](oit_status status, const QString &error) {
+        result->status = status;
+        result->error = error;
+        result->wall_ms = now_ms() - running.start_ms;
+        emit frame_done(result);
+    };
+    if (!context_)
+        return finish(OIT_E_RUNTIME, "no OpenGL context: " + context_error_);
+    if (!job.model)
+        return finish(OIT_E_INPUT, "no model is loaded");
+    if (!keep_going(running, "start", 0))
+        return finish(OIT_CANCELLED, "the frame was cancelled before it started");
+
+    oit_error err{};
+    if (job.model != uploaded_model_) {
+        // algorithms may keep buffers sized for the last scene
+        release_gl();
+        emit progress(job.id, "upload", 0, 0.0);
+        if (oit_scene_upload(&gpu_scene_, job.model.get(), &err) != OIT_OK)
+            return finish(OIT_E_RUNTIME, QString("cannot upload the model: ") + err.message);
+        scene_uploaded_ = true;
+        oit_scene_cpu(&cpu_scene_, job.model.get());
+        uploaded_model_ = job.model;
+        result->uploaded = true;
+    }
+
+    const oit_algorithm_ops *ops = oit_algorithm_find(job.algorithm.c_str());
+    if (!ops)
+        return finish(OIT_E_INPUT, QString::fromStdString("unknown algorithm '" + job.algorithm + "'"));
+    bool fresh = job.kind == FrameJob::Kind::Export; // an export starts as `oit render` does
+    oit_algorithm *algorithm = nullptr;
+    bool needs_resize = true;
+    if (fresh) {
+        oit_algorithm_config config = job.config;
+        config.shader_dir = shader_dir_.c_str();
+        if (ops->create(&config, &algorithm, &err) != OIT_OK)
+            algorithm = nullptr;
+    } else if (CachedAlgorithm *cached = algorithm_for(job, ops, &err)) {
+        algorithm = cached->algorithm;
+        needs_resize = cached->width != job.frame.width || cached->height != job.frame.height;
+        cached->width = job.frame.width;
+        cached->height = job.frame.height;
+    }
+    if (!algorithm)
+        return finish(OIT_E_RUNTIME, QString::fromUtf8(err.message));
+
+    oit_frame_settings frame = job.frame;
+    frame.local.component_alpha = job.component_alpha.empty() ? nullptr : job.component_alpha.data();
+    frame.local.component_count = uint32_t(job.component_alpha.size());
+    frame.progress.report = &RenderWorker::progress_callback;
+    frame.progress.user = &running;
+    const oit_scene *scene = ops->uses_gl ? &gpu_scene_ : &cpu_scene_;
+
+    oit_status status = needs_resize ? ops->resize(algorithm, frame.width, frame.height, &err) : OIT_OK;
+    QString first_refusal;
+    while (status == OIT_OK) {
+        reset_gl_state();
+        status = ops->render(algorithm, scene, &frame, &err);
+        if (status != OIT_E_INPUT)
+            break;
+        // an option this algorithm cannot express: leave it out, say so
+        oit_frame_settings reduced = frame;
+        if (!drop_one_option(reduced))
+            break;
+        if (first_refusal.isEmpty())
+            first_refusal = QString::fromUtf8(err.message);
+        result->left_out.push_back(QString::fromUtf8(err.message));
+        frame = reduced;
+        status = OIT_OK;
+    }
+    if (status == OIT_E_INPUT && !first_refusal.isEmpty())
+        std::snprintf(err.message, sizeof err.message, "%s", first_refusal.toUtf8().constData());
+    if (status == OIT_OK) {
+        oit_image image{};
+        status = ops->read_image(algorithm, &image, &err);
+        if (status == OIT_OK) {
+            result->image = QImage(image.rgba, image.width, image.height, QImage::Format_RGBA8888).copy();
+            oit_image_free(&image);
+            ops->stats(algorithm, &result->stats);
+        }
+    }
+    result->modulation = frame.modulation;
+    result->focus_shape = frame.local.focus_shape;
+    if (fresh) {
+        ops->destroy(algorithm);
+    } else if (status != OIT_OK && status != OIT_CANCELLED && status != OIT_E_INPUT) {
+        // a failed frame (an exhausted memory budget...) leaves the instance unusable
+        for (auto it = cache_.begin(); it != cache_.end(); ++it)
+            if (it->algorithm == algorithm) {
+                it->ops->destroy(it->algorithm);
+                cache_.erase(it);
+                break;
+            }
+    }
+    if (status != OIT_OK)
+        result->left_out.clear();
+    finish(status, status == OIT_OK ? QString() : QString::fromUtf8(err.message));
+}

@@ -1,0 +1,140 @@
+// render_worker.h: the thread that renders every frame of the workbench.
+//
+// The GUI thread never waits for a frame. A RenderWorker owns a thread with
+// its own headless GL context (the core's EGL or OSMesa context, the one
+// `oit render` uses, so an exported PNG is byte for byte the command line's),
+// the uploaded scene and a small cache of algorithm instances. The GUI submits
+// FrameJobs; results and progress come back as queued signals.
+//
+// Scheduling, in one place (RenderWorker::keep_going):
+// - the newest view job replaces a pending one (latest settings win);
+// - a running view frame is abandoned between stages (between peels for dp
+//   and ddp) when a newer view job waits, except a coarse frame younger than
+//   kCoarseGraceMs, which finishes so that a continuous drag still moves, and
+//   a coarse frame whose own refinement waits (the coarse frame comes first);
+// - cancel() abandons whatever runs or waits; export jobs are never superseded.
+// Options an algorithm cannot express (the core refuses them with
+// OIT_E_INPUT before doing any work) are dropped one by one and named in
+// FrameResult::left_out instead of failing the frame.
+#pragma once
+
+#include <QImage>
+#include <QMetaType>
+#include <QObject>
+#include <QString>
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "oit.h"
+
+struct FrameJob {
+    enum class Kind { View, Export };
+    Kind kind = Kind::View;
+    uint64_t id = 0; // set by submit()
+    std::shared_ptr<const oit_model> model;
+    std::string algorithm;
+    oit_algorithm_config config{};  // shader_dir is the worker's
+    oit_frame_settings frame{};     // at the size to render; progress is the worker's
+    std::vector<float> component_alpha; // frame.local.component_alpha points here
+    int coarse_scale = 1;           // 1: full resolution; N: 1/N of the view per side
+    bool refinement = false;        // the full frame of the coarse one before it: waits for it
+};
+
+struct FrameResult {
+    uint64_t id = 0;
+    FrameJob::Kind kind = FrameJob::Kind::View;
+    int coarse_scale = 1;
+    std::string algorithm;
+    oit_status status = OIT_OK;
+    QString error;           // status != OIT_OK: the core's message
+    QImage image;            // RGBA8888, top row first
+    oit_stats stats{};
+    double wall_ms = 0.0;    // from the job's start to its end, upload included
+    bool uploaded = false;   // this job uploaded a new model first
+    // what the algorithm could not express and was left out (the core's words)
+    std::vector<QString> left_out;
+    oit_modulation modulation{};        // the settings actually rendered
+    oit_focus_shape focus_shape = OIT_FOCUS_NONE;
+};
+using FrameResultPointer = std::shared_ptr<const FrameResult>;
+Q_DECLARE_METATYPE(FrameResultPointer)
+
+class RenderWorker : public QObject {
+    Q_OBJECT
+public:
+    // A coarse frame younger than this finishes even when superseded.
+    static constexpr double kCoarseGraceMs = 250.0;
+    // Progress signals at most this often.
+    static constexpr double kProgressIntervalMs = 40.0;
+
+    // Returns once the context exists or failed (renderer(), context_error()):
+    // the core folds what the driver prints during creation into its message
+    // by borrowing stderr for that moment, so nothing else may print meanwhile.
+    RenderWorker(oit_backend backend, const std::string &shader_dir, QObject *parent = nullptr);
+    ~RenderWorker() override; // abandons any frame, releases GL, joins the thread
+
+    // Queue a job; returns its id (increasing). Thread-safe.
+    uint64_t submit(FrameJob job);
+    // Abandon the running frame and every waiting one.
+    void cancel();
+    // A frame is running or waiting.
+    bool busy() const;
+    // GL_RENDERER, or empty with context_error() saying why there is no context.
+    QString renderer() const { return renderer_; }
+    QString context_error() const { return context_error_; }
+    // The job running now (0: none).
+    uint64_t running_id() const { return running_id_.load(); }
+
+signals:
+    void progress(quint64 id, const QString &stage, int stages_done, double elapsed_ms);
+    void frame_done(FrameResultPointer result);
+
+private:
+    struct Running;
+    void run();
+    void render_job(FrameJob &job);
+    bool keep_going(Running &running, const char *stage, int stages_done);
+    static bool progress_callback(void *user, const char *stage, int stages_done);
+    struct CachedAlgorithm;
+    CachedAlgorithm *algorithm_for(const FrameJob &job, const oit_algorithm_ops *ops, oit_error *err);
+    void release_gl();
+
+    oit_backend backend_;
+    std::string shader_dir_;
+    std::thread thread_;
+
+    mutable std::mutex mutex_;
+    std::condition_variable wake_;
+    bool stopping_ = false;
+    std::unique_ptr<FrameJob> pending_view_;
+    std::deque<FrameJob> pending_exports_;
+    uint64_t next_id_ = 1;
+    uint64_t cancel_up_to_ = 0; // jobs with ids <= this are abandoned
+    std::atomic<uint64_t> running_id_{0};
+    bool running_ = false;
+    bool context_attempted_ = false;
+    QString renderer_, context_error_;
+
+    // worker thread only
+    oit_gl_context *context_ = nullptr;
+    std::shared_ptr<const oit_model> uploaded_model_;
+    oit_scene gpu_scene_{}, cpu_scene_{};
+    bool scene_uploaded_ = false;
+    struct CachedAlgorithm {
+        std::string key;
+        const oit_algorithm_ops *ops = nullptr;
+        oit_algorithm *algorithm = nullptr;
+        uint64_t last_used = 0;
+        int width = 0, height = 0; // the size it was last resized to
+    };
+    std::vector<CachedAlgorithm> cache_;
+    uint64_t use_counter_ = 0;
+};
