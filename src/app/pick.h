@@ -1,0 +1,29 @@
+// pick.h: which part is under a pixel: a ray through the pixel centre against
+// every triangle of the parts that are shown (CPU, double precision, no Qt).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "oit.h"
+
+struct PickResult {
+    int triangle = -1;    // -1: nothing under the pixel
+    int component = -1;
+    double eye_depth = 0; // distance in front of the eye along the view axis (-z in eye space)
+};
+
+// The nearest triangle of a part that is shown (visible[c] != 0 and alpha[c] > 0;
+// an empty vector, or an index past its end, counts as shown) under pixel (x, y)
+// of a width x height frame: pixel centres at +0.5, y down from the top row.
+// Matrices are column-major, clip = projection * modelview * v; orthographic and
+// perspective both work. Only hits between the near and far planes count, as
+// those are the ones drawn; at equal depth the lower triangle index wins, as in
+// the renderers' (depth, triangle) order.
+PickResult pick(const oit_model &model, const float modelview[16], const float projection[16], int width,
+                int height, double x, double y, const std::vector<float> &alpha,
+                const std::vector<char> &visible);
+
+// The component that owns the triangle (components' triangles are contiguous and
+// in order), or -1 if the model has no such triangle.
+int component_of_triangle(const oit_model &model, uint32_t triangle);
