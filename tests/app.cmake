@@ -30,3 +30,8 @@ add_test(NAME app_command_line
           ${APP_WORK}/command_line)
 set_tests_properties(app_workbench app_command_line PROPERTIES
   ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 900)
+
+# The parts list at 10,000 parts, and picking (tests/app/parts_panel.cmake).
+include(${CMAKE_CURRENT_SOURCE_DIR}/app/parts_panel.cmake)
+# The window manager's ping answered while loading and rendering (tests/app/wm_ping.cmake).
+include(${CMAKE_CURRENT_SOURCE_DIR}/app/wm_ping.cmake)

@@ -17,6 +17,13 @@ public:
     void frame(const oit_model &model, int width, int height, float azimuth_degrees = 30.0f,
                float elevation_degrees = 20.0f);
 
+    // Keep the direction of view, look at the box's centre from where its
+    // bounding sphere fits the view (frame selected parts).
+    void frame_box(const float box_min[3], const float box_max[3], int width, int height);
+    // A standard view of the target from the same distance: azimuth about the
+    // vertical axis, elevation above the horizon (front 0,0; top 0,90; ...).
+    void set_view_direction(float azimuth_degrees, float elevation_degrees);
+
     // Column-major matrices for a view of width x height pixels.
     void matrices(int width, int height, float modelview[16], float projection[16]) const;
 

@@ -1,5 +1,7 @@
 // main_window.cpp: see main_window.h.
 #include "main_window.h"
+#include "parts_panel.h"
+#include "pick.h"
 
 #include <QAction>
 #include <QActionGroup>
@@ -44,7 +46,7 @@
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QTextStream>
-#include <QTreeWidget>
+#include <QTime>
 #include <QVBoxLayout>
 #include <QtConcurrent/QtConcurrent>
 
@@ -125,22 +127,63 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
                       QDockWidget::DockWidgetClosable);
     addDockWidget(Qt::RightDockWidgetArea, dock);
 
+    // loading and long frames: what runs, a busy bar, and a Cancel
+    progress_label_ = new QLabel;
+    progress_label_->hide();
     progress_ = new QProgressBar;
-    progress_->setRange(0, 0); // busy: Assimp reports no progress
-    progress_->setMaximumWidth(160);
+    progress_->setRange(0, 0); // busy: neither Assimp nor a peel count knows its end
+    progress_->setMaximumWidth(120);
     progress_->hide();
+    cancel_button_ = new QPushButton("Cancel");
+    cancel_button_->setObjectName("cancel_frame");
+    cancel_button_->setToolTip("abandon the frame being rendered (Esc); the view keeps the last frame");
+    cancel_button_->hide();
+    connect(cancel_button_, &QPushButton::clicked, this, [this] { view_->cancel_frame(); });
     status_label_ = new QLabel;
     statusBar()->addWidget(status_label_, 1);
+    statusBar()->addPermanentWidget(progress_label_);
     statusBar()->addPermanentWidget(progress_);
+    statusBar()->addPermanentWidget(cancel_button_);
+
+    messages_ = new QPlainTextEdit;
+    messages_->setObjectName("messages");
+    messages_->setReadOnly(true);
+    messages_->setMaximumBlockCount(2000);
+    messages_->setToolTip("loads, exports, copies, warnings and errors, newest last");
+    auto *messages_dock = new QDockWidget("Messages", this);
+    messages_dock->setObjectName("messages_dock");
+    messages_dock->setWidget(messages_);
+    addDockWidget(Qt::BottomDockWidgetArea, messages_dock);
+    resizeDocks({messages_dock}, {90}, Qt::Vertical);
 
     loader_ = new QFutureWatcher<LoadResult *>(this);
     connect(loader_, &QFutureWatcher<LoadResult *>::finished, this, &MainWindow::load_finished);
     connect(view_, &RenderView::frame_rendered, this, &MainWindow::update_stats);
+    connect(view_, &RenderView::frame_progress, this, &MainWindow::frame_progress);
+    connect(view_, &RenderView::clicked, this, &MainWindow::pick_at);
     connect(view_, &RenderView::render_failed, this, [this](const QString &message) {
         last_error_ = message;
         status_label_->setText("render failed: " + message);
+        log_message("error", "render failed: " + message);
+        frame_progress(QString(), 0, 0.0);
+    });
+    connect(view_, &RenderView::frame_cancelled, this, [this](const QString &why) {
+        status_label_->setText(why);
+        log_message("cancelled", why);
+        frame_progress(QString(), 0, 0.0);
+    });
+    connect(view_, &RenderView::options_left_out, this, [this](const QStringList &left_out) {
+        // an option the algorithm cannot express is left out of the frame, and said
+        QString text = left_out.join("; ");
+        if (text != last_left_out_ && !text.isEmpty())
+            log_message("left out", QString("%1 renders without what it cannot express: %2")
+                                        .arg(QString::fromStdString(view_->settings.algorithm), text));
+        last_left_out_ = text;
     });
 
+    coalesce_timer_ = new QTimer(this);
+    coalesce_timer_->setSingleShot(true);
+    coalesce_timer_->setInterval(kUndoCoalesceMs);
     build_menus();
     QMenu *view_menu = nullptr;
     for (QAction *a : menuBar()->actions())
@@ -154,6 +197,9 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
     recent_ = settings.value("recent").toStringList();
     rebuild_recent_menu();
     if (restore_state) {
+        // the restored state may be slow (a deep model with dp): its first full
+        // frame gets a budget, past which the coarse frame stays and the user decides
+        view_->set_full_frame_budget(3000.0);
         restoreGeometry(settings.value("geometry").toByteArray());
         restoreState(settings.value("window").toByteArray());
         pending_preset_ = settings.value("settings").toString().toStdString();
@@ -168,6 +214,8 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
         }
     }
     sync_panel_from_settings();
+    reset_settings_history();
+    give_every_control_a_tooltip();
 }
 
 MainWindow::~MainWindow()
@@ -194,8 +242,123 @@ void MainWindow::closeEvent(QCloseEvent *event)
 
 void MainWindow::render_now()
 {
+    record_settings_change();
     if (view_)
-        view_->update();
+        view_->request_frame(true);
+}
+
+// ------------------------------------------------------------ undo / redo
+
+// Settings compared as their preset text (the camera is not a setting here:
+// the same placeholder camera goes into both).
+std::string MainWindow::settings_key(const RenderSettings &settings) const
+{
+    return preset_to_json(settings, Camera(), model_.get());
+}
+
+// Changes within kUndoCoalesceMs of each other (a slider drag, typing a
+// number) are one step.
+void MainWindow::record_settings_change()
+{
+    if (restoring_settings_ || !view_)
+        return;
+    std::string key = settings_key(view_->settings);
+    if (key == committed_key_)
+        return;
+    if (!coalesce_timer_->isActive()) {
+        undo_stack_.push_back(committed_settings_);
+        if (undo_stack_.size() > 200)
+            undo_stack_.erase(undo_stack_.begin());
+        redo_stack_.clear();
+    }
+    committed_settings_ = view_->settings;
+    committed_key_ = key;
+    coalesce_timer_->start();
+    undo_action_->setEnabled(!undo_stack_.empty());
+    redo_action_->setEnabled(false);
+}
+
+void MainWindow::reset_settings_history()
+{
+    undo_stack_.clear();
+    redo_stack_.clear();
+    committed_settings_ = view_->settings;
+    committed_key_ = settings_key(view_->settings);
+    coalesce_timer_->stop();
+    if (undo_action_) {
+        undo_action_->setEnabled(false);
+        redo_action_->setEnabled(false);
+    }
+}
+
+void MainWindow::restore_settings(const RenderSettings &settings)
+{
+    restoring_settings_ = true;
+    view_->settings = settings;
+    committed_settings_ = settings;
+    committed_key_ = settings_key(settings);
+    coalesce_timer_->stop();
+    sync_panel_from_settings();
+    if (model_)
+        parts_panel_->set_values(settings.part_alpha, settings.part_visible);
+    view_->request_frame(false);
+    restoring_settings_ = false;
+    undo_action_->setEnabled(!undo_stack_.empty());
+    redo_action_->setEnabled(!redo_stack_.empty());
+}
+
+bool MainWindow::undo_settings()
+{
+    record_settings_change(); // a change still coalescing is a step of its own
+    if (undo_stack_.empty())
+        return false;
+    redo_stack_.push_back(view_->settings);
+    RenderSettings previous = undo_stack_.back();
+    undo_stack_.pop_back();
+    restore_settings(previous);
+    log_message("undo", "settings as before the last change");
+    return true;
+}
+
+bool MainWindow::redo_settings()
+{
+    if (redo_stack_.empty())
+        return false;
+    undo_stack_.push_back(view_->settings);
+    RenderSettings next = redo_stack_.back();
+    redo_stack_.pop_back();
+    restore_settings(next);
+    log_message("redo", "the undone change again");
+    return true;
+}
+
+void MainWindow::frame_progress(const QString &stage, int stages_done, double elapsed_ms)
+{
+    // long frames only: a fast one would make the status bar flicker
+    bool show = !stage.isEmpty() && elapsed_ms > RenderView::kProgressAfterMs && view_->rendering();
+    if (show)
+        progress_label_->setText(QString("%1: %2 (%3 stages, %4 s)")
+                                     .arg(QString::fromStdString(view_->settings.algorithm), stage)
+                                     .arg(stages_done)
+                                     .arg(elapsed_ms / 1000.0, 0, 'f', 1));
+    bool loading_now = loader_->isRunning();
+    progress_label_->setVisible(show || loading_now);
+    progress_->setVisible(show || loading_now);
+    cancel_button_->setVisible(show);
+}
+
+QStringList MainWindow::messages() const
+{
+    return message_lines_;
+}
+
+void MainWindow::log_message(const QString &kind, const QString &text)
+{
+    QString line = QString("[%1] %2: %3").arg(QTime::currentTime().toString("HH:mm:ss"), kind, text);
+    message_lines_ << line;
+    while (message_lines_.size() > 2000)
+        message_lines_.removeFirst();
+    messages_->appendPlainText(line);
 }
 
 // ------------------------------------------------------------------ menus
@@ -240,38 +403,88 @@ void MainWindow::build_menus()
     file->addSeparator();
     file->addAction("&Quit", this, &QWidget::close, QKeySequence::Quit);
 
+    QMenu *edit = menuBar()->addMenu("&Edit");
+    undo_action_ = menu_action(edit, "&Undo settings change", QKeySequence::Undo, this, [this] { undo_settings(); });
+    redo_action_ = menu_action(edit, "&Redo settings change", QKeySequence::Redo, this, [this] { redo_settings(); });
+    undo_action_->setEnabled(false);
+    redo_action_->setEnabled(false);
+
     QMenu *view = menuBar()->addMenu("&View");
     menu_action(view, "&Reset camera", QKeySequence("Home"), this, [this] { view_->reset_camera(); });
+    menu_action(view, "&Frame selected parts", QKeySequence("Ctrl+F"), this,
+                [this] { frame_parts(parts_panel_->selected_parts()); });
+    QMenu *standard = view->addMenu("&Standard view");
+    struct StandardView {
+        const char *name;
+        float azimuth, elevation;
+    };
+    // isometric: the cube's diagonal towards the eye, elevation atan(1 / sqrt 2)
+    static const StandardView standard_views[] = {{"&Front", 0, 0},   {"&Back", 180, 0},  {"&Left", -90, 0},
+                                                  {"&Right", 90, 0},  {"&Top", 0, 90},    {"Botto&m", 0, -90},
+                                                  {"&Isometric", 45, 35.26439f}};
+    int number = 1;
+    for (const StandardView &v : standard_views) {
+        float azimuth = v.azimuth, elevation = v.elevation;
+        menu_action(standard, v.name, QKeySequence(QString("Alt+%1").arg(number++)), this, [this, azimuth, elevation] {
+            view_->camera.set_view_direction(azimuth, elevation);
+            emit view_->camera_changed();
+            view_->request_frame(true);
+        });
+    }
     QAction *ortho = view->addAction("&Orthographic");
     ortho->setShortcut(QKeySequence("O"));
     ortho->setCheckable(true);
-    connect(ortho, &QAction::toggled, this, [this](bool on) { set_camera_mode(view_->camera.mode(), on); });
-    menu_action(view, "&Walk mode on/off (W/A/S/D, Q/E)", QKeySequence("V"), this, [this] {
-        set_camera_mode(view_->camera.mode() == Camera::Mode::Walk ? Camera::Mode::Orbit : Camera::Mode::Walk,
-                        view_->camera.orthographic);
+    connect(ortho, &QAction::triggered, this, [this](bool on) { set_camera_mode(view_->camera.mode(), on); });
+    QAction *walk = view->addAction("&Walk mode (W/A/S/D, Q/E)");
+    walk->setShortcut(QKeySequence("V"));
+    walk->setCheckable(true);
+    connect(walk, &QAction::triggered, this, [this](bool on) {
+        set_camera_mode(on ? Camera::Mode::Walk : Camera::Mode::Orbit, view_->camera.orthographic);
     });
-    menu_action(view, "&Heatmap on/off", QKeySequence("H"), this, [this] {
-        oit_modulation &m = view_->settings.modulation;
-        m.view = m.view == OIT_VIEW_HEATMAP ? OIT_VIEW_COLOUR : OIT_VIEW_HEATMAP;
+    // the camera's state can change from the Camera tab, presets and saved views
+    auto sync_camera_actions = [this, ortho, walk] {
+        ortho->setChecked(view_->camera.orthographic);
+        walk->setChecked(view_->camera.mode() == Camera::Mode::Walk);
+    };
+    sync_actions_.push_back(sync_camera_actions);
+    connect(view_, &RenderView::camera_changed, this, sync_camera_actions);
+    QAction *heatmap = view->addAction("&Heatmap");
+    heatmap->setShortcut(QKeySequence("H"));
+    heatmap->setCheckable(true);
+    connect(heatmap, &QAction::triggered, this, [this](bool on) {
+        view_->settings.modulation.view = on ? OIT_VIEW_HEATMAP : OIT_VIEW_COLOUR;
         settings_changed();
     });
+    sync_actions_.push_back([this, heatmap] { heatmap->setChecked(view_->settings.modulation.view == OIT_VIEW_HEATMAP); });
     QAction *continuous = view->addAction("&Continuous rendering (measure FPS)");
     continuous->setShortcut(QKeySequence("F"));
     continuous->setCheckable(true);
     connect(continuous, &QAction::toggled, view_, &RenderView::set_continuous);
-    QAction *fast = view->addAction("Half &resolution while dragging");
-    fast->setCheckable(true);
-    fast->setChecked(true);
-    connect(fast, &QAction::toggled, view_, &RenderView::set_fast_interaction);
+    QAction *progressive = view->addAction("&Progressive frames (coarse while interacting)");
+    progressive->setCheckable(true);
+    progressive->setChecked(view_->progressive());
+    progressive->setToolTip("when full frames are slow, show a coarse frame during drags and slider moves "
+                            "and refine it when the input rests");
+    connect(progressive, &QAction::toggled, view_, &RenderView::set_progressive);
+    menu_action(view, "&Render full frame", QKeySequence("F5"), this, [this] { view_->request_frame(false); });
+    menu_action(view, "&Cancel frame", QKeySequence("Esc"), this, [this] { view_->cancel_frame(); });
     view->addSeparator();
     QMenu *algorithms = view->addMenu("&Algorithm");
+    auto *algorithm_group = new QActionGroup(this);
     size_t count;
     const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
     for (size_t i = 0; i < count; ++i) {
         QString name = list[i]->name;
-        algorithms->addAction(name, this, [this, name] { set_algorithm(name); },
-                              QKeySequence(QString("Ctrl+%1").arg(i + 1)));
+        QAction *action = algorithms->addAction(name, this, [this, name] { set_algorithm(name); },
+                                                QKeySequence(QString("Ctrl+%1").arg(i + 1)));
+        action->setCheckable(true);
+        action->setToolTip(list[i]->summary);
+        algorithm_group->addAction(action);
+        sync_actions_.push_back([this, action, name] {
+            action->setChecked(QString::fromStdString(view_->settings.algorithm) == name);
+        });
     }
+    algorithms->setToolTipsVisible(true);
     view->addSeparator();
 
     QMenu *help = menuBar()->addMenu("&Help");
@@ -317,6 +530,7 @@ void MainWindow::show_error(const QString &title, const QString &message)
     // window-modal but not blocking, so the event loop (and tests) go on
     if (error_box_)
         error_box_->close();
+    log_message("error", title + ": " + message);
     error_box_ = new QMessageBox(QMessageBox::Warning, title, message, QMessageBox::Ok, this);
     error_box_->setAttribute(Qt::WA_DeleteOnClose);
     error_box_->open();
@@ -369,6 +583,57 @@ QWidget *slider_row(double low, double high, int decimals, std::function<float()
     return row;
 }
 
+// A length from 0 ("auto") over many orders of magnitude: the slider is
+// logarithmic between range()'s ends, which follow the model (a fall-off of
+// 1e-3 to 4 bounding radii), and its left end is 0.
+QWidget *log_length_row(std::function<std::pair<double, double>()> range, std::function<float()> get,
+                        std::function<void(float)> set, std::vector<std::function<void()>> &sync, bool &syncing)
+{
+    auto *row = new QWidget;
+    auto *layout = new QHBoxLayout(row);
+    layout->setContentsMargins(0, 0, 0, 0);
+    auto *slider = new QSlider(Qt::Horizontal);
+    slider->setRange(0, 1000);
+    auto *spin = new QDoubleSpinBox;
+    spin->setDecimals(6);
+    spin->setSpecialValueText("auto");
+    layout->addWidget(slider, 1);
+    layout->addWidget(spin);
+    auto to_slider = [range](double v) {
+        auto [low, high] = range();
+        if (!(v > 0.0))
+            return 0;
+        double t = std::log(std::max(v, low) / low) / std::log(high / low);
+        return std::max(1, int(std::lround(std::min(1.0, t) * 1000.0)));
+    };
+    QObject::connect(slider, &QSlider::valueChanged, spin, [=, &syncing](int position) {
+        if (syncing)
+            return;
+        auto [low, high] = range();
+        double value = position == 0 ? 0.0 : low * std::pow(high / low, position / 1000.0);
+        spin->blockSignals(true);
+        spin->setValue(value);
+        spin->blockSignals(false);
+        set(float(value));
+    });
+    QObject::connect(spin, QOverload<double>::of(&QDoubleSpinBox::valueChanged), slider, [=, &syncing](double v) {
+        if (syncing)
+            return;
+        slider->blockSignals(true);
+        slider->setValue(to_slider(v));
+        slider->blockSignals(false);
+        set(float(v));
+    });
+    sync.push_back([=] {
+        auto [low, high] = range();
+        spin->setRange(0.0, high * 1000.0);
+        spin->setSingleStep(low * 10.0);
+        spin->setValue(double(get()));
+        slider->setValue(to_slider(double(get())));
+    });
+    return row;
+}
+
 QComboBox *combo(const QStringList &items, std::function<int()> get, std::function<void(int)> set,
                  std::vector<std::function<void()>> &sync, bool &syncing)
 {
@@ -418,6 +683,93 @@ QWidget *scrolled(QWidget *content)
 
 } // namespace
 
+// What each row of the settings panel does, by its label (the flag in
+// brackets is `oit render`'s, which Copy as command writes).
+static const std::pair<const char *, const char *> kRowTips[] = {
+    {"algorithm", "how transparency is composited: the exact ones (dp, ddp, ll, ib, reference) agree; "
+                  "blend and wboit approximate"},
+    {"sort", "ll's per-pixel sort: insertion sort in the lists, or a copy into a local array"},
+    {"neighbours", "ib: how a fragment finds its neighbours on the surface (shared vertex index, welded "
+                   "position, or the epsilon depth/normal search)"},
+    {"memory budget", "the most the fragment pools of ll and ib may grow to"},
+    {"layer cap", "dp/ddp: stop after this many layers (none: peel until nothing is left); a frame cut short "
+                  "is marked TRUNCATED"},
+    {"shading", "flat: the material colour; headlight: lit from the eye"},
+    {"background", "the colour behind the model"},
+    {"alpha", "opacity of every surface, times the part's own opacity"},
+    {"contrast", "stretch the composited colour about mid-grey (1: unchanged)"},
+    {"focus shape", "fade surfaces by their distance to a point, plane or box (every algorithm)"},
+    {"focus (model units)", "the focus shape's point, plane (a b c d) or box (min, max), model coordinates"},
+    {"focus region", "fall-off length of the focus shape and of ib's distance modulation; logarithmic slider, "
+                     "left end 0 = automatic"},
+    {"modulation", "ib's opacity modulation from the surface around each fragment; other algorithms do "
+                   "what they can and the Messages say what they left out"},
+    {"curvature effect", "how strongly curvature raises opacity (delta_c)"},
+    {"curvature neighbours", "curvature from 4 or 8 neighbours"},
+    {"distance", "ib: distance to the next fragment, to the one K places on, or to the last"},
+    {"skip K", "ib: the fragment K places on for the skip distance"},
+    {"fields", "ib: which transparency fields (alpha, beta, gamma) modulate"},
+    {"diffusion iterations", "ib: diffusion steps of the fields over the surface (0 = none)"},
+    {"blur iterations", "ib: blur passes of the beta field (0 = none)"},
+    {"lambda", "ib: weight of the field (0 = automatic)"},
+    {"epsilon max", "ib: the largest epsilon the epsilon neighbour search accepts"},
+    {"halo colour", "ib: the colour of the halos the fields draw"},
+    {"view", "what the view shows: the colour, the list-length heatmap, one layer, or ib's buffers"},
+    {"N / layer L", "the peel limit or layer the view shows"},
+    {"mode", "orbit turns about the target; walk moves with W/A/S/D, Q/E"},
+    {"projection", "perspective or orthographic"},
+    {"field of view", "vertical field of view of the perspective camera"},
+    {"saved views", "camera poses kept for this model: double-click one to return to it"},
+};
+
+// Every control of the panel gets a tooltip: the row's own description, with
+// its label (which names the command-line flag) in front.
+void MainWindow::give_every_control_a_tooltip()
+{
+    for (QFormLayout *form : tabs_->findChildren<QFormLayout *>()) {
+        for (int row = 0; row < form->rowCount(); ++row) {
+            QLayoutItem *label_item = form->itemAt(row, QFormLayout::LabelRole);
+            QLayoutItem *field_item = form->itemAt(row, QFormLayout::FieldRole);
+            if (!field_item)
+                field_item = form->itemAt(row, QFormLayout::SpanningRole);
+            auto *label = label_item ? qobject_cast<QLabel *>(label_item->widget()) : nullptr;
+            // the field: a widget, or a row of them in a layout
+            QList<QWidget *> controls;
+            std::function<void(QLayoutItem *)> collect = [&](QLayoutItem *item) {
+                if (!item)
+                    return;
+                if (QWidget *w = item->widget()) {
+                    controls << w << w->findChildren<QWidget *>();
+                } else if (QLayout *layout = item->layout()) {
+                    for (int i = 0; i < layout->count(); ++i)
+                        collect(layout->itemAt(i));
+                }
+            };
+            collect(field_item);
+            if (controls.isEmpty())
+                continue;
+            QWidget *field = controls.first();
+            QString name = label ? label->text() : QString();
+            if (name.isEmpty())
+                if (auto *button = qobject_cast<QAbstractButton *>(field))
+                    name = button->text().remove('&');
+            QString tip;
+            for (const auto &entry : kRowTips)
+                if (!name.isEmpty() && name.startsWith(entry.first))
+                    tip = QString("%1: %2").arg(name, entry.second);
+            if (tip.isEmpty())
+                tip = name;
+            if (tip.isEmpty())
+                continue;
+            for (QWidget *control : controls)
+                if (control->toolTip().isEmpty())
+                    control->setToolTip(tip);
+            if (label && label->toolTip().isEmpty())
+                label->setToolTip(tip);
+        }
+    }
+}
+
 void MainWindow::settings_changed()
 {
     sync_panel_from_settings();
@@ -429,6 +781,8 @@ void MainWindow::sync_panel_from_settings()
     syncing_ = true;
     for (auto &action : sync_actions_)
         action();
+    if (parts_panel_ && model_)
+        parts_panel_->set_values(view_->settings.part_alpha, view_->settings.part_visible);
     syncing_ = false;
 }
 
@@ -580,12 +934,17 @@ QWidget *MainWindow::build_opacity_tab()
     gform->addRow("focus (model units)", focus_row);
     // shared: the focus shapes' fall-off (model units) and ib's distance modulation (eye space)
     gform->addRow("focus region (--focus-region, 0 = auto)",
-                  slider_row(0, double(1000), 3, [&m] { return m.focus_region; },
-                             [&m, changed](float v) {
-                                 m.focus_region = v;
-                                 changed();
-                             },
-                             sync_actions_, syncing_));
+                  log_length_row(
+                      [this] {
+                          double radius = model_ && model_->radius > 0.0f ? double(model_->radius) : 1.0;
+                          return std::make_pair(radius * 1e-3, radius * 4.0);
+                      },
+                      [&m] { return m.focus_region; },
+                      [&m, changed](float v) {
+                          m.focus_region = v;
+                          changed();
+                      },
+                      sync_actions_, syncing_));
     layout->addWidget(global);
 
     auto *ib = new QGroupBox("Illustration Buffer (--algorithm ib)");
@@ -700,106 +1059,21 @@ QWidget *MainWindow::build_opacity_tab()
 
 QWidget *MainWindow::build_parts_tab()
 {
-    auto *page = new QWidget;
-    auto *layout = new QVBoxLayout(page);
-    parts_filter_ = new QLineEdit;
-    parts_filter_->setPlaceholderText("filter parts by name");
-    parts_filter_->setClearButtonEnabled(true);
-    connect(parts_filter_, &QLineEdit::textChanged, this, &MainWindow::filter_parts);
-    layout->addWidget(parts_filter_);
-    parts_ = new QTreeWidget;
-    parts_->setColumnCount(3);
-    parts_->setHeaderLabels({"part", "opacity", ""});
-    parts_->setRootIsDecorated(false);
-    parts_->setUniformRowHeights(true);
-    parts_->header()->setSectionResizeMode(0, QHeaderView::Stretch);
-    parts_->header()->setSectionResizeMode(1, QHeaderView::Fixed);
-    parts_->header()->resizeSection(1, 130);
-    parts_->header()->setSectionResizeMode(2, QHeaderView::ResizeToContents);
-    parts_->header()->setStretchLastSection(false);
-    connect(parts_, &QTreeWidget::itemChanged, this, [this](QTreeWidgetItem *item, int column) {
-        if (syncing_ || column != 0)
-            return;
-        int index = item->data(0, Qt::UserRole).toInt();
-        set_part_visible(index, item->checkState(0) == Qt::Checked);
-    });
-    layout->addWidget(parts_, 1);
-    parts_note_ = new QLabel;
-    parts_note_->setWordWrap(true);
-    layout->addWidget(parts_note_);
-    auto *buttons = new QHBoxLayout;
-    auto *reset = new QPushButton("Reset");
-    reset->setToolTip("every part visible and at full opacity");
-    connect(reset, &QPushButton::clicked, this, [this] {
-        if (model_)
-            view_->settings.reset_parts(*model_);
-        rebuild_parts();
+    // a model/view list: fluid at 10,000 parts (parts_panel.h)
+    parts_panel_ = new PartsPanel;
+    connect(parts_panel_, &PartsPanel::parts_changed, this, [this] {
+        view_->settings.part_alpha = parts_panel_->alpha();
+        view_->settings.part_visible = parts_panel_->visible();
         render_now();
     });
-    auto *isolate = new QPushButton("Isolate selected");
-    connect(isolate, &QPushButton::clicked, this, [this] {
-        if (!model_ || parts_->selectedItems().isEmpty())
-            return;
-        for (size_t i = 0; i < view_->settings.part_visible.size(); ++i)
-            view_->settings.part_visible[i] = 0;
-        for (QTreeWidgetItem *item : parts_->selectedItems())
-            view_->settings.part_visible[size_t(item->data(0, Qt::UserRole).toInt())] = 1;
-        rebuild_parts();
-        render_now();
-    });
-    buttons->addWidget(reset);
-    buttons->addWidget(isolate);
-    buttons->addStretch(1);
-    layout->addLayout(buttons);
-    return page;
+    connect(parts_panel_, &PartsPanel::frame_selected_requested, this,
+            [this](std::vector<int> parts) { frame_parts(parts); });
+    return parts_panel_;
 }
 
 void MainWindow::rebuild_parts()
 {
-    syncing_ = true;
-    parts_->clear();
-    RenderSettings &s = view_->settings;
-    if (model_) {
-        for (uint32_t i = 0; i < model_->component_count; ++i) {
-            const oit_component &c = model_->components[i];
-            auto *item = new QTreeWidgetItem(parts_);
-            item->setText(0, QString::fromUtf8(c.name));
-            item->setIcon(0, swatch(c.colour));
-            item->setToolTip(0, QString("%1: colour %2, material opacity %3, %4 triangles")
-                                    .arg(QString::fromUtf8(c.name), colour_text(c.colour))
-                                    .arg(double(c.opacity))
-                                    .arg(c.triangle_count));
-            item->setData(0, Qt::UserRole, int(i));
-            item->setFlags(item->flags() | Qt::ItemIsUserCheckable);
-            item->setCheckState(0, s.part_visible[i] ? Qt::Checked : Qt::Unchecked);
-            auto *slider = new QSlider(Qt::Horizontal);
-            slider->setRange(0, 100);
-            slider->setValue(int(std::lround(s.part_alpha[i] * 100.0f)));
-            slider->setObjectName(QString("part_alpha_%1").arg(i));
-            item->setText(2, QString("%1%").arg(slider->value()));
-            connect(slider, &QSlider::valueChanged, this, [this, i, item](int v) {
-                item->setText(2, QString("%1%").arg(v));
-                if (!syncing_)
-                    set_part_alpha(int(i), float(v) / 100.0f);
-            });
-            parts_->setItemWidget(item, 1, slider);
-        }
-    }
-    parts_note_->setText(model_ && model_->component_count > OIT_LOCAL_COMPONENT_LIMIT
-                             ? QString("Per-part opacity reaches the first %1 parts (--component-alpha's limit).")
-                                   .arg(OIT_LOCAL_COMPONENT_LIMIT)
-                             : QString("%1 parts; checkbox: visible, slider: opacity (--component-alpha).")
-                                   .arg(model_ ? model_->component_count : 0));
-    syncing_ = false;
-    filter_parts(parts_filter_->text());
-}
-
-void MainWindow::filter_parts(const QString &text)
-{
-    for (int i = 0; i < parts_->topLevelItemCount(); ++i) {
-        QTreeWidgetItem *item = parts_->topLevelItem(i);
-        item->setHidden(!text.isEmpty() && !item->text(0).contains(text, Qt::CaseInsensitive));
-    }
+    parts_panel_->set_model(model_.get(), view_->settings.part_alpha, view_->settings.part_visible);
 }
 
 void MainWindow::set_part_visible(int index, bool visible)
@@ -808,11 +1082,7 @@ void MainWindow::set_part_visible(int index, bool visible)
     if (index < 0 || size_t(index) >= s.part_visible.size())
         return;
     s.part_visible[size_t(index)] = visible;
-    if (QTreeWidgetItem *item = parts_->topLevelItem(index)) {
-        syncing_ = true;
-        item->setCheckState(0, visible ? Qt::Checked : Qt::Unchecked);
-        syncing_ = false;
-    }
+    parts_panel_->set_values(s.part_alpha, s.part_visible);
     render_now();
 }
 
@@ -822,13 +1092,54 @@ void MainWindow::set_part_alpha(int index, float alpha)
     if (index < 0 || size_t(index) >= s.part_alpha.size())
         return;
     s.part_alpha[size_t(index)] = std::min(1.0f, std::max(0.0f, alpha));
-    if (QTreeWidgetItem *item = parts_->topLevelItem(index))
-        if (auto *slider = qobject_cast<QSlider *>(parts_->itemWidget(item, 1))) {
-            syncing_ = true;
-            slider->setValue(int(std::lround(alpha * 100.0f)));
-            syncing_ = false;
-        }
+    parts_panel_->set_values(s.part_alpha, s.part_visible);
     render_now();
+}
+
+void MainWindow::frame_parts(const std::vector<int> &parts)
+{
+    if (!model_ || parts.empty())
+        return;
+    const oit_model &m = *model_;
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int part : parts) {
+        if (part < 0 || uint32_t(part) >= m.component_count)
+            continue;
+        const oit_component &c = m.components[part];
+        for (uint32_t t = c.first_triangle; t < c.first_triangle + c.triangle_count; ++t)
+            for (int k = 0; k < 3; ++k) {
+                const float *p = m.positions + size_t(m.indices[size_t(t) * 3 + size_t(k)]) * 3;
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = std::min(lo[a], p[a]);
+                    hi[a] = std::max(hi[a], p[a]);
+                }
+            }
+    }
+    if (!(lo[0] <= hi[0]))
+        return; // parts without triangles
+    QSize size = view_->pixel_size();
+    view_->camera.frame_box(lo, hi, size.width(), size.height());
+    emit view_->camera_changed();
+    render_now();
+}
+
+void MainWindow::pick_at(const QPoint &pixel)
+{
+    if (!model_)
+        return;
+    std::vector<float> storage;
+    oit_frame_settings frame = view_->current_frame(storage);
+    PickResult hit = pick(*model_, frame.modelview, frame.projection, frame.width, frame.height, pixel.x() + 0.5,
+                          pixel.y() + 0.5, view_->settings.part_alpha, view_->settings.part_visible);
+    if (hit.component < 0) {
+        status_label_->setText("nothing under the pointer");
+        return;
+    }
+    parts_panel_->select_part(hit.component);
+    status_label_->setText(QString("picked part %1 (%2), triangle %3")
+                               .arg(QString::fromUtf8(model_->components[hit.component].name))
+                               .arg(hit.component)
+                               .arg(hit.triangle));
 }
 
 QWidget *MainWindow::build_camera_tab()
@@ -853,11 +1164,14 @@ QWidget *MainWindow::build_camera_tab()
                                                        },
                                                        sync_actions_, syncing_));
     auto *reset = new QPushButton("Reset camera (Home)");
+    reset->setToolTip("frame the whole model again from the default three-quarter view");
     connect(reset, &QPushButton::clicked, this, [this] { view_->reset_camera(); });
     form->addRow(reset);
     saved_views_ = new QListWidget;
     auto *save = new QPushButton("Save view");
+    save->setToolTip("keep the camera's pose in the list below");
     auto *restore = new QPushButton("Go to view");
+    restore->setToolTip("return to the pose selected in the list");
     connect(save, &QPushButton::clicked, this, [this] {
         saved_cameras_.push_back(view_->camera);
         saved_views_->addItem(QString("view %1").arg(saved_cameras_.size()));
@@ -910,7 +1224,9 @@ QWidget *MainWindow::build_views_tab()
                                },
                                sync_actions_, syncing_);
     auto *previous = new QPushButton("◀ nearer");
+    previous->setToolTip("the layer (or peel limit) one nearer the eye");
     auto *next = new QPushButton("farther ▶");
+    next->setToolTip("the layer (or peel limit) one farther from the eye");
     connect(previous, &QPushButton::clicked, parameter, [parameter] { parameter->setValue(parameter->value() - 1); });
     connect(next, &QPushButton::clicked, parameter, [parameter] { parameter->setValue(parameter->value() + 1); });
     auto *row = new QHBoxLayout;
@@ -947,7 +1263,7 @@ void MainWindow::update_stats()
     double gpu_total = 0.0;
     for (int i = 0; i < st.stage_count; ++i)
         gpu_total += st.stages[i].gpu_ms;
-    QSize size = view_->render_size();
+    QSize size = view_->last_image().size();
     out << QString("%1, %2x%3\n").arg(QString::fromStdString(view_->settings.algorithm)).arg(size.width()).arg(size.height());
     out << QString("%1 frame time (CPU)   %2 ms\n").arg("", 0).arg(st.cpu_ms, 0, 'f', 2);
     out << QString("frames per second   %1%2\n")
@@ -987,6 +1303,12 @@ void MainWindow::update_stats()
     QString truncated;
     if (st.truncated)
         truncated = QString(" — TRUNCATED: the layer cap %1 left fragments out").arg(view_->settings.config.max_layers);
+    if (st.truncated && !last_truncated_)
+        log_message("warning", QString("%1: the layer cap %2 left fragments out (TRUNCATED)")
+                                   .arg(QString::fromStdString(view_->settings.algorithm))
+                                   .arg(view_->settings.config.max_layers));
+    last_truncated_ = st.truncated;
+    frame_progress(QString(), 0, 0.0);
     status_label_->setText(QString("%1: %2 ms CPU, %3 ms GPU stages, %4 MB%5")
                                .arg(QString::fromStdString(view_->settings.algorithm))
                                .arg(st.cpu_ms, 0, 'f', 1)
@@ -1033,7 +1355,10 @@ void MainWindow::load_model(const QString &path)
     }
     loading_path_ = QFileInfo(path).absoluteFilePath();
     progress_->show();
+    progress_label_->setText("reading " + QFileInfo(loading_path_).fileName() + "…");
+    progress_label_->show();
     status_label_->setText("loading " + loading_path_ + "…");
+    log_message("load", "reading " + loading_path_);
     QString target = loading_path_;
     loader_->setFuture(QtConcurrent::run([target] {
         auto *result = new LoadResult;
@@ -1049,24 +1374,14 @@ void MainWindow::load_model(const QString &path)
 void MainWindow::load_finished()
 {
     progress_->hide();
+    progress_label_->hide();
     std::unique_ptr<LoadResult> result(loader_->result());
     if (!result->ok) {
         show_error("Cannot open model", result->error);
         emit model_failed(result->error);
         return;
     }
-    ModelPointer loaded(new oit_model(result->model));
-    std::string error;
-    if (!view_->set_model(loaded.get(), error)) {
-        // the previous model goes back on the GPU
-        std::string again;
-        if (model_)
-            view_->set_model(model_.get(), again);
-        show_error("Cannot upload model", result->path + ": " + QString::fromStdString(error));
-        emit model_failed(QString::fromStdString(error));
-        return;
-    }
-    model_ = std::move(loaded);
+    model_ = ModelPointer(new oit_model(result->model), ModelDeleter());
     model_path_ = result->path;
     view_->settings.reset_parts(*model_);
     QSize size = view_->pixel_size();
@@ -1096,16 +1411,22 @@ void MainWindow::load_finished()
     add_recent(model_path_);
     QSettings().setValue("last_model", model_path_);
     rebuild_parts();
-    settings_changed();
+    sync_panel_from_settings();
+    reset_settings_history(); // the parts are another model's now
+    // the worker uploads it with the first (coarse) frame
+    view_->set_model(model_);
     status_label_->setText(QString("loaded %1: %2 triangles, %3 parts")
                                .arg(model_path_)
                                .arg(model_->triangle_count)
                                .arg(model_->component_count));
+    log_message("load", status_label_->text());
     last_error_.clear();
     // what the import skipped or repaired is said once, in a notice that does not block
     model_warnings_.clear();
     for (uint32_t i = 0; i < model_->warning_count; ++i)
         model_warnings_ << QString::fromUtf8(model_->warnings[i]);
+    for (const QString &warning : model_warnings_)
+        log_message("warning", warning);
     if (!model_warnings_.isEmpty()) {
         if (error_box_)
             error_box_->close();
@@ -1200,6 +1521,8 @@ bool MainWindow::export_png(const QString &path, int width, int height, QString 
     oit_image_free(&image);
     if (!ok)
         error = QString::fromUtf8(err.message);
+    else
+        log_message("export", QString("wrote %1 (%2x%3)").arg(path).arg(width).arg(height));
     return ok;
 }
 
@@ -1218,8 +1541,15 @@ QString MainWindow::render_command_for_view(const QString &out_path) const
         return QString();
     std::vector<float> storage;
     oit_frame_settings frame = view_->current_frame(storage);
+    // what the view rendered: options the algorithm left out are left out here too
+    RenderSettings settings = view_->settings;
+    FrameResultPointer last = view_->last_result();
+    if (last && last->status == OIT_OK && last->algorithm == settings.algorithm && !last->left_out.empty()) {
+        settings.modulation = last->modulation;
+        settings.focus_shape = last->focus_shape;
+    }
     return QString::fromStdString(render_command(oit_program().toStdString(), model_path_.toStdString(),
-                                                 view_->settings, frame, out_path.toStdString()));
+                                                 settings, frame, out_path.toStdString()));
 }
 
 void MainWindow::copy_command()
@@ -1228,14 +1558,27 @@ void MainWindow::copy_command()
     if (command.isEmpty())
         return;
     QApplication::clipboard()->setText(command);
-    auto *box = new QMessageBox(QMessageBox::Information, "Copied as command",
-                                "This `oit render` command (now on the clipboard) renders the current view:", QMessageBox::Ok, this);
-    box->setDetailedText(command);
-    box->setInformativeText(command);
-    box->setTextInteractionFlags(Qt::TextSelectableByMouse);
-    box->setAttribute(Qt::WA_DeleteOnClose);
-    box->open();
-    status_label_->setText("copied: " + command);
+    // the whole command, wrapped and selectable (a message box cuts it off)
+    auto *dialog = new QDialog(this);
+    dialog->setObjectName("copied_command");
+    dialog->setWindowTitle("Copied as command");
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    auto *layout = new QVBoxLayout(dialog);
+    layout->addWidget(new QLabel("This `oit render` command (now on the clipboard) renders the current view:"));
+    auto *text = new QPlainTextEdit(command);
+    text->setObjectName("command_text");
+    text->setReadOnly(true);
+    text->setLineWrapMode(QPlainTextEdit::WidgetWidth);
+    text->setWordWrapMode(QTextOption::WrapAnywhere);
+    text->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+    text->setMinimumSize(560, 160);
+    layout->addWidget(text);
+    auto *buttons = new QDialogButtonBox(QDialogButtonBox::Close);
+    connect(buttons, &QDialogButtonBox::rejected, dialog, &QDialog::close);
+    layout->addWidget(buttons);
+    dialog->open();
+    status_label_->setText("copied the oit render command to the clipboard");
+    log_message("copied", command);
 }
 
 void MainWindow::export_dialog()

@@ -29,8 +29,9 @@ class QProgressBar;
 class QSlider;
 class QSpinBox;
 class QTabWidget;
-class QTreeWidget;
-class QTreeWidgetItem;
+class QTimer;
+class QAction;
+class PartsPanel;
 class QListWidget;
 class QPushButton;
 class QRadioButton;
@@ -40,7 +41,9 @@ struct LoadResult; // the worker thread's answer
 struct ModelDeleter {
     void operator()(oit_model *model) const;
 };
-using ModelPointer = std::unique_ptr<oit_model, ModelDeleter>;
+// shared with the render worker, which may still draw the previous model
+// while the window already holds the next one
+using ModelPointer = std::shared_ptr<const oit_model>;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -57,6 +60,10 @@ public:
     // the loaded model's import warnings (oit_model.warnings), shown in a notice
     QStringList model_warnings() const { return model_warnings_; }
     QString status_text() const;
+    // The message area: loads, exports, copies, warnings, cancels and errors
+    // stay readable there (newest last), each line "[hh:mm:ss] kind: text".
+    QStringList messages() const;
+    void log_message(const QString &kind, const QString &text);
 
     // Start loading a model off the GUI thread (the previous one stays until it succeeds).
     void load_model(const QString &path);
@@ -70,11 +77,26 @@ public:
 
     // Settings changed by code (tests, presets): refresh the panel and render.
     void settings_changed();
+    // Refresh every control from the settings (no frame).
+    void sync_panel_from_settings();
+    // Copy the `oit render` command for the view and show it (File > Copy as command).
+    void copy_command();
     void set_algorithm(const QString &name);
     void set_part_visible(int index, bool visible);
     void set_part_alpha(int index, float alpha);
+    PartsPanel *parts_panel() const { return parts_panel_; }
+    // Turn the camera's target to these parts' bounds and fit them in the view.
+    void frame_parts(const std::vector<int> &parts);
+    // Select the part under a view pixel (a click in the view).
+    void pick_at(const QPoint &pixel);
     QSlider *alpha_slider() const { return alpha_slider_; }
     void set_camera_mode(Camera::Mode mode, bool orthographic);
+    // Undo / redo of settings changes (Edit menu); false when there is none.
+    bool undo_settings();
+    bool redo_settings();
+    // Forget the history: the current settings are where undo stops.
+    void reset_settings_history();
+    static constexpr int kUndoCoalesceMs = 600;
     // Bring a settings tab to the front by its name (case-insensitive).
     bool show_tab(const QString &name);
 
@@ -99,9 +121,7 @@ private:
     QWidget *build_camera_tab();
     QWidget *build_views_tab();
     QWidget *build_stats_tab();
-    void sync_panel_from_settings();
     void rebuild_parts();
-    void filter_parts(const QString &text);
     void update_stats();
     void load_finished();
     void add_recent(const QString &path);
@@ -109,8 +129,12 @@ private:
     void show_error(const QString &title, const QString &message);
     void open_model_dialog();
     void export_dialog();
-    void copy_command();
     void render_now();
+    void record_settings_change();
+    void restore_settings(const RenderSettings &settings);
+    std::string settings_key(const RenderSettings &settings) const;
+    void give_every_control_a_tooltip();
+    void frame_progress(const QString &stage, int stages_done, double elapsed_ms);
 
     RenderView *view_ = nullptr;
     ModelPointer model_;
@@ -124,7 +148,13 @@ private:
 
     QTabWidget *tabs_ = nullptr;
     QProgressBar *progress_ = nullptr;
+    QLabel *progress_label_ = nullptr;
+    QPushButton *cancel_button_ = nullptr;
     QLabel *status_label_ = nullptr;
+    QPlainTextEdit *messages_ = nullptr;
+    QStringList message_lines_;
+    QString last_left_out_; // said once per change, not once per frame
+    bool last_truncated_ = false;
     QMenu *recent_menu_ = nullptr;
     QStringList recent_;
     bool syncing_ = false; // true while the panel is being set from the settings
@@ -132,11 +162,15 @@ private:
 
     QComboBox *algorithm_combo_ = nullptr;
     QSlider *alpha_slider_ = nullptr;
-    QTreeWidget *parts_ = nullptr;
-    QLineEdit *parts_filter_ = nullptr;
-    QLabel *parts_note_ = nullptr;
+    PartsPanel *parts_panel_ = nullptr;
     QPlainTextEdit *stats_text_ = nullptr;
     QListWidget *saved_views_ = nullptr;
     std::vector<Camera> saved_cameras_;
     QPointer<QMessageBox> error_box_;
+    std::vector<RenderSettings> undo_stack_, redo_stack_;
+    RenderSettings committed_settings_;
+    std::string committed_key_;
+    bool restoring_settings_ = false;
+    QTimer *coalesce_timer_ = nullptr;
+    QAction *undo_action_ = nullptr, *redo_action_ = nullptr;
 };

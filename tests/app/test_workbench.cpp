@@ -5,6 +5,13 @@
 // Environment: OIT_CLI = the `oit` program (for Export PNG against `oit render`),
 // OIT_TEST_WORK = a scratch directory.
 #include <QApplication>
+#include <QDialog>
+#include <QAction>
+#include <QAbstractItemView>
+#include <QComboBox>
+#include <QLineEdit>
+#include <QProgressBar>
+#include <QScrollBar>
 #include <QDir>
 #include <QFile>
 #include <QMimeData>
@@ -12,13 +19,20 @@
 #include <QProcess>
 #include <QSignalSpy>
 #include <QSlider>
+#include <QPlainTextEdit>
+#include <QPushButton>
+#include <QTabBar>
+#include <QTabWidget>
 #include <QStandardPaths>
-#include <QSurfaceFormat>
 #include <QtTest/QtTest>
+
+#include <QElapsedTimer>
 
 #include <cmath>
 
 #include "main_window.h"
+#include "parts_panel.h"
+#include "pick.h"
 
 namespace {
 
@@ -67,6 +81,61 @@ double ink(const QImage &image)
     return total / (x.width() * x.height());
 }
 
+// Posted events record how long they waited for the GUI thread's event loop.
+class LatencyProbe : public QObject {
+public:
+    static const QEvent::Type kType = QEvent::Type(QEvent::User + 17);
+    double worst_ms = 0.0;
+    int handled = 0;
+    void post()
+    {
+        auto *event = new QEvent(kType);
+        posted_.start();
+        pending_ = true;
+        QCoreApplication::postEvent(this, event);
+    }
+    bool pending() const { return pending_; }
+
+protected:
+    bool event(QEvent *event) override
+    {
+        if (event->type() != kType)
+            return QObject::event(event);
+        worst_ms = std::max(worst_ms, double(posted_.nsecsElapsed()) / 1e6);
+        ++handled;
+        pending_ = false;
+        return true;
+    }
+
+private:
+    QElapsedTimer posted_;
+    bool pending_ = false;
+};
+
+// A left click posted (not sent) to widget at pos: it waits in the event queue
+// like a user's click.
+void post_click(QWidget *widget, QPoint pos)
+{
+    QCoreApplication::postEvent(widget, new QMouseEvent(QEvent::MouseButtonPress, pos, widget->mapToGlobal(pos),
+                                                         Qt::LeftButton, Qt::LeftButton, Qt::NoModifier));
+    QCoreApplication::postEvent(widget, new QMouseEvent(QEvent::MouseButtonRelease, pos, widget->mapToGlobal(pos),
+                                                        Qt::LeftButton, Qt::NoButton, Qt::NoModifier));
+}
+
+// Milliseconds until condition holds (spinning the event loop), or -1 after timeout_ms.
+template <typename Condition>
+double ms_until(Condition condition, int timeout_ms)
+{
+    QElapsedTimer clock;
+    clock.start();
+    while (!condition()) {
+        if (clock.elapsed() > timeout_ms)
+            return -1.0;
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+    }
+    return double(clock.nsecsElapsed()) / 1e6;
+}
+
 } // namespace
 
 class WorkbenchTest : public QObject {
@@ -76,10 +145,13 @@ private:
     QString work;
     int dumped = 0;
 
-    // Render a frame now and return what the widget shows.
+    // Wait until the full frame of the current settings is shown (the worker
+    // renders off the GUI thread) and return what the widget shows.
     QImage frame()
     {
-        QImage shown = window->view()->grabFramebuffer();
+        if (!QTest::qWaitFor([this] { return window->view()->settled(); }, 120000))
+            qWarning("the view did not settle: %s", qPrintable(window->status_text()));
+        QImage shown = window->view()->grab().toImage();
         if (qEnvironmentVariableIsSet("OIT_TEST_DUMP")) // for looking at what a case saw
             shown.save(QString("%1/frame_%2.png").arg(work).arg(dumped++, 3, 10, QChar('0')));
         return shown.convertToFormat(QImage::Format_RGBA8888);
@@ -219,14 +291,24 @@ private slots:
         window->view()->reset_camera();
         QImage start = frame();
         QPoint centre(view_size.width() / 2, view_size.height() / 2);
+        // progressive frames: with every full frame counted as slow, a drag
+        // shows coarse frames, scaled up, until the button is released
+        window->view()->set_slow_frame_ms(0.0);
         QTest::mousePress(window->view(), Qt::LeftButton, Qt::NoModifier, centre);
         QMouseEvent move(QEvent::MouseMove, centre + QPoint(30, 0), Qt::LeftButton, Qt::LeftButton, Qt::NoModifier);
         QApplication::sendEvent(window->view(), &move);
-        // while dragging the algorithm renders at half resolution, shown scaled up
-        QCOMPARE(frame().size(), view_size);
-        QCOMPARE(window->view()->last_image().size(), view_size / 2);
+        QTRY_VERIFY_WITH_TIMEOUT(window->view()->last_result() && window->view()->last_result()->coarse_scale > 1 &&
+                                     !window->view()->rendering(),
+                                 60000);
+        int scale = window->view()->last_result()->coarse_scale;
+        QCOMPARE(window->view()->last_result()->image.size(),
+                 QSize(view_size.width() / scale, view_size.height() / scale));
+        QTest::qWait(2 * RenderView::kRestMs); // the button is still down: no refinement
+        QCOMPARE(window->view()->last_result()->coarse_scale, scale);
+        QCOMPARE(window->view()->grab().size(), view_size);
         QTest::mouseRelease(window->view(), Qt::LeftButton, Qt::NoModifier, centre + QPoint(30, 0));
         QImage turned = frame();
+        window->view()->set_slow_frame_ms(RenderView::kSlowFrameMs);
         QCOMPARE(window->view()->last_image().size(), view_size);
         QVERIFY2(compare(start, turned, 8).share_over > 0.01, "the trackball turns the model");
     }
@@ -259,7 +341,7 @@ private slots:
         QImage a(exported), b(rendered);
         QVERIFY(!a.isNull() && !b.isNull());
         // Tolerance (docs/workbench.md): none. The same llvmpipe runs the same
-        // shaders on the same matrices, through GLX here and EGL in `oit`.
+        // shaders on the same matrices, in the same kind of headless context.
         Difference d = compare(a, b, 0);
         QVERIFY2(d.max == 0, qPrintable(QString("export vs oit render: max diff %1, %2 of pixels")
                                             .arg(d.max)
@@ -357,6 +439,344 @@ private slots:
         QVERIFY(QTest::qWaitForWindowExposed(window));
     }
 
+    void options_an_algorithm_cannot_express_are_left_out()
+    {
+        window->set_algorithm("dp");
+        QImage plain = frame();
+        // fields diffuse over the whole surface: ib's alone (dp refuses them)
+        window->view()->settings.modulation.mode = OIT_MODULATE_FIELDS;
+        window->settings_changed();
+        QImage left_out = frame();
+        QVERIFY2(ink(left_out) > 0.05, "not a grey view");
+        QCOMPARE(compare(plain, left_out, 0).max, 0);
+        QVERIFY(window->view()->last_result()->left_out.size() == 1);
+        QVERIFY2(window->messages().join("\n").contains("left out: dp renders without what it cannot express: dp: "
+                                                        "opacity modulation 'fields'"),
+                 qPrintable(window->messages().join("\n")));
+        // ib expresses it: nothing is left out
+        window->set_algorithm("ib");
+        frame();
+        QVERIFY(window->view()->last_result()->left_out.empty());
+        QCOMPARE(int(window->view()->last_result()->modulation.mode), int(OIT_MODULATE_FIELDS));
+    }
+
+    void messages_and_the_copied_command_stay_readable()
+    {
+        QString error;
+        QVERIFY2(window->export_png(work + "/logged.png", 64, 48, error), qPrintable(error));
+        window->copy_command();
+        auto *dialog = window->findChild<QDialog *>("copied_command");
+        QVERIFY(dialog);
+        auto *text = dialog->findChild<QPlainTextEdit *>("command_text");
+        QVERIFY(text);
+        QCOMPARE(text->toPlainText(), window->render_command_for_view("view.png"));
+        QVERIFY(text->toPlainText().contains("--projection"));
+        dialog->close();
+        // a frame's statistics replace the status line, not the messages
+        window->settings_changed();
+        frame();
+        QString all = window->messages().join("\n");
+        QVERIFY2(all.contains("export: wrote " + work + "/logged.png (64x48)"), qPrintable(all));
+        QVERIFY2(all.contains("copied: ") && all.contains("--modelview"), qPrintable(all));
+        QVERIFY2(all.contains("load: loaded "), qPrintable(all));
+    }
+
+    // The freeze: a deep model with dp at a large view took the whole
+    // window for seconds. Now the GUI thread only waits for its event queue.
+    void a_slow_frame_never_freezes_the_window()
+    {
+        QString oit = qEnvironmentVariable("OIT_CLI");
+        if (oit.isEmpty())
+            QSKIP("OIT_CLI is not set");
+        QString deep = work + "/deep.obj";
+        QCOMPARE(QProcess::execute(oit, {"gen", "spheres", "--complexity", "7", "--out", deep}), 0);
+        QSignalSpy loaded(window, &MainWindow::model_loaded);
+        window->load_model(deep);
+        QVERIFY(loaded.wait(60000));
+        window->view()->setFixedSize(300, 300);
+        window->set_algorithm("ll");
+        frame();
+        RenderView *view = window->view();
+        QSignalSpy done(view->worker(), &RenderWorker::frame_done);
+        auto results = [&done](const char *algorithm, oit_status status) {
+            int n = 0;
+            for (const QList<QVariant> &arguments : done) {
+                auto result = arguments.at(0).value<FrameResultPointer>();
+                n += result->algorithm == algorithm && result->status == status;
+            }
+            return n;
+        };
+
+        // 1. dp's full frame (28 layers, seconds on llvmpipe) starts
+        view->settings.algorithm = "dp";
+        window->sync_panel_from_settings();
+        view->request_frame(false);
+        QTRY_VERIFY_WITH_TIMEOUT(view->rendering(), 5000);
+        // posted events wait no longer than 100 ms while it renders
+        LatencyProbe probe;
+        QElapsedTimer clock;
+        clock.start();
+        while (clock.elapsed() < 1500) {
+            probe.post();
+            QVERIFY(ms_until([&probe] { return !probe.pending(); }, 5000) >= 0.0);
+            QTest::qWait(10);
+        }
+        qInfo("posted events: %d, the longest wait %.1f ms", probe.handled, probe.worst_ms);
+        QVERIFY2(view->rendering(), "the dp frame should still be running (else this case proves nothing)");
+        QVERIFY2(probe.worst_ms < 100.0, qPrintable(QString("an event waited %1 ms").arg(probe.worst_ms)));
+        // a tab switch, clicked through the event queue
+        auto *tabs = window->findChild<QTabWidget *>();
+        auto *bar = tabs->findChild<QTabBar *>();
+        int target = (tabs->currentIndex() + 1) % tabs->count();
+        post_click(bar, bar->tabRect(target).center());
+        double tab_ms = ms_until([&] { return tabs->currentIndex() == target; }, 5000);
+        qInfo("tab switch while rendering: %.1f ms", tab_ms);
+        QVERIFY2(tab_ms >= 0.0 && tab_ms < 100.0, qPrintable(QString("tab switch took %1 ms").arg(tab_ms)));
+        QVERIFY(view->rendering());
+        // Cancel: the button shows once the frame runs long; its click is handled at once
+        auto *cancel = window->findChild<QPushButton *>("cancel_frame");
+        QVERIFY(cancel);
+        QTRY_VERIFY_WITH_TIMEOUT(cancel->isVisible(), 5000);
+        QSignalSpy cancelled(view, &RenderView::frame_cancelled);
+        post_click(cancel, cancel->rect().center());
+        double cancel_ms = ms_until([&] { return cancelled.count() > 0; }, 5000);
+        qInfo("Cancel handled after %.1f ms", cancel_ms);
+        QVERIFY2(cancel_ms >= 0.0 && cancel_ms < 100.0, qPrintable(QString("Cancel took %1 ms").arg(cancel_ms)));
+        // the worker abandons the frame at its next peel
+        double stop_ms = ms_until([&] { return !view->rendering(); }, 30000);
+        qInfo("the frame stopped %.1f ms after Cancel", stop_ms);
+        QVERIFY(stop_ms >= 0.0);
+        QTRY_COMPARE_WITH_TIMEOUT(results("dp", OIT_CANCELLED), 1, 5000);
+        QCOMPARE(results("dp", OIT_OK), 0);
+
+        // 2. a newer request supersedes a running full frame: dp again, then ll
+        view->request_frame(false);
+        QTRY_VERIFY_WITH_TIMEOUT(view->rendering(), 5000);
+        QTest::qWait(500); // some peels in
+        window->set_algorithm("ll");
+        QImage ll = frame();
+        QCOMPARE(QString::fromStdString(view->last_result()->algorithm), QString("ll"));
+        QCOMPARE(results("dp", OIT_CANCELLED), 2);
+        QCOMPARE(results("dp", OIT_OK), 0);
+        QVERIFY(ink(ll) > 0.05);
+
+        window->view()->setFixedSize(view_size);
+        window->load_model(MainWindow::default_model_path());
+        QVERIFY(loaded.wait(60000));
+    }
+
+    // Start-up replays the last model and settings, but a first full frame
+    // over the budget is cancelled: the coarse frame stays, the user decides.
+    void startup_does_not_replay_a_slow_state_blindly()
+    {
+        QString deep = work + "/deep.obj";
+        if (!QFile::exists(deep))
+            QSKIP("needs a_slow_frame_never_freezes_the_window's model");
+        window->set_algorithm("dp");
+        window->close(); // saves dp as the last settings
+        {
+            MainWindow restored(true);
+            restored.show();
+            restored.view()->setFixedSize(300, 300);
+            QSignalSpy cancelled(restored.view(), &RenderView::frame_cancelled);
+            QSignalSpy coarse(restored.view(), &RenderView::coarse_frame_rendered);
+            restored.load_model(deep);
+            QVERIFY(cancelled.wait(60000));
+            QVERIFY2(cancelled.at(0).at(0).toString().contains("took longer than 3.0 s with the restored settings"),
+                     qPrintable(cancelled.at(0).at(0).toString()));
+            QVERIFY(coarse.count() >= 1); // the coarse frame is what the view shows
+            QVERIFY(restored.messages().join("\n").contains("cancelled: the full frame took longer"));
+            QTRY_VERIFY_WITH_TIMEOUT(!restored.view()->rendering(), 30000);
+        }
+        window->show();
+        QVERIFY(QTest::qWaitForWindowExposed(window));
+        window->set_algorithm("ll");
+    }
+
+    void clicking_a_part_selects_it()
+    {
+        frame();
+        QPoint centre(view_size.width() / 2, view_size.height() / 2);
+        std::vector<float> storage;
+        oit_frame_settings f = window->view()->current_frame(storage);
+        PickResult expected = pick(*window->model(), f.modelview, f.projection, f.width, f.height, centre.x() + 0.5,
+                                   centre.y() + 0.5, window->view()->settings.part_alpha,
+                                   window->view()->settings.part_visible);
+        QVERIFY2(expected.component >= 0, "the gearbox covers the centre of the view");
+        QTest::mouseClick(window->view(), Qt::LeftButton, Qt::NoModifier, centre);
+        QCOMPARE(window->parts_panel()->selected_parts(), std::vector<int>{expected.component});
+        QVERIFY2(window->status_text().startsWith("picked part " +
+                                                   QString(window->model()->components[expected.component].name)),
+                 qPrintable(window->status_text()));
+        // a drag is not a click: it turns the model and keeps the selection
+        QTest::mousePress(window->view(), Qt::LeftButton, Qt::NoModifier, QPoint(5, 5));
+        QMouseEvent move(QEvent::MouseMove, QPoint(40, 5), Qt::LeftButton, Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(window->view(), &move);
+        QTest::mouseRelease(window->view(), Qt::LeftButton, Qt::NoModifier, QPoint(40, 5));
+        QCOMPARE(window->parts_panel()->selected_parts(), std::vector<int>{expected.component});
+        // a click on the background selects nothing new
+        window->view()->reset_camera();
+        frame();
+        QTest::mouseClick(window->view(), Qt::LeftButton, Qt::NoModifier, QPoint(1, 1));
+        QCOMPARE(window->status_text(), QString("nothing under the pointer"));
+    }
+
+    void frame_selection_and_standard_views()
+    {
+        QImage whole = frame();
+        const oit_model *model = window->model();
+        // the part with the smallest bounds: framing it fills the view with it
+        auto bounds = [model](int part, glm::vec3 &lo, glm::vec3 &hi) {
+            const oit_component &c = model->components[part];
+            lo = glm::vec3(INFINITY);
+            hi = glm::vec3(-INFINITY);
+            for (uint32_t t = c.first_triangle; t < c.first_triangle + c.triangle_count; ++t)
+                for (int k = 0; k < 3; ++k) {
+                    const float *p = model->positions + size_t(model->indices[t * 3 + k]) * 3;
+                    lo = glm::min(lo, glm::vec3(p[0], p[1], p[2]));
+                    hi = glm::max(hi, glm::vec3(p[0], p[1], p[2]));
+                }
+        };
+        int smallest = 0;
+        float smallest_size = INFINITY;
+        glm::vec3 lo, hi;
+        for (uint32_t i = 0; i < model->component_count; ++i) {
+            bounds(int(i), lo, hi);
+            if (glm::length(hi - lo) < smallest_size) {
+                smallest_size = glm::length(hi - lo);
+                smallest = int(i);
+            }
+        }
+        QVERIFY(smallest_size < 0.5f * model->radius);
+        window->frame_parts({smallest});
+        bounds(smallest, lo, hi);
+        QVERIFY(glm::length(window->view()->camera.target - 0.5f * (lo + hi)) < 1e-4f * model->radius);
+        QVERIFY2(compare(whole, frame(), 8).share_over > 0.05, "framing a part changes the view");
+        // standard views look along the axes (View > Standard view, Alt+1..7)
+        auto forward = [this] { return window->view()->camera.orientation * glm::vec3(0, 0, -1); };
+        auto trigger = [this](const QString &text, const QKeySequence &key) {
+            for (QAction *action : window->findChildren<QAction *>())
+                if (action->text() == text && action->shortcut() == key) {
+                    action->trigger();
+                    return true;
+                }
+            return false;
+        };
+        QVERIFY(trigger("&Top", QKeySequence("Alt+5")));
+        QVERIFY(glm::length(forward() - glm::vec3(0, -1, 0)) < 1e-5f);
+        QVERIFY(trigger("&Front", QKeySequence("Alt+1")));
+        QVERIFY(glm::length(forward() - glm::vec3(0, 0, -1)) < 1e-5f);
+        QVERIFY(trigger("&Right", QKeySequence("Alt+4"))); // looking towards -x
+        QVERIFY(glm::length(forward() - glm::vec3(-1, 0, 0)) < 1e-5f);
+        QImage right = frame();
+        QVERIFY(ink(right) > 0.01);
+    }
+
+    void undo_and_redo_settings()
+    {
+        RenderSettings &s = window->view()->settings;
+        window->reset_settings_history(); // init()'s reset is not a step
+        QVERIFY(!window->undo_settings());
+        window->alpha_slider()->setValue(window->alpha_slider()->maximum() / 4);
+        window->alpha_slider()->setValue(window->alpha_slider()->maximum() / 5); // the same step (coalesced)
+        float dragged = s.alpha;
+        QTest::qWait(MainWindow::kUndoCoalesceMs + 100);
+        window->set_algorithm("ddp");
+        QVERIFY(window->undo_settings());
+        QCOMPARE(QString::fromStdString(s.algorithm), QString("ll"));
+        QCOMPARE(s.alpha, dragged);
+        QVERIFY(window->undo_settings());
+        QCOMPARE(s.alpha, 0.5f); // before the drag
+        QVERIFY(window->redo_settings());
+        QCOMPARE(s.alpha, dragged);
+        QVERIFY(window->redo_settings());
+        QCOMPARE(QString::fromStdString(s.algorithm), QString("ddp"));
+        QVERIFY(!window->redo_settings());
+        // the panel follows: the algorithm menu's check and the combo box
+        frame();
+        bool checked = false;
+        for (QAction *action : window->findChildren<QAction *>())
+            if (action->text() == "ddp")
+                checked = action->isChecked();
+        QVERIFY(checked);
+        window->set_camera_mode(Camera::Mode::Orbit, true);
+        for (QAction *action : window->findChildren<QAction *>())
+            if (action->text() == "&Orthographic")
+                QVERIFY(action->isChecked());
+        window->set_camera_mode(Camera::Mode::Orbit, false);
+    }
+
+    void every_control_has_a_tooltip()
+    {
+        auto *tabs = window->findChild<QTabWidget *>();
+        QStringList missing;
+        for (QWidget *w : tabs->findChildren<QWidget *>()) {
+            bool control = qobject_cast<QAbstractButton *>(w) || qobject_cast<QComboBox *>(w) ||
+                           qobject_cast<QAbstractSpinBox *>(w) || qobject_cast<QAbstractSlider *>(w) ||
+                           qobject_cast<QLineEdit *>(w);
+            // Qt's own parts of a control (a spin box's line edit, a clear button, a tab bar's arrows) are its
+            bool qt_internal = w->objectName().startsWith("qt_") || w->inherits("QLineEditIconButton") ||
+                               qobject_cast<QTabBar *>(w->parentWidget()) || qobject_cast<QScrollBar *>(w);
+            if (control && !qt_internal && w->toolTip().isEmpty())
+                missing << QString("%1 '%2'").arg(w->metaObject()->className(), w->objectName());
+        }
+        QVERIFY2(missing.isEmpty(), qPrintable(missing.join(", ")));
+    }
+
+    // A 10,000-part model: the load shows progress, the parts list is a
+    // model/view that appears at once, and the GUI never waits long.
+    void ten_thousand_parts()
+    {
+        QString path = work + "/parts10k.obj";
+        {
+            QFile file(path);
+            QVERIFY(file.open(QIODevice::WriteOnly));
+            QTextStream out(&file);
+            int v = 1;
+            for (int part = 0; part < 10000; ++part) {
+                float x = float(part % 100), y = float(part / 100);
+                out << "o part_" << QString("%1").arg(part, 5, 10, QChar('0')) << "\n";
+                out << "v " << x << " " << y << " 0\nv " << x + 0.8f << " " << y << " 0\nv " << x << " " << y + 0.8f
+                    << " 0.5\n";
+                out << "f " << v << " " << v + 1 << " " << v + 2 << "\n";
+                v += 3;
+            }
+        }
+        QSignalSpy loaded(window, &MainWindow::model_loaded);
+        LatencyProbe probe;
+        window->load_model(path);
+        auto *progress = window->findChild<QProgressBar *>();
+        QVERIFY2(progress && progress->isVisible(), "the load shows progress");
+        QElapsedTimer clock;
+        clock.start();
+        while (loaded.isEmpty() && clock.elapsed() < 120000) {
+            probe.post();
+            QVERIFY(ms_until([&probe] { return !probe.pending(); }, 10000) >= 0.0);
+            QTest::qWait(5);
+        }
+        QCOMPARE(loaded.count(), 1);
+        QCOMPARE(window->model()->component_count, 10000u);
+        QCOMPARE(window->parts_panel()->view()->model()->rowCount(), 10000);
+        // first frames and scrolling the list, while the worker renders
+        window->show_tab("parts");
+        for (int step = 0; step < 20; ++step) {
+            probe.post();
+            QVERIFY(ms_until([&probe] { return !probe.pending(); }, 10000) >= 0.0);
+            window->parts_panel()->view()->verticalScrollBar()->setValue(
+                window->parts_panel()->view()->verticalScrollBar()->maximum() * step / 19);
+            QTest::qWait(20);
+        }
+        frame();
+        qInfo("10,000 parts: %d posted events, the longest wait %.1f ms", probe.handled, probe.worst_ms);
+        QVERIFY2(probe.worst_ms < 100.0, qPrintable(QString("an event waited %1 ms").arg(probe.worst_ms)));
+        // a part past the GPU's per-part limit is picked and selected as any other
+        window->parts_panel()->select_part(9999);
+        QCOMPARE(window->parts_panel()->selected_parts(), std::vector<int>{9999});
+        window->load_model(MainWindow::default_model_path());
+        QVERIFY(loaded.wait(60000));
+        window->show_tab("algorithm");
+    }
+
     void dropping_files()
     {
         // a preset dropped on the window is applied
@@ -389,11 +809,6 @@ private slots:
 
 int main(int argc, char **argv)
 {
-    QSurfaceFormat format;
-    format.setVersion(4, 3);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    format.setDepthBufferSize(0);
-    QSurfaceFormat::setDefaultFormat(format);
     QApplication app(argc, argv);
     QApplication::setOrganizationName("oit-workbench-test");
     QApplication::setApplicationName("oit-workbench-test");
