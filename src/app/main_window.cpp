@@ -43,6 +43,7 @@
 #include <QSettings>
 #include <QSlider>
 #include <QSpinBox>
+#include <QStandardItemModel>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QTextStream>
@@ -181,6 +182,13 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
         last_left_out_ = text;
     });
 
+    // which algorithm can express which option: measured by the worker when idle
+    connect(view_->worker(), &RenderWorker::capabilities_ready, this, [this](const CapabilityTable &table) {
+        capabilities_ = table;
+        apply_capabilities();
+    });
+    sync_actions_.push_back([this] { apply_capabilities(); });
+    view_->worker()->request_capabilities();
     coalesce_timer_ = new QTimer(this);
     coalesce_timer_->setSingleShot(true);
     coalesce_timer_->setInterval(kUndoCoalesceMs);
@@ -448,7 +456,7 @@ void MainWindow::build_menus()
     };
     sync_actions_.push_back(sync_camera_actions);
     connect(view_, &RenderView::camera_changed, this, sync_camera_actions);
-    QAction *heatmap = view->addAction("&Heatmap");
+    QAction *heatmap = heatmap_action_ = view->addAction("&Heatmap");
     heatmap->setShortcut(QKeySequence("H"));
     heatmap->setCheckable(true);
     connect(heatmap, &QAction::triggered, this, [this](bool on) {
@@ -682,6 +690,55 @@ QWidget *scrolled(QWidget *content)
 }
 
 } // namespace
+
+// Options the current algorithm cannot express are disabled, with a tooltip
+// naming the algorithms that can (from the worker's probe, so never stale);
+// the settings keep them, and a frame leaves them out and says so.
+void MainWindow::apply_capabilities()
+{
+    if (capabilities_.empty() || !modulation_combo_)
+        return;
+    QString algorithm = QString::fromStdString(view_->settings.algorithm);
+    auto describe = [&](const QString &key, const QString &what) {
+        auto found = capabilities_.find(key);
+        QStringList can = found == capabilities_.end() ? QStringList() : found->second;
+        bool ok = can.contains(algorithm);
+        QString tip = can.isEmpty() ? QString("%1: no algorithm can").arg(what)
+                                    : QString("%1: %2 can").arg(what, can.join(", "));
+        if (!ok)
+            tip += QString(" — not %1, which renders without it (the Messages say so)").arg(algorithm);
+        return std::make_pair(ok, tip);
+    };
+    auto items = [&](QComboBox *box, const std::vector<std::pair<int, QString>> &keys) {
+        auto *model = qobject_cast<QStandardItemModel *>(box->model());
+        if (!model)
+            return;
+        for (const auto &[index, key] : keys) {
+            auto [ok, tip] = describe(key, box->itemText(index));
+            QStandardItem *item = model->item(index);
+            item->setEnabled(ok);
+            item->setToolTip(tip);
+        }
+    };
+    items(modulation_combo_, {{1, "modulation:curvature"},
+                              {2, "modulation:distance"},
+                              {3, "modulation:dist-curv"},
+                              {4, "modulation:fields"},
+                              {5, "modulation:edges"}});
+    items(view_combo_, {{1, "view:heatmap"},
+                        {2, "view:peel-limit"},
+                        {3, "view:layer"},
+                        {4, "view:neighbours"},
+                        {5, "view:curvature"},
+                        {6, "view:distance"},
+                        {7, "view:fields"}});
+    items(distance_combo_, {{1, "distance:skip"}, {2, "distance:far"}});
+    if (!heatmap_action_)
+        return;
+    auto [heatmap_ok, heatmap_tip] = describe("view:heatmap", "heatmap view");
+    heatmap_action_->setEnabled(heatmap_ok || view_->settings.modulation.view == OIT_VIEW_HEATMAP);
+    heatmap_action_->setToolTip(heatmap_tip);
+}
 
 // What each row of the settings panel does, by its label (the flag in
 // brackets is `oit render`'s, which Copy as command writes).
@@ -951,7 +1008,7 @@ QWidget *MainWindow::build_opacity_tab()
     auto *form = new QFormLayout(ib);
     form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
     form->addRow("modulation (--modulation)",
-                 combo({"none", "curvature", "distance", "dist-curv", "fields", "edges"}, [&m] { return int(m.mode); },
+                 modulation_combo_ = combo({"none", "curvature", "distance", "dist-curv", "fields", "edges"}, [&m] { return int(m.mode); },
                        [&m, changed](int i) {
                            m.mode = oit_modulation_mode(i);
                            changed();
@@ -970,7 +1027,7 @@ QWidget *MainWindow::build_opacity_tab()
                                                    changed();
                                                },
                                                sync_actions_, syncing_));
-    form->addRow("distance (--distance)", combo({"adjacent", "skip:K", "far"}, [&m] { return int(m.distance); },
+    form->addRow("distance (--distance)", distance_combo_ = combo({"adjacent", "skip:K", "far"}, [&m] { return int(m.distance); },
                                                 [&m, changed](int i) {
                                                     m.distance = oit_distance_mode(i);
                                                     changed();
@@ -1209,7 +1266,7 @@ QWidget *MainWindow::build_views_tab()
     form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
     QStringList views = {"colour", "heatmap", "peel-limit:N", "layer:L", "neighbours (ib)",
                          "curvature:L (ib)", "distance:L (ib)", "fields:L (ib)"};
-    form->addRow("view (--view)", combo(views, [&m] { return int(m.view); },
+    form->addRow("view (--view)", view_combo_ = combo(views, [&m] { return int(m.view); },
                                         [this, &m](int i) {
                                             m.view = oit_view(i);
                                             if ((m.view == OIT_VIEW_PEEL_LIMIT) && m.view_parameter < 1)

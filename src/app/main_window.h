@@ -57,6 +57,8 @@ public:
     QString model_path() const { return model_path_; }
     bool loading() const;
     QString last_error() const { return last_error_; }
+    // which algorithms express which option (empty until the worker measured it)
+    const CapabilityTable &capabilities() const { return capabilities_; }
     // the loaded model's import warnings (oit_model.warnings), shown in a notice
     QStringList model_warnings() const { return model_warnings_; }
     QString status_text() const;
@@ -134,6 +136,7 @@ private:
     void restore_settings(const RenderSettings &settings);
     std::string settings_key(const RenderSettings &settings) const;
     void give_every_control_a_tooltip();
+    void apply_capabilities();
     void frame_progress(const QString &stage, int stages_done, double elapsed_ms);
 
     RenderView *view_ = nullptr;
@@ -161,6 +164,9 @@ private:
     std::vector<std::function<void()>> sync_actions_; // refresh each control from the settings
 
     QComboBox *algorithm_combo_ = nullptr;
+    QComboBox *modulation_combo_ = nullptr, *view_combo_ = nullptr, *distance_combo_ = nullptr;
+    QAction *heatmap_action_ = nullptr;
+    CapabilityTable capabilities_;
     QSlider *alpha_slider_ = nullptr;
     PartsPanel *parts_panel_ = nullptr;
     QPlainTextEdit *stats_text_ = nullptr;

@@ -77,6 +77,39 @@ bool drop_one_option(oit_frame_settings &frame)
 
 } // namespace
 
+const std::vector<CapabilityFeature> &capability_features()
+{
+    static const std::vector<CapabilityFeature> features = {
+        {"view:heatmap", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_HEATMAP; }},
+        {"view:peel-limit",
+         [](oit_frame_settings &f) {
+             f.modulation.view = OIT_VIEW_PEEL_LIMIT;
+             f.modulation.view_parameter = 1;
+         }},
+        {"view:layer", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_LAYER; }},
+        {"view:neighbours", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_NEIGHBOURS; }},
+        {"view:curvature", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_CURVATURE; }},
+        {"view:distance", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_DISTANCE; }},
+        {"view:fields", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_FIELDS; }},
+        {"modulation:curvature", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_CURVATURE; }},
+        {"modulation:distance", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_DISTANCE; }},
+        {"modulation:dist-curv", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_DIST_CURV; }},
+        {"modulation:fields", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_FIELDS; }},
+        {"modulation:edges", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_EDGES; }},
+        {"distance:skip",
+         [](oit_frame_settings &f) {
+             f.modulation.mode = OIT_MODULATE_DISTANCE;
+             f.modulation.distance = OIT_DISTANCE_SKIP;
+         }},
+        {"distance:far",
+         [](oit_frame_settings &f) {
+             f.modulation.mode = OIT_MODULATE_DISTANCE;
+             f.modulation.distance = OIT_DISTANCE_FAR_END;
+         }},
+    };
+    return features;
+}
+
 struct RenderWorker::Running {
     RenderWorker *worker;
     const FrameJob *job;
@@ -88,6 +121,7 @@ RenderWorker::RenderWorker(oit_backend backend, const std::string &shader_dir, Q
     : QObject(parent), backend_(backend), shader_dir_(shader_dir)
 {
     qRegisterMetaType<FrameResultPointer>("FrameResultPointer");
+    qRegisterMetaType<CapabilityTable>("CapabilityTable");
     thread_ = std::thread([this] { run(); });
     std::unique_lock<std::mutex> lock(mutex_);
     wake_.wait(lock, [this] { return context_attempted_; });
@@ -127,6 +161,15 @@ void RenderWorker::cancel()
     pending_exports_.clear();
 }
 
+void RenderWorker::request_capabilities()
+{
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        probe_requested_ = true;
+    }
+    wake_.notify_all();
+}
+
 bool RenderWorker::busy() const
 {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -153,9 +196,19 @@ void RenderWorker::run()
         FrameJob job;
         {
             std::unique_lock<std::mutex> lock(mutex_);
-            wake_.wait(lock, [this] { return stopping_ || pending_view_ || !pending_exports_.empty(); });
+            wake_.wait(lock, [this] {
+                return stopping_ || pending_view_ || !pending_exports_.empty() || probe_requested_;
+            });
             if (stopping_)
                 break;
+            if (!pending_view_ && pending_exports_.empty()) {
+                // only the probe waits: one step of it, then look for frames again
+                lock.unlock();
+                bool more = probe_step();
+                lock.lock();
+                probe_requested_ = probe_requested_ && more;
+                continue;
+            }
             // exports first: the user asked for them explicitly and waits on them
             if (!pending_exports_.empty()) {
                 job = std::move(pending_exports_.front());
@@ -173,6 +226,11 @@ void RenderWorker::run()
         running_id_ = 0;
     }
     release_gl();
+    if (probe_scene_ready_) {
+        oit_scene_release(&probe_scene_);
+        oit_model_free(&probe_model_);
+        probe_scene_ready_ = false;
+    }
     if (context_)
         oit_gl_context_destroy(context_);
     context_ = nullptr;
@@ -242,6 +300,74 @@ void RenderWorker::release_gl()
         oit_scene_release(&gpu_scene_);
     scene_uploaded_ = false;
     uploaded_model_.reset();
+}
+
+bool RenderWorker::probe_step()
+{
+    size_t count = 0;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    if (!context_)
+        return false;
+    if (probe_next_algorithm_ >= count) { // measured before: say it again
+        emit capabilities_ready(probe_table_);
+        return false;
+    }
+    oit_error err{};
+    if (!probe_scene_ready_) {
+        // two triangles facing the eye, one behind the other
+        oit_model &m = probe_model_;
+        m = oit_model{};
+        m.vertex_count = 6;
+        m.triangle_count = 2;
+        m.component_count = 1;
+        m.positions = static_cast<float *>(malloc(18 * sizeof(float)));
+        m.indices = static_cast<uint32_t *>(malloc(6 * sizeof(uint32_t)));
+        m.components = static_cast<oit_component *>(calloc(1, sizeof(oit_component)));
+        if (!m.positions || !m.indices || !m.components) {
+            oit_model_free(&m);
+            return false;
+        }
+        const float positions[18] = {-1, -1, 0, 1, -1, 0, 0, 1, 0, -1, -1, -0.5f, 1, -1, -0.5f, 0, 1, -0.5f};
+        std::memcpy(m.positions, positions, sizeof positions);
+        for (uint32_t i = 0; i < 6; ++i)
+            m.indices[i] = i;
+        std::snprintf(m.components[0].name, sizeof m.components[0].name, "probe");
+        m.components[0].opacity = 1.0f;
+        m.components[0].triangle_count = 2;
+        if (oit_model_finish(&m, true, &err) != OIT_OK || oit_scene_upload(&probe_scene_, &m, &err) != OIT_OK) {
+            oit_model_free(&m);
+            return false;
+        }
+        probe_scene_ready_ = true;
+    }
+    const oit_algorithm_ops *ops = list[probe_next_algorithm_++];
+    oit_algorithm_config config{};
+    oit_algorithm_config_defaults(&config);
+    config.shader_dir = shader_dir_.c_str();
+    oit_algorithm *algorithm = nullptr;
+    if (ops->create(&config, &algorithm, &err) == OIT_OK && ops->resize(algorithm, 4, 4, &err) == OIT_OK) {
+        oit_scene cpu_scene{};
+        oit_scene_cpu(&cpu_scene, &probe_model_);
+        for (const CapabilityFeature &feature : capability_features()) {
+            oit_frame_settings frame{};
+            frame.width = frame.height = 4;
+            frame.alpha = 0.5f;
+            if (oit_default_camera(&probe_model_, 4, 4, 0.0f, 0.0f, frame.modelview, frame.projection, &err) !=
+                OIT_OK)
+                break;
+            feature.apply(frame);
+            reset_gl_state();
+            oit_status status = ops->render(algorithm, ops->uses_gl ? &probe_scene_ : &cpu_scene, &frame, &err);
+            if (status != OIT_E_INPUT) // refused before any work: the algorithm cannot express it
+                probe_table_[feature.key] << ops->name;
+        }
+    }
+    if (algorithm)
+        ops->destroy(algorithm);
+    if (probe_next_algorithm_ < count)
+        return true;
+    emit capabilities_ready(probe_table_);
+    return false;
 }
 
 void RenderWorker::render_job(FrameJob &job)

@@ -27,6 +27,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -67,6 +68,21 @@ struct FrameResult {
 using FrameResultPointer = std::shared_ptr<const FrameResult>;
 Q_DECLARE_METATYPE(FrameResultPointer)
 
+// Which algorithms can express each option: feature key ("view:heatmap",
+// "modulation:fields", "distance:skip", ...) -> the algorithms whose render()
+// accepts it. Measured, not listed by hand: RenderWorker::probe renders a
+// 4x4 frame of a two-triangle model with each option on each algorithm and
+// records which ones the core refuses (OIT_E_INPUT).
+using CapabilityTable = std::map<QString, QStringList>;
+Q_DECLARE_METATYPE(CapabilityTable)
+
+// The feature keys the probe measures, and how each one changes a frame.
+struct CapabilityFeature {
+    const char *key;
+    void (*apply)(oit_frame_settings &frame);
+};
+const std::vector<CapabilityFeature> &capability_features();
+
 class RenderWorker : public QObject {
     Q_OBJECT
 public:
@@ -87,6 +103,9 @@ public:
     void cancel();
     // A frame is running or waiting.
     bool busy() const;
+    // Measure which algorithms express which options, when no frame waits
+    // (capabilities_ready; once per worker, yielding to frames between steps).
+    void request_capabilities();
     // GL_RENDERER, or empty with context_error() saying why there is no context.
     QString renderer() const { return renderer_; }
     QString context_error() const { return context_error_; }
@@ -96,6 +115,7 @@ public:
 signals:
     void progress(quint64 id, const QString &stage, int stages_done, double elapsed_ms);
     void frame_done(FrameResultPointer result);
+    void capabilities_ready(const CapabilityTable &table);
 
 private:
     struct Running;
@@ -106,6 +126,7 @@ private:
     struct CachedAlgorithm;
     CachedAlgorithm *algorithm_for(const FrameJob &job, const oit_algorithm_ops *ops, oit_error *err);
     void release_gl();
+    bool probe_step(); // one algorithm of the capability probe; false when done
 
     oit_backend backend_;
     std::string shader_dir_;
@@ -121,6 +142,7 @@ private:
     std::atomic<uint64_t> running_id_{0};
     bool running_ = false;
     bool context_attempted_ = false;
+    bool probe_requested_ = false;
     QString renderer_, context_error_;
 
     // worker thread only
@@ -137,4 +159,10 @@ private:
     };
     std::vector<CachedAlgorithm> cache_;
     uint64_t use_counter_ = 0;
+    // the capability probe's own tiny scene and progress
+    oit_model probe_model_{};
+    oit_scene probe_scene_{};
+    bool probe_scene_ready_ = false;
+    size_t probe_next_algorithm_ = 0;
+    CapabilityTable probe_table_;
 };

@@ -6,6 +6,7 @@
 // OIT_TEST_WORK = a scratch directory.
 #include <QApplication>
 #include <QDialog>
+#include <QStandardItemModel>
 #include <QAction>
 #include <QAbstractItemView>
 #include <QComboBox>
@@ -458,6 +459,41 @@ private slots:
         frame();
         QVERIFY(window->view()->last_result()->left_out.empty());
         QCOMPARE(int(window->view()->last_result()->modulation.mode), int(OIT_MODULATE_FIELDS));
+    }
+
+    void controls_an_algorithm_cannot_express_are_disabled()
+    {
+        // the worker measures the table when idle: each option on each algorithm
+        QTRY_VERIFY_WITH_TIMEOUT(!window->capabilities().empty(), 120000);
+        const CapabilityTable &table = window->capabilities();
+        for (const auto &[key, algorithms] : table)
+            qInfo("%-22s %s", qPrintable(key), qPrintable(algorithms.join(", ")));
+        QVERIFY(table.at("modulation:fields").contains("ib"));
+        QVERIFY(!table.at("modulation:fields").contains("dp"));
+        QVERIFY(table.at("view:heatmap").contains("ll"));
+        QVERIFY(!table.at("view:heatmap").contains("dp"));
+        QVERIFY(!table.at("view:heatmap").contains("blend"));
+        // the modulation combo box of the Opacity tab: "fields" is its item 4
+        QComboBox *modulation = nullptr;
+        for (QComboBox *box : window->findChildren<QComboBox *>())
+            if (box->count() == 6 && box->itemText(4) == "fields")
+                modulation = box;
+        QVERIFY(modulation);
+        auto *items = qobject_cast<QStandardItemModel *>(modulation->model());
+        window->set_algorithm("dp");
+        QVERIFY(!items->item(4)->isEnabled());
+        QString tip = items->item(4)->toolTip();
+        QVERIFY2(tip.contains("ib") && tip.contains("not dp"), qPrintable(tip));
+        window->set_algorithm("ib");
+        QVERIFY(items->item(4)->isEnabled());
+        // every entry of the table agrees with a frame: dp leaves fields out, ib does not
+        window->view()->settings.modulation.mode = OIT_MODULATE_FIELDS;
+        window->settings_changed();
+        frame();
+        QVERIFY(window->view()->last_result()->left_out.empty());
+        window->set_algorithm("dp");
+        frame();
+        QCOMPARE(int(window->view()->last_result()->left_out.size()), 1);
     }
 
     void messages_and_the_copied_command_stay_readable()
