@@ -37,6 +37,9 @@ cat > "$presets/gearbox-ib.json" <<'JSON'
 {"alpha": 0.8, "modulation": "curvature", "curvature-effect": 6}
 JSON
 
+# a deep model (343 spheres, 28 layers) whose dp frame takes seconds on llvmpipe
+"$build/src/cli/oit" gen spheres --complexity 7 --out "$presets/spheres.obj" > /dev/null
+
 run() {
   local name=$1; shift
   local command=("$workbench" --size 600x600 --screenshot "$out/$name.png" "$@")
@@ -53,4 +56,6 @@ run gearbox-ib-curvature "$gearbox" --algorithm ib --preset "$presets/gearbox-ib
 run spider-dp-parts "$spider" --algorithm dp --preset "$presets/spider-parts.json" --tab parts
 run engine-ll-heatmap "$engine" --algorithm ll --preset "$presets/engine-heatmap.json" --tab views
 run engine-wboit-focus "$engine" --algorithm wboit --preset "$presets/engine-focus.json" --tab opacity
+# a long frame in progress: the coarse frame, the stage and peel count, and Cancel
+run spheres-dp-progress "$presets/spheres.obj" --algorithm dp --screenshot-after 4000
 echo "wrote $(ls "$out"/*.png | wc -l) screenshots to $out"

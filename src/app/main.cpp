@@ -1,9 +1,10 @@
 // main.cpp: oit-workbench, the interactive shell over the core.
 //
 //   oit-workbench [MODEL] [--algorithm NAME] [--preset FILE] [--size WxH]
-//                 [--screenshot FILE] [--help]
+//                 [--screenshot FILE [--screenshot-after MS]] [--help]
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QElapsedTimer>
 #include <QFileInfo>
 #include <QRegularExpression>
 #include <QScreen>
@@ -52,10 +53,14 @@ int main(int argc, char **argv)
     QCommandLineOption preset("preset", "settings preset (JSON, keys as `oit render`'s flags)", "FILE");
     QCommandLineOption size("size", "size of the render view in pixels", "WxH");
     QCommandLineOption screenshot("screenshot", "render one frame of the whole window to FILE (PNG) and quit", "FILE");
+    QCommandLineOption screenshot_after("screenshot-after",
+                                        "with --screenshot: grab the window MS milliseconds after the model loaded, "
+                                        "whatever the frame's state (a coarse frame, a frame's progress)",
+                                        "MS");
     QCommandLineOption fresh("fresh", "ignore the saved settings and last model (implied by --screenshot)");
     QCommandLineOption tab("tab", "show this tab of the settings panel: algorithm, opacity, parts, camera, views, stats",
                            "NAME");
-    parser.addOptions({algorithm, preset, size, screenshot, fresh, tab});
+    parser.addOptions({algorithm, preset, size, screenshot, screenshot_after, fresh, tab});
     if (!parser.parse(app.arguments()))
         return fail(parser.errorText() + " (see oit-workbench --help)");
     if (parser.isSet("help")) {
@@ -83,6 +88,14 @@ int main(int argc, char **argv)
         view_size = QSize(match.captured(1).toInt(), match.captured(2).toInt());
     }
     bool automated = parser.isSet(screenshot);
+    int grab_after_ms = -1; // -1: once the full frame is shown
+    if (parser.isSet(screenshot_after)) {
+        bool ok = false;
+        grab_after_ms = parser.value(screenshot_after).toInt(&ok);
+        if (!ok || grab_after_ms < 0 || grab_after_ms > 3600000 || !automated)
+            return fail("--screenshot-after '" + parser.value(screenshot_after) +
+                        "' needs --screenshot and 0..3600000 milliseconds");
+    }
     bool restore = !automated && !parser.isSet(fresh);
     if (model_path.isEmpty() && restore)
         model_path = QSettings().value("last_model").toString();
@@ -120,11 +133,16 @@ int main(int argc, char **argv)
             exit_code = fail(message);
             app.quit();
         });
-        QObject::connect(&window, &MainWindow::model_loaded, &app, [&window, &app, &exit_code, out] {
-            // frames render off the GUI thread: grab once the full frame is shown (or failed)
+        QObject::connect(&window, &MainWindow::model_loaded, &app, [&window, &app, &exit_code, out, grab_after_ms] {
+            // frames render off the GUI thread: grab once the full frame is shown (or failed),
+            // or after --screenshot-after whatever is shown then
+            QElapsedTimer since_load;
+            since_load.start();
             auto *poll = new QTimer(&app);
-            QObject::connect(poll, &QTimer::timeout, &app, [&window, &app, &exit_code, out, poll] {
-                if (!window.view()->settled() && window.last_error().isEmpty())
+            QObject::connect(poll, &QTimer::timeout, &app, [&window, &app, &exit_code, out, poll, grab_after_ms,
+                                                            since_load] {
+                bool done = window.view()->settled() || !window.last_error().isEmpty();
+                if (grab_after_ms >= 0 ? since_load.elapsed() < grab_after_ms : !done)
                     return;
                 poll->stop();
                 QCoreApplication::processEvents();
