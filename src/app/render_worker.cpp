@@ -4,6 +4,9 @@
 #include "render_worker.h"
 
 #include <chrono>
+#include <cerrno>
+#include <sys/resource.h>
+#include <unistd.h>
 #include <cstring>
 
 namespace {
@@ -178,6 +181,14 @@ bool RenderWorker::busy() const
 
 void RenderWorker::run()
 {
+    // A little less CPU weight than the GUI thread, so that on a machine whose
+    // cores llvmpipe fills the window still answers at once. llvmpipe's own
+    // rasterizer threads are created from this thread and inherit its nice
+    // value. Raising one's own nice value needs no privilege; failing is harmless.
+    errno = 0;
+    int nice_now = getpriority(PRIO_PROCESS, id_t(gettid()));
+    if (errno == 0)
+        setpriority(PRIO_PROCESS, id_t(gettid()), std::min(19, nice_now + kNiceIncrement));
     oit_error err{};
     QString renderer, error;
     if (oit_gl_context_create(backend_, false, &context_, &err) == OIT_OK)

@@ -88,6 +88,8 @@ class RenderWorker : public QObject {
 public:
     // A coarse frame younger than this finishes even when superseded.
     static constexpr double kCoarseGraceMs = 250.0;
+    // The worker (and llvmpipe's threads it starts) runs this much nicer than the GUI.
+    static constexpr int kNiceIncrement = 5;
     // Progress signals at most this often.
     static constexpr double kProgressIntervalMs = 40.0;
 

@@ -52,7 +52,9 @@ run --algorithm dp --preset "$work/heatmap.json" --size 64x64 --screenshot "$wor
   > "$work/stdout.txt" 2> "$work/stderr.txt" || fail "dp with a heatmap preset failed instead of leaving it out"
 grep -q "^oit-workbench: warning: dp left out: dp: buffer views are ll's and ib's (view 'heatmap')" "$work/stderr.txt" \
   || { cat "$work/stderr.txt" >&2; fail "no warning naming the heatmap dp left out"; }
-# no OpenGL context (a driver that does not exist): the frame fails with exit 3
-GALLIUM_DRIVER=nonesuch LIBGL_ALWAYS_SOFTWARE=1 expect_error --status 3 "frame failed: no OpenGL context" \
+# no OpenGL context (a driver that does not exist): the frame fails with exit 3. Mesa's
+# failed EGL initialisation leaks and unloads its driver, so LeakSanitizer could only
+# name "<unknown module>" (no suppression can match it): leak checks are off for this run
+ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" GALLIUM_DRIVER=nonesuch expect_error --status 3 "frame failed: no OpenGL context" \
   --size 64x64 --screenshot "$work/no-context.png"
 echo "command line: ok"
