@@ -65,19 +65,27 @@ foreach(scene ${MOD_SCENES})
       foreach(candidate ${candidates})
         string(REPLACE ":" ";" parts ${candidate})
         list(POP_FRONT parts label algorithm)
-        set(tolerance ${EXACT_TOLERANCE})
-        set(mismatch ${EXACT_MISMATCH})
-        if(NOT label IN_LIST MOD_EXACT)
-          # approximations: the error is printed by compare, not judged
-          set(tolerance 255)
-          set(mismatch 100)
-        endif()
         set(name modulation_${label}_${scene}_${mod}_${backend})
-        add_test(NAME ${name}
-          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/compare_case.sh ${OIT} match ${ref}
-                  ${WORK}/modulation/${backend}/${label}_${scene}_${mod}.png ${tolerance} ${mismatch} --
-                  --model ${MODEL_${scene}} --algorithm ${algorithm} ${parts} --size ${SIZE}
-                  --shading ${shading} ${flags} --backend ${backend} --debug)
+        set(render_args --model ${MODEL_${scene}} --algorithm ${algorithm} ${parts} --size ${SIZE}
+                        --shading ${shading} ${flags} --backend ${backend} --debug)
+        if(label IN_LIST MOD_EXACT)
+          add_test(NAME ${name}
+            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/compare_case.sh ${OIT} match ${ref}
+                    ${WORK}/modulation/${backend}/${label}_${scene}_${mod}.png
+                    ${EXACT_TOLERANCE} ${EXACT_MISMATCH} -- ${render_args})
+        else()
+          # approximations: within their recorded bound (tests/approx_bounds.cmake),
+          # and a broken-shader twin that must fall outside it
+          add_test(NAME ${name}
+            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/approx_case.sh ${OIT} within ${ref}
+                    ${WORK}/modulation/${backend}/${label}_${scene}_${mod}.png
+                    "${APPROX_${label}_${scene}_${mod}}" -- ${render_args})
+          if(backend STREQUAL "egl")
+            approx_broken_test(${name} ${label} ${scene}_${mod} ${ref}
+                               ${WORK}/modulation/broken/${label}_${scene}_${mod}.png
+                               "scenes;modref_${scene}_${mod}" ${render_args})
+          endif()
+        endif()
         set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "scenes;modref_${scene}_${mod}")
       endforeach()
     endforeach()

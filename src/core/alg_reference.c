@@ -24,6 +24,22 @@
  *   eye normal are interpolated from the unsnapped window positions, as
  *   llvmpipe's attribute planes are. Coverage then matches llvmpipe pixel for
  *   pixel, ties included.
+ *
+ * The oracle shares no computation with what it checks. What the GPU path gets
+ * from core helpers (gl_util.c sets, for the shaders, the inverse modelview and
+ * projection and the focus region through local_modulation.c, the plane-to-eye
+ * matrix through matrix.c, the normal matrix through oit_mat4_normal_matrix)
+ * and what the shaders compute per fragment (shade.glsl: headlight shading and
+ * contrast; local_modulation.glsl: component opacity and the focus factor) is
+ * computed here again, from the definitions (docs/modulation.md; `--shading`
+ * in docs/cli.md), in "The oracle's own maths" below: a 4x4 inverse by
+ * Gauss-Jordan elimination, the normal and plane matrices from it, the focus
+ * region, distance and factor, contrast and shading. Shared by design, as
+ * definitions rather than computations: the frame's settings and matrices (the
+ * input; oit_matrices_validate checks them as the CLI does), the model's
+ * coplanar planes (oit_model.planes from model.c: which fragments tie is
+ * defined by the planes, see canonical_depth), and oit_shared.h's constants
+ * (OIT_EDGE_ON_PLANE_PPM, OIT_HEADLIGHT_AMBIENT_PERCENT).
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -33,7 +49,7 @@
 #include <time.h>
 
 #include "oit.h"
-#include "oit_shared.h"
+#include "oit_shared.h" /* constants shared with the shaders: definitions */
 
 /* llvmpipe's subpixel precision: 8 bits. */
 #define SUBPIXEL_BITS 8
@@ -103,13 +119,17 @@ typedef struct raster_context {
     uint32_t component;
     const float *colour;
     float material_alpha; /* clamp(frame alpha * material opacity, 0, 1) */
-    float alpha;          /* times the component's local opacity */
+    double part_alpha;    /* times the component's local opacity */
+    float alpha;          /* part_alpha as the fragment's float opacity */
     /* local modulation: a focus shape makes alpha per fragment, and fragments
      * whose alpha is 0 are not stored (so the counting pass evaluates it too) */
     bool per_fragment_alpha;
+    double focus_region;  /* the focus shapes' fall-off length R (model units) */
     double inverse_modelview[16];
     /* canonical depth (common/canonical_depth.glsl): the current triangle's
-     * coplanar plane in eye space, and the inverse projection for each pixel's ray */
+     * coplanar plane in eye space (through plane_to_eye, the inverse modelview,
+     * or the identity where it has none, as the GPU set-up), and the inverse
+     * projection for each pixel's ray */
     double plane_to_eye[16];
     double inverse_projection[16];
     double eye_plane[4];
@@ -141,6 +161,144 @@ static void add_stage(oit_stats *stats, const char *name, double ms)
     strncpy(stage->name, name, sizeof stage->name - 1);
     stage->name[sizeof stage->name - 1] = '\0';
     stage->gpu_ms = ms;
+}
+
+/* ------------------------------------------------- the oracle's own maths */
+
+/* The inverse of a column-major 4x4, in double, by Gauss-Jordan elimination
+ * with partial pivoting on [m | I]; false (and zeros) if a pivot is 0 or not
+ * finite. (The GPU set-up inverts by cofactors in local_modulation.c.) */
+static bool invert4(const double m[16], double out[16])
+{
+    double a[4][8]; /* a[row][col] */
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col) {
+            a[row][col] = m[col * 4 + row];
+            a[row][4 + col] = row == col ? 1.0 : 0.0;
+        }
+    for (int col = 0; col < 4; ++col) {
+        int pivot = col;
+        for (int row = col + 1; row < 4; ++row)
+            if (fabs(a[row][col]) > fabs(a[pivot][col]))
+                pivot = row;
+        double p = a[pivot][col];
+        if (!(fabs(p) > 0.0) || !isfinite(p)) {
+            memset(out, 0, 16 * sizeof out[0]);
+            return false;
+        }
+        if (pivot != col)
+            for (int k = 0; k < 8; ++k) {
+                double t = a[col][k];
+                a[col][k] = a[pivot][k];
+                a[pivot][k] = t;
+            }
+        for (int k = 0; k < 8; ++k)
+            a[col][k] /= p;
+        for (int row = 0; row < 4; ++row) {
+            double factor = a[row][col];
+            if (row == col || factor == 0.0)
+                continue;
+            for (int k = 0; k < 8; ++k)
+                a[row][k] -= factor * a[col][k];
+        }
+    }
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col) {
+            out[col * 4 + row] = a[row][4 + col];
+            if (!isfinite(out[col * 4 + row])) {
+                memset(out, 0, 16 * sizeof out[0]);
+                return false;
+            }
+        }
+    return true;
+}
+
+static bool invert4_float(const float m[16], double out[16])
+{
+    double d[16];
+    for (int i = 0; i < 16; ++i)
+        d[i] = m[i];
+    return invert4(d, out);
+}
+
+/* The focus shapes' fall-off length R (docs/modulation.md): --focus-region, or
+ * when that is auto (0) the default the caller set (the CLI: a quarter of the
+ * bounding radius), or when neither is set 1 (oit.h, oit_local_modulation). */
+static double focus_region(const oit_frame_settings *frame)
+{
+    if (frame->modulation.focus_region > 0.0f)
+        return frame->modulation.focus_region;
+    return frame->local.focus_default_region > 0.0f ? frame->local.focus_default_region : 1.0;
+}
+
+/* The distance from model position p to the focus shape (docs/modulation.md):
+ * to the point; to the plane A x + B y + C z + D = 0, |A x + B y + C z + D| /
+ * |(A, B, C)|; to the box, the Euclidean distance to its nearest point (0
+ * inside). */
+static double focus_distance(const oit_local_modulation *local, const double p[3])
+{
+    const float *f = local->focus;
+    double sum = 0.0;
+    switch (local->focus_shape) {
+    case OIT_FOCUS_POINT:
+        for (int k = 0; k < 3; ++k)
+            sum += (p[k] - f[k]) * (p[k] - f[k]);
+        return sqrt(sum);
+    case OIT_FOCUS_PLANE: {
+        double normal = sqrt((double)f[0] * f[0] + (double)f[1] * f[1] + (double)f[2] * f[2]);
+        double height = (double)f[0] * p[0] + (double)f[1] * p[1] + (double)f[2] * p[2] + f[3];
+        return normal > 0.0 ? fabs(height) / normal : 0.0; /* a 0 normal is refused on parsing */
+    }
+    case OIT_FOCUS_BOX:
+        for (int k = 0; k < 3; ++k) {
+            double gap = fmax(fmax(f[k] - p[k], p[k] - f[3 + k]), 0.0); /* min f[k], max f[3+k] */
+            sum += gap * gap;
+        }
+        return sqrt(sum);
+    case OIT_FOCUS_NONE:
+    default: return 0.0;
+    }
+}
+
+/* The fragment's opacity with a focus shape: the part's alpha times
+ * saturate(distance / R). */
+static double focus_alpha(const raster_context *ctx, const double model_position[3])
+{
+    double x = focus_distance(&ctx->frame->local, model_position) / ctx->focus_region;
+    return ctx->part_alpha * (x > 1.0 ? 1.0 : (x > 0.0 ? x : 0.0));
+}
+
+/* The shaded, contrasted colour (docs/cli.md, --shading; docs/modulation.md,
+ * --contrast): flat is the material colour; headlight is colour * (ambient +
+ * (1 - ambient) |n . v|) with n the normalised eye normal and v the unit vector
+ * towards the eye (two-sided); a fragment at the eye looks along +z, one without
+ * a normal is unlit (factor 1). Then rgb = saturate((rgb - 0.5) C + 0.5) unless
+ * C is 0 (unset) or 1. */
+static void shade(const oit_frame_settings *frame, const float colour[3], const float normal[3],
+                  const float eye[3], float out[3])
+{
+    double factor = 1.0;
+    if (frame->shading == OIT_SHADE_HEADLIGHT) {
+        double n[3] = {normal[0], normal[1], normal[2]}, e[3] = {eye[0], eye[1], eye[2]};
+        double n_length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double e_length = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+        if (n_length > 0.0) {
+            double cosine = e_length > 0.0 ? -(n[0] * e[0] + n[1] * e[1] + n[2] * e[2]) / e_length
+                                           : n[2];
+            double ambient = OIT_HEADLIGHT_AMBIENT_PERCENT / 100.0;
+            factor = ambient + (1.0 - ambient) * fabs(cosine / n_length);
+        }
+    }
+    double contrast = frame->local.contrast;
+    bool contrasted = contrast != 0.0 && contrast != 1.0;
+    for (int k = 0; k < 3; ++k) {
+        double c = colour[k] * factor;
+        if (contrasted) {
+            c = (c - 0.5) * contrast + 0.5;
+            c = c < 0.0 ? 0.0 : (c > 1.0 ? 1.0 : c);
+        }
+        out[k] = (float)c;
+    }
 }
 
 /* ----------------------------------------------------------- rasterizing */
@@ -255,7 +413,7 @@ static float fragment_inputs(const raster_context *ctx, int64_t x, int64_t y,
     double model[3];
     for (int row = 0; row < 3; ++row)
         model[row] = m[row] * eye[0] + m[4 + row] * eye[1] + m[8 + row] * eye[2] + m[12 + row];
-    return (float)oit_local_alpha(ctx->frame, ctx->material_alpha, ctx->component, model);
+    return (float)focus_alpha(ctx, model);
 }
 
 /* The eye-space points of pixel (x, y)'s centre at NDC depth -1 and +1: the
@@ -324,8 +482,7 @@ static void store_fragment(const raster_context *ctx, size_t pixel, int64_t x, i
     reference_fragment *f = &ctx->fragments[ctx->pixel_offsets[pixel] + ctx->pixel_counts[pixel]++];
     f->depth = (float)canonical_depth(ctx, x, y, eye);
     f->triangle = ctx->triangle;
-    oit_shade(ctx->frame, ctx->colour, normal, eye, f->rgb);
-    oit_local_contrast(ctx->frame, f->rgb);
+    shade(ctx->frame, ctx->colour, normal, eye, f->rgb);
     f->alpha = alpha;
     f->local = ctx->material_alpha > 0.0f ? alpha / ctx->material_alpha : 0.0f;
 }
@@ -509,19 +666,22 @@ static void rasterize_model(raster_context *ctx, const oit_model *model, const c
         ctx->material_alpha = alpha;
         /* the per-component opacity here; the focus factor comes per fragment */
         const oit_local_modulation *local = &ctx->frame->local;
+        ctx->part_alpha = alpha;
         if (local->component_alpha && ctx->component < local->component_count)
-            alpha *= local->component_alpha[ctx->component];
-        ctx->alpha = alpha;
+            ctx->part_alpha *= local->component_alpha[ctx->component];
+        ctx->alpha = (float)ctx->part_alpha;
         ctx->colour = component->colour;
         if (!(ctx->alpha > 0.0f))
             continue; /* hidden parts and opacity 0: never stored */
         ctx->use_plane = ctx->fill && model->triangle_plane && model->planes;
         if (ctx->use_plane) {
+            /* a plane q with q . (p, 1) = 0 in model space is q M^-1 in eye space
+             * (eye = M p): row vector times the inverse modelview */
             const float *plane = model->planes + (size_t)model->triangle_plane[t] * 4;
-            const double *m = ctx->plane_to_eye;
-            for (int row = 0; row < 4; ++row)
-                ctx->eye_plane[row] = m[row] * plane[0] + m[4 + row] * plane[1] +
-                                      m[8 + row] * plane[2] + m[12 + row] * plane[3];
+            const double *inverse = ctx->plane_to_eye;
+            for (int col = 0; col < 4; ++col)
+                ctx->eye_plane[col] = plane[0] * inverse[col * 4] + plane[1] * inverse[col * 4 + 1] +
+                                      plane[2] * inverse[col * 4 + 2] + plane[3] * inverse[col * 4 + 3];
         }
         rasterize_triangle(ctx, &vertices[index[0]], &vertices[index[1]], &vertices[index[2]]);
     }
@@ -655,7 +815,10 @@ static void sort_and_compose(oit_algorithm *alg, const oit_frame_settings *frame
 
 /* --------------------------------------------------------------- memory */
 
-static uint64_t bytes_held(const oit_algorithm *alg)
+/* The sizes of the arrays as allocated (capacities, not this frame's counts):
+ * per pixel the output, the counts and the offsets (one more than pixels);
+ * the fragment store; the transformed vertices. */
+static uint64_t pixel_bytes_held(const oit_algorithm *alg)
 {
     uint64_t pixels = (uint64_t)alg->width * (uint64_t)alg->height;
     uint64_t bytes = 0;
@@ -665,9 +828,13 @@ static uint64_t bytes_held(const oit_algorithm *alg)
         bytes += pixels * sizeof *alg->pixel_counts;
     if (alg->pixel_offsets)
         bytes += (pixels + 1) * sizeof *alg->pixel_offsets;
-    bytes += (uint64_t)alg->fragment_capacity * sizeof *alg->fragments;
-    bytes += (uint64_t)alg->vertex_capacity * sizeof *alg->vertices;
     return bytes;
+}
+
+static uint64_t bytes_held(const oit_algorithm *alg)
+{
+    return pixel_bytes_held(alg) + (uint64_t)alg->fragment_capacity * sizeof *alg->fragments +
+           (uint64_t)alg->vertex_capacity * sizeof *alg->vertices;
 }
 
 static oit_status reserve_fragments(oit_algorithm *alg, uint64_t count, oit_error *err)
@@ -803,11 +970,18 @@ static oit_status check_model(const oit_model *model, oit_error *err)
 static void transform_vertices(const oit_model *model, const oit_frame_settings *frame,
                                clip_vertex *out)
 {
-    float normal_matrix[9];
-    if (!oit_mat4_normal_matrix(frame->modelview, normal_matrix)) {
-        /* unreachable after oit_matrices_validate; keep normals finite anyway */
-        memset(normal_matrix, 0, sizeof normal_matrix);
-    }
+    /* normals take the inverse transpose of the modelview's 3x3: invert it as a
+     * 4x4 with (0, 0, 0, 1) for the rest; n_eye[row] = sum_k inverse(k, row) n[k] */
+    double upper[16] = {0.0}, inverse[16];
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row)
+            upper[col * 4 + row] = frame->modelview[col * 4 + row];
+    upper[15] = 1.0;
+    double normal_matrix[9]; /* column-major 3x3 */
+    bool regular = invert4(upper, inverse); /* always, after oit_matrices_validate */
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row)
+            normal_matrix[col * 3 + row] = regular ? inverse[row * 4 + col] : 0.0;
     const float *mv = frame->modelview, *pr = frame->projection;
     for (uint32_t v = 0; v < model->vertex_count; ++v) {
         const float *p = &model->positions[3 * (size_t)v];
@@ -824,9 +998,8 @@ static void transform_vertices(const oit_model *model, const oit_frame_settings 
         if (model->normals) {
             const float *n = &model->normals[3 * (size_t)v];
             for (int row = 0; row < 3; ++row)
-                o->normal[row] = (double)normal_matrix[row] * n[0] +
-                                 (double)normal_matrix[3 + row] * n[1] +
-                                 (double)normal_matrix[6 + row] * n[2];
+                o->normal[row] = normal_matrix[row] * n[0] + normal_matrix[3 + row] * n[1] +
+                                 normal_matrix[6 + row] * n[2];
         } else {
             o->normal[0] = o->normal[1] = o->normal[2] = 0.0;
         }
@@ -916,12 +1089,18 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
         .guard_band_y = GUARD_BAND_PIXELS / alg->height,
         .per_fragment_alpha = frame->local.focus_shape != OIT_FOCUS_NONE,
     };
-    oit_plane_to_eye_double(frame, ctx.plane_to_eye);
-    oit_local_inverse_modelview(frame->projection, ctx.inverse_projection); /* validated regular */
-    if (ctx.per_fragment_alpha && !oit_local_inverse_modelview(frame->modelview, ctx.inverse_modelview))
+    invert4_float(frame->projection, ctx.inverse_projection); /* validated regular */
+    ctx.focus_region = focus_region(frame);
+    bool modelview_regular = invert4_float(frame->modelview, ctx.inverse_modelview);
+    if (ctx.per_fragment_alpha && !modelview_regular)
         return oit_fail(err, OIT_E_INPUT,
                         "reference: the modelview is singular, so focus shapes (model coordinates) "
                         "cannot be placed");
+    if (modelview_regular)
+        memcpy(ctx.plane_to_eye, ctx.inverse_modelview, sizeof ctx.plane_to_eye);
+    else
+        for (int i = 0; i < 16; ++i)
+            ctx.plane_to_eye[i] = i % 5 == 0 ? 1.0 : 0.0;
 
     /* pass 1: count fragments per pixel */
     memset(alg->pixel_counts, 0, pixels * sizeof *alg->pixel_counts);
@@ -964,7 +1143,7 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
     double distance_norm = 1.0;
     if (distance_mode) {
         double inverse_projection[16];
-        if (!oit_local_inverse_modelview(frame->projection, inverse_projection))
+        if (!invert4_float(frame->projection, inverse_projection))
             return oit_fail(err, OIT_E_INPUT, "reference: the projection matrix is singular");
         double largest = distances(alg, frame, inverse_projection);
         /* focus region 0: normalise by the frame's largest distance (as ib) */
@@ -977,11 +1156,11 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
 
     alg->stats.fragments = (int64_t)total;
     alg->stats.max_list = (int64_t)max_list;
+    /* the figures of what is allocated (oit_stats in oit.h defines them) */
     alg->stats.memory_bytes = bytes_held(alg);
-    alg->stats.bytes_per_fragment = sizeof(reference_fragment);
-    /* per pixel: list count, list offset, output colour */
-    alg->stats.bytes_per_pixel =
-        sizeof *alg->pixel_counts + sizeof *alg->pixel_offsets + 4;
+    alg->stats.bytes_per_fragment = sizeof(reference_fragment); /* the store's bytes / capacity */
+    /* per pixel: list count, list offset (one more than pixels), output colour */
+    alg->stats.bytes_per_pixel = (double)pixel_bytes_held(alg) / (double)pixels;
     alg->stats.cpu_ms = wall_ms() - frame_start;
     return OIT_OK;
 }

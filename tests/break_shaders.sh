@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# break_shaders.sh SHADER_DIR OUT_DIR: a copy of the shader tree with two deliberate,
+# plausible bugs, for the broken-shader tests (tests/approx_bounds.cmake): with
+# OIT_SHADER_DIR=OUT_DIR, blend and wboit must then fall outside their recorded
+# error bounds. Only blend's and wboit's own shaders change (common/ stays).
+#  - blend/draw.frag: the colour leaves premultiplied by alpha while the blender
+#    (GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA) multiplies by alpha again, a
+#    straight/premultiplied mix-up: every translucent fragment adds a times too little.
+#  - wboit/accumulate.frag: the weight's depth runs the wrong way (gl_FragCoord.z
+#    instead of 1 - z), so the far surfaces outweigh the near ones.
+set -eu
+src=$1 out=$2
+rm -rf "$out"
+mkdir -p "$(dirname "$out")"
+cp -R "$src" "$out"
+# replace FILE OLD NEW: OLD must occur exactly once, and NEW afterwards
+replace() {
+    local file=$out/$1 old=$2 new=$3
+    [ "$(grep -cF -- "$old" "$file")" -eq 1 ] || { echo "FAIL: '$old' is not once in $1" >&2; exit 1; }
+    OLD=$old NEW=$new perl -0pi -e 's/\Q$ENV{OLD}\E/$ENV{NEW}/' "$file"
+    grep -qF -- "$new" "$file" || { echo "FAIL: $1 unchanged" >&2; exit 1; }
+    echo "broke $1: $new"
+}
+replace blend/draw.frag "o_colour = oit_shade_fragment();" \
+    "o_colour = oit_shade_fragment(); o_colour.rgb *= o_colour.a; // BROKEN: premultiplied twice"
+replace wboit/accumulate.frag "float d = 1.0 - gl_FragCoord.z;" \
+    "float d = gl_FragCoord.z; // BROKEN: depth reversed"
