@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # ib_memory.sh OIT WORK SCENES: the memory contract and bad modulation flags.
 # A small first pool must grow (the frame is rendered again) and give the same
-# image; a budget too small for the frame fails with a message, nothing is
-# dropped silently; bad flag values are usage errors (exit 2, one line).
+# image, and the memory must show it: the figures are checked against the GL
+# objects' bytes counted independently (gl_allocated_bytes), the bytes per
+# fragment against the difference between two pool capacities, and the growth
+# against what the small pool held. A budget too small for the frame fails
+# with a message, nothing is dropped silently; bad flag values are usage
+# errors (exit 2, one line).
 source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/ib_lib.sh"
 oit=$1 work=$2 scenes=$3
@@ -11,17 +15,33 @@ model=$scenes/onion.obj
 ib_render "$work/default.png" --model "$model" --modulation fields
 ib_render "$work/grown.png" --model "$model" --modulation fields --fragment-pool 100
 "$oit" compare "$work/grown.png" "$work/default.png" || fail "a grown pool must give the same image"
+fragments=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["fragments"])' "$work/default.json") \
+    || fail "no fragment count"
+# two pools that hold the frame, 4000 fragments apart
+ib_render "$work/pool_a.png" --model "$model" --modulation fields --fragment-pool $((fragments + 500))
+ib_render "$work/pool_b.png" --model "$model" --modulation fields --fragment-pool $((fragments + 4500))
 ib_py '
 import json, sys
 work = sys.argv[1]
-default, grown = (json.load(open(f"{work}/{n}.json")) for n in ("default", "grown"))
-print({k: grown[k] for k in ("fragments", "overflow_retries", "memory_bytes", "bytes_per_fragment", "bytes_per_pixel")})
+default, grown, a, b = (json.load(open(f"{work}/{n}.json")) for n in ("default", "grown", "pool_a", "pool_b"))
+print({k: grown[k] for k in ("fragments", "overflow_retries", "memory_bytes", "gl_allocated_bytes",
+                             "bytes_per_fragment", "bytes_per_pixel")})
 assert default["overflow_retries"] == 0 and grown["overflow_retries"] == 1, (default, grown)
-assert grown["fragments"] == default["fragments"]
-assert grown["bytes_per_fragment"] <= 64 and grown["bytes_per_pixel"] <= 12
-# memory: every per-fragment buffer for the pool, every per-pixel one for the image
-pool_min = grown["fragments"] * grown["bytes_per_fragment"] + 128 * 128 * grown["bytes_per_pixel"]
-assert grown["memory_bytes"] >= pool_min, grown
+assert a["overflow_retries"] == 0 and b["overflow_retries"] == 0, (a, b)
+fragments = default["fragments"]
+assert grown["fragments"] == fragments == a["fragments"] == b["fragments"]
+# memory_bytes is what GL holds for ib (counted without its own accounting)
+for d in (default, grown, a, b):
+    assert d["memory_bytes"] == d["gl_allocated_bytes"], d
+# the bytes one more pool fragment costs, from two capacities
+per_fragment = (b["gl_allocated_bytes"] - a["gl_allocated_bytes"]) / 4000
+print("GL bytes per pool fragment:", per_fragment)
+assert all(d["bytes_per_fragment"] == per_fragment for d in (default, grown, a, b)), per_fragment
+assert per_fragment <= 64  # the layout: 40 bytes (the source needed 208)
+# the pool of 100 grew to hold every fragment, and the memory shows it
+rest = a["gl_allocated_bytes"] - (fragments + 500) * per_fragment
+small_pool = rest + 100 * per_fragment
+assert grown["memory_bytes"] - small_pool >= (fragments - 100) * per_fragment, (grown, small_pool)
 ' "$work"
 expect_exit 3 "budget|max-memory" -- "$oit" render --model "$model" --algorithm ib --size 512x512 \
     --max-memory 1 --out "$work/x.png"

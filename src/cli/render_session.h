@@ -89,6 +89,11 @@ double median(double *values, int count); /* sorts values */
 typedef struct render_result {
     oit_image image;
     oit_stats stats; /* medians */
+    /* --json only, GL algorithms: the bytes of every GL buffer and texture
+     * that exist after the last frame and did not before the algorithm was
+     * created, counted by enumerating GL objects (oit_gl_enumerate_allocated_bytes,
+     * which knows nothing of the algorithms' own accounting); -1 otherwise */
+    int64_t gl_allocated_bytes;
 } render_result;
 
 /* The frame settings o asks for on s's model (default camera unless matrices

@@ -15,6 +15,7 @@ struct oit_algorithm {
     GLuint accumulation;             /* RGBA32F */
     GLuint accumulation_framebuffer;
     oit_gl_output output;
+    oit_gl_memory memory; /* every texture above and the output's */
     oit_stage_timer timer;
     oit_stats stats;
 };
@@ -25,7 +26,7 @@ static void blend_destroy(oit_algorithm *alg)
         return;
     glDeleteProgram(alg->draw_program);
     glDeleteProgram(alg->resolve_program);
-    glDeleteTextures(1, &alg->accumulation);
+    oit_gl_memory_delete_textures(&alg->memory, 1, &alg->accumulation);
     glDeleteFramebuffers(1, &alg->accumulation_framebuffer);
     oit_gl_output_release(&alg->output);
     oit_timer_destroy(&alg->timer);
@@ -40,6 +41,7 @@ static oit_status blend_create(const oit_algorithm_config *config, oit_algorithm
     if (!alg)
         return oit_fail(err, OIT_E_RUNTIME, "blend: out of memory");
     alg->config = *config;
+    alg->output.memory = &alg->memory;
     oit_stats_reset(&alg->stats);
     oit_status status = oit_gl_program(config->shader_dir, "common/geometry.vert",
                                        "blend/draw.frag", &alg->draw_program, err);
@@ -60,10 +62,11 @@ static oit_status blend_resize(oit_algorithm *alg, int width, int height, oit_er
     oit_status status = oit_gl_output_resize(&alg->output, width, height, err);
     if (status != OIT_OK)
         return status;
-    glDeleteTextures(1, &alg->accumulation);
+    oit_gl_memory_delete_textures(&alg->memory, 1, &alg->accumulation);
     if (!alg->accumulation_framebuffer)
         glGenFramebuffers(1, &alg->accumulation_framebuffer);
-    alg->accumulation = oit_gl_texture_2d(GL_RGBA32F, width, height);
+    alg->accumulation =
+        oit_gl_memory_texture_2d(&alg->memory, OIT_GL_MEMORY_PIXELS, GL_RGBA32F, width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, alg->accumulation_framebuffer);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                            alg->accumulation, 0);
@@ -72,7 +75,7 @@ static oit_status blend_resize(oit_algorithm *alg, int width, int height, oit_er
     if (framebuffer_status != GL_FRAMEBUFFER_COMPLETE)
         return oit_fail(err, OIT_E_RUNTIME, "blend: the RGBA32F target is incomplete (0x%04x)",
                         (unsigned)framebuffer_status);
-    alg->stats.memory_bytes = (uint64_t)width * (uint64_t)height * (16 + 4);
+    alg->stats.memory_bytes = oit_gl_memory_total(&alg->memory);
     return oit_gl_check("blend: resize", err);
 }
 
@@ -106,9 +109,10 @@ static oit_status blend_render(oit_algorithm *alg, const oit_scene *scene,
         if (status != OIT_OK)
             return status;
     }
-    uint64_t memory_bytes = alg->stats.memory_bytes;
     oit_stats_reset(&alg->stats);
-    alg->stats.memory_bytes = memory_bytes;
+    alg->stats.memory_bytes = oit_gl_memory_total(&alg->memory);
+    alg->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&alg->memory, OIT_GL_MEMORY_PIXELS) /
+                                 ((double)frame->width * (double)frame->height);
     oit_timer_frame_begin(&alg->timer, frame);
 
     oit_timer_stage_begin(&alg->timer, "draw");

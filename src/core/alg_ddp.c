@@ -45,6 +45,7 @@
 typedef struct ddp_state {
     oit_algorithm_config config;
     oit_gl_output output;
+    oit_gl_memory memory; /* every target below and the output (gl_util.h) */
     oit_stage_timer timer;
     oit_stats stats;
 
@@ -75,16 +76,20 @@ typedef struct ddp_state {
     int width, height;
 } ddp_state;
 
-/* Bytes per pixel of the targets: 2 min-max (8 each), front, back layer and
- * back (16 each), the RGBA8 output (4). */
-#define DDP_BYTES_PER_PIXEL (2 * 8 + 3 * 16 + 4)
-/* with the distance modulation: the front layer (16), two far depths and the maximum (4 each) */
-#define DDP_DISTANCE_BYTES_PER_PIXEL (16 + 3 * 4)
+/* A screen-sized target, recorded in s->memory. Per pixel: 2 min-max (8
+ * each), front, back layer and back (16 each), the RGBA8 output (4); with the
+ * distance modulation the front layer (16), two far depths and the maximum (4
+ * each). */
+static GLuint ddp_target(ddp_state *s, GLenum internal_format, int width, int height)
+{
+    return oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, internal_format, width,
+                                    height);
+}
 
+/* What the targets and the output hold, as allocated (the tracker). */
 static uint64_t ddp_memory(const struct ddp_state *s)
 {
-    uint64_t per_pixel = DDP_BYTES_PER_PIXEL + (s->distance_targets ? DDP_DISTANCE_BYTES_PER_PIXEL : 0);
-    return (uint64_t)s->width * (uint64_t)s->height * per_pixel;
+    return oit_gl_memory_total(&s->memory);
 }
 
 /* Cleared min-max: nothing left (near > far); loses every MAX. */
@@ -94,19 +99,19 @@ static void ddp_release_targets(ddp_state *s)
 {
     glDeleteFramebuffers(2, s->peel_framebuffer);
     glDeleteFramebuffers(1, &s->back_framebuffer);
-    glDeleteTextures(2, s->minmax);
-    glDeleteTextures(1, &s->front);
-    glDeleteTextures(1, &s->back_layer);
-    glDeleteTextures(1, &s->back);
+    oit_gl_memory_delete_textures(&s->memory, 2, s->minmax);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->front);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->back_layer);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->back);
     for (int i = 0; i < 2; ++i)
         s->peel_framebuffer[i] = s->minmax[i] = 0;
     s->back_framebuffer = s->front = s->back_layer = s->back = 0;
     glDeleteFramebuffers(2, s->distance_peel_framebuffer);
     glDeleteFramebuffers(2, s->distance_blend_framebuffer);
     glDeleteFramebuffers(2, s->distance_max_framebuffer);
-    glDeleteTextures(2, s->previous_far);
-    glDeleteTextures(1, &s->front_layer);
-    glDeleteTextures(1, &s->distance_max);
+    oit_gl_memory_delete_textures(&s->memory, 2, s->previous_far);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->front_layer);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->distance_max);
     for (int i = 0; i < 2; ++i)
         s->distance_peel_framebuffer[i] = s->distance_blend_framebuffer[i] =
             s->distance_max_framebuffer[i] = s->previous_far[i] = 0;
@@ -148,6 +153,7 @@ static oit_status ddp_create(const oit_algorithm_config *config, oit_algorithm *
     if (!s)
         return oit_fail(err, OIT_E_RUNTIME, "ddp: out of memory");
     s->config = *config;
+    s->output.memory = &s->memory;
     oit_stats_reset(&s->stats);
     oit_timer_create(&s->timer);
     glGenQueries(2, s->probe_queries);
@@ -193,13 +199,13 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
     if (status != OIT_OK)
         return status;
 
-    s->front = oit_gl_texture_2d(GL_RGBA32F, width, height);
-    s->back_layer = oit_gl_texture_2d(GL_RGBA32F, width, height);
-    s->back = oit_gl_texture_2d(GL_RGBA32F, width, height);
+    s->front = ddp_target(s, GL_RGBA32F, width, height);
+    s->back_layer = ddp_target(s, GL_RGBA32F, width, height);
+    s->back = ddp_target(s, GL_RGBA32F, width, height);
     static const GLenum peel_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                            GL_COLOR_ATTACHMENT2};
     for (int i = 0; i < 2 && status == OIT_OK; ++i) {
-        s->minmax[i] = oit_gl_texture_2d(GL_RG32F, width, height);
+        s->minmax[i] = ddp_target(s, GL_RG32F, width, height);
         glGenFramebuffers(1, &s->peel_framebuffer[i]);
         glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->minmax[i],
@@ -217,11 +223,11 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
         status = ddp_check_framebuffer("back", err);
     }
     if (status == OIT_OK && s->distance_targets) {
-        s->front_layer = oit_gl_texture_2d(GL_RGBA32F, width, height);
-        s->distance_max = oit_gl_texture_2d(GL_R32F, width, height);
+        s->front_layer = ddp_target(s, GL_RGBA32F, width, height);
+        s->distance_max = ddp_target(s, GL_R32F, width, height);
         static const GLenum two[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
         for (int i = 0; i < 2 && status == OIT_OK; ++i) {
-            s->previous_far[i] = oit_gl_texture_2d(GL_R32F, width, height);
+            s->previous_far[i] = ddp_target(s, GL_R32F, width, height);
             glGenFramebuffers(1, &s->distance_peel_framebuffer[i]);
             glBindFramebuffer(GL_FRAMEBUFFER, s->distance_peel_framebuffer[i]);
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -556,6 +562,8 @@ static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,
         status = oit_gl_check("ddp: render", err);
     s->stats.layers = layers;
     s->stats.memory_bytes = ddp_memory(s);
+    s->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) /
+                               ((double)s->width * (double)s->height);
     return status;
 }
 

@@ -67,6 +67,7 @@ _Static_assert(OIT_IB_MODE_CURVATURE == OIT_MODULATE_CURVATURE &&
 typedef struct dp_state {
     oit_algorithm_config config;
     oit_gl_output output;
+    oit_gl_memory memory; /* every target below and the output (gl_util.h) */
     oit_stage_timer timer;
     oit_stats stats;
 
@@ -106,29 +107,31 @@ typedef struct dp_state {
     int width, height;
 } dp_state;
 
-/* Bytes per pixel of the targets: 2 depth and 2 tie (4 each), the layer
- * colour and the accumulation (16 each), the RGBA8 output (4). */
-#define DP_BYTES_PER_PIXEL (4 * 4 + 16 + 16 + 4)
-/* with the distance modulation: two layer colours (16 each) and the R32F maximum */
-#define DP_DISTANCE_BYTES_PER_PIXEL (2 * 16 + 4)
-/* with curvature: two normal + component targets (RG32UI, 8 each) */
-#define DP_CURVATURE_BYTES_PER_PIXEL (2 * 8)
+/* A screen-sized target, recorded in s->memory. Per pixel: 2 depth and 2 tie
+ * (4 each), the layer colour and the accumulation (16 each), the RGBA8 output
+ * (4); with the distance modulation two layer colours (16 each) and the R32F
+ * maximum; with curvature two RG32UI normal + component targets (8 each). */
+static GLuint dp_target(dp_state *s, GLenum internal_format, int width, int height)
+{
+    return oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, internal_format, width,
+                                    height);
+}
 
 static void dp_release_targets(dp_state *s)
 {
     glDeleteFramebuffers(2, s->peel_framebuffer);
     glDeleteFramebuffers(1, &s->accumulation_framebuffer);
-    glDeleteTextures(2, s->depth);
-    glDeleteTextures(2, s->tie);
-    glDeleteTextures(1, &s->layer_colour);
-    glDeleteTextures(1, &s->accumulation);
+    oit_gl_memory_delete_textures(&s->memory, 2, s->depth);
+    oit_gl_memory_delete_textures(&s->memory, 2, s->tie);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->layer_colour);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->accumulation);
     glDeleteFramebuffers(2, s->distance_peel_framebuffer);
     glDeleteFramebuffers(1, &s->distance_max_framebuffer);
-    glDeleteTextures(2, s->distance_colour);
-    glDeleteTextures(1, &s->distance_max);
+    oit_gl_memory_delete_textures(&s->memory, 2, s->distance_colour);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->distance_max);
     glDeleteFramebuffers(2, s->curvature_peel_framebuffer);
     glDeleteFramebuffers(2, s->dist_curv_peel_framebuffer);
-    glDeleteTextures(2, s->layer_normal);
+    oit_gl_memory_delete_textures(&s->memory, 2, s->layer_normal);
     for (int i = 0; i < 2; ++i)
         s->peel_framebuffer[i] = s->depth[i] = s->tie[i] = s->distance_peel_framebuffer[i] =
             s->distance_colour[i] = s->layer_normal[i] = s->curvature_peel_framebuffer[i] =
@@ -161,11 +164,10 @@ static oit_status dp_stage_check(const dp_state *s, const char *stage, oit_error
 
 static void dp_destroy(oit_algorithm *alg);
 
+/* What the targets and the output hold, as allocated (the tracker). */
 static uint64_t dp_memory(const dp_state *s)
 {
-    uint64_t per_pixel = DP_BYTES_PER_PIXEL + (s->distance_targets ? DP_DISTANCE_BYTES_PER_PIXEL : 0) +
-                         (s->normal_targets ? DP_CURVATURE_BYTES_PER_PIXEL : 0);
-    return (uint64_t)s->width * (uint64_t)s->height * per_pixel;
+    return oit_gl_memory_total(&s->memory);
 }
 
 static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **out,
@@ -179,6 +181,7 @@ static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **
     if (!s)
         return oit_fail(err, OIT_E_RUNTIME, "dp: out of memory");
     s->config = *config;
+    s->output.memory = &s->memory;
     oit_stats_reset(&s->stats);
     oit_timer_create(&s->timer);
     glGenQueries(1, &s->samples_query);
@@ -229,10 +232,10 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
     static const GLenum colour_and_tie[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_COLOR_ATTACHMENT2};
     static const GLenum three_targets[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                             GL_COLOR_ATTACHMENT2};
-    s->layer_colour = oit_gl_texture_2d(GL_RGBA32F, width, height);
+    s->layer_colour = dp_target(s, GL_RGBA32F, width, height);
     for (int i = 0; i < 2; ++i) {
-        s->depth[i] = oit_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
-        s->tie[i] = oit_gl_texture_2d(GL_R32UI, width, height);
+        s->depth[i] = dp_target(s, GL_DEPTH_COMPONENT32F, width, height);
+        s->tie[i] = dp_target(s, GL_R32UI, width, height);
         glGenFramebuffers(1, &s->peel_framebuffer[i]);
         glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -245,7 +248,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
             break;
     }
     if (status == OIT_OK) {
-        s->accumulation = oit_gl_texture_2d(GL_RGBA32F, width, height);
+        s->accumulation = dp_target(s, GL_RGBA32F, width, height);
         glGenFramebuffers(1, &s->accumulation_framebuffer);
         glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -253,7 +256,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         status = dp_check_framebuffer("accumulation", err);
     }
     for (int i = 0; status == OIT_OK && s->distance_targets && i < 2; ++i) {
-        s->distance_colour[i] = oit_gl_texture_2d(GL_RGBA32F, width, height);
+        s->distance_colour[i] = dp_target(s, GL_RGBA32F, width, height);
         glGenFramebuffers(1, &s->distance_peel_framebuffer[i]);
         glBindFramebuffer(GL_FRAMEBUFFER, s->distance_peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -264,7 +267,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         status = dp_check_framebuffer("distance peel", err);
     }
     if (status == OIT_OK && s->distance_targets) {
-        s->distance_max = oit_gl_texture_2d(GL_R32F, width, height);
+        s->distance_max = dp_target(s, GL_R32F, width, height);
         glGenFramebuffers(1, &s->distance_max_framebuffer);
         glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -272,7 +275,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         status = dp_check_framebuffer("distance maximum", err);
     }
     for (int i = 0; status == OIT_OK && s->normal_targets && i < 2; ++i) {
-        s->layer_normal[i] = oit_gl_texture_2d(GL_RG32UI, width, height);
+        s->layer_normal[i] = dp_target(s, GL_RG32UI, width, height);
         glGenFramebuffers(1, &s->curvature_peel_framebuffer[i]);
         glBindFramebuffer(GL_FRAMEBUFFER, s->curvature_peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -639,6 +642,8 @@ static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
         status = oit_gl_check("dp: render", err);
     s->stats.layers = layers;
     s->stats.memory_bytes = dp_memory(s);
+    s->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) /
+                               ((double)s->width * (double)s->height);
     return status;
 }
 

@@ -5,7 +5,7 @@
  * docs/illustration-buffer.md describes the layout, stages and choices.
  *
  * GPU data (bindings in oit_shared.h, GLSL in shaders/ib/ib_common.glsl):
- *   per pixel (8 bytes)
+ *   per pixel (8 bytes, and 4 for the RGBA8 output)
  *     head image   r32ui: list head during the fill, the run's start afterwards
  *     count image  r32ui: the run's length
  *   per fragment (40 bytes)
@@ -34,9 +34,10 @@
 
 #include "gl_util.h"
 
+/* Pool bytes per fragment, for sizing the pool within the budget; the
+ * figures in the stats come from what the tracker recorded (ib_fill_stats). */
 #define IB_BYTES_PER_FRAGMENT \
     ((uint64_t)OIT_IB_NODE_BYTES + OIT_IB_RUN_CORE_BYTES + OIT_IB_RUN_LINKS_BYTES)
-#define IB_BYTES_PER_PIXEL 8u /* head/run start + count */
 #define IB_DEFAULT_FRAGMENTS_PER_PIXEL 4u
 #define IB_MAX_FILLS 3
 #define IB_MEGABYTE (1024.0 * 1024.0)
@@ -101,6 +102,7 @@ typedef struct ib_state {
     oit_algorithm_config config;
     char *shader_dir;
     oit_gl_output output;
+    oit_gl_memory memory; /* every buffer and texture below and the output (gl_util.h) */
     oit_stage_timer timer;
     GLuint programs[IB_PROGRAM_COUNT];
 
@@ -148,12 +150,10 @@ static oit_status ib_allocate_pool(ib_state *s, uint64_t capacity, oit_error *er
     } pools[] = {{s->node_buffer, OIT_IB_NODE_BYTES},
                  {s->core_buffer, OIT_IB_RUN_CORE_BYTES},
                  {s->links_buffer, OIT_IB_RUN_LINKS_BYTES}};
-    for (size_t i = 0; i < sizeof pools / sizeof pools[0]; ++i) {
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, pools[i].buffer);
-        glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(capacity * pools[i].bytes), NULL,
-                     GL_DYNAMIC_COPY);
-    }
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    for (size_t i = 0; i < sizeof pools / sizeof pools[0]; ++i)
+        oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FRAGMENTS, GL_SHADER_STORAGE_BUFFER,
+                                  pools[i].buffer, capacity * pools[i].bytes, NULL,
+                                  GL_DYNAMIC_COPY);
     glBindTexture(GL_TEXTURE_BUFFER, s->core_texture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, s->core_buffer);
     glBindTexture(GL_TEXTURE_BUFFER, s->links_texture);
@@ -209,10 +209,10 @@ static void ib_destroy(oit_algorithm *alg)
     GLuint textures[] = {s->head_image, s->count_image, s->core_texture, s->links_texture,
                          s->triangle_texture, s->core_words_texture, s->nodes_texture,
                          s->components_texture, s->triangle_reach_texture};
-    glDeleteTextures(9, textures);
+    oit_gl_memory_delete_textures(&s->memory, 9, textures);
     GLuint buffers[] = {s->node_buffer, s->core_buffer, s->links_buffer, s->counter_buffer,
                         s->param_buffer, s->triangle_buffer};
-    glDeleteBuffers(6, buffers);
+    oit_gl_memory_delete_buffers(&s->memory, 6, buffers);
     oit_gl_output_release(&s->output);
     oit_timer_destroy(&s->timer);
     free(s->shader_dir);
@@ -238,6 +238,7 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     }
     strcpy(s->shader_dir, dir);
     s->config.shader_dir = s->shader_dir;
+    s->output.memory = &s->memory;
     oit_stats_reset(&s->last_stats);
     oit_timer_create(&s->timer);
 
@@ -286,12 +287,11 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     s->nodes_texture = buffer_textures[4];
     s->components_texture = buffer_textures[5];
     s->triangle_reach_texture = buffer_textures[6];
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, OIT_IB_COUNTER_COUNT * sizeof(GLuint), NULL,
-                 GL_DYNAMIC_READ);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->param_buffer);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(ib_params), NULL, GL_DYNAMIC_DRAW);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+                              s->counter_buffer, OIT_IB_COUNTER_COUNT * sizeof(GLuint), NULL,
+                              GL_DYNAMIC_READ);
+    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+                              s->param_buffer, sizeof(ib_params), NULL, GL_DYNAMIC_DRAW);
 
     status = oit_gl_check("ib create", err);
     if (status != OIT_OK) {
@@ -308,10 +308,12 @@ static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error
     oit_status status = oit_gl_output_resize(&s->output, width, height, err);
     if (status != OIT_OK)
         return status;
-    GLuint textures[] = {s->head_image, s->count_image};
-    glDeleteTextures(2, textures);
-    s->head_image = oit_gl_texture_2d(GL_R32UI, width, height);
-    s->count_image = oit_gl_texture_2d(GL_R32UI, width, height);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->head_image);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->count_image);
+    s->head_image =
+        oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+    s->count_image =
+        oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
 
     uint64_t initial = s->config.initial_fragment_capacity
                            ? s->config.initial_fragment_capacity
@@ -513,10 +515,9 @@ static oit_status ib_reserve_triangles(ib_state *s, uint64_t triangles, oit_erro
                         (unsigned long long)triangles, (unsigned long long)s->gl_texel_limit);
     while (glGetError() != GL_NO_ERROR) {
     }
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->triangle_buffer);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(triangles * OIT_IB_TRIANGLE_BYTES), NULL,
-                 GL_DYNAMIC_COPY);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+                              s->triangle_buffer, triangles * OIT_IB_TRIANGLE_BYTES, NULL,
+                              GL_DYNAMIC_COPY);
     glBindTexture(GL_TEXTURE_BUFFER, s->triangle_texture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, s->triangle_buffer);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
@@ -630,11 +631,14 @@ static void ib_fill_stats(const ib_state *s, const GLuint *counters, int retries
     stats->max_list = counters[OIT_FRAME_COUNTER_MAX_LIST];
     stats->overflow_retries = retries;
     uint64_t pixels = (uint64_t)s->output.width * (uint64_t)s->output.height;
-    stats->memory_bytes = pixels * IB_BYTES_PER_PIXEL + s->pool_capacity * IB_BYTES_PER_FRAGMENT +
-                          s->triangle_capacity * OIT_IB_TRIANGLE_BYTES +
-                          OIT_IB_COUNTER_COUNT * sizeof(GLuint) + sizeof(ib_params);
-    stats->bytes_per_fragment = (double)IB_BYTES_PER_FRAGMENT;
-    stats->bytes_per_pixel = (double)IB_BYTES_PER_PIXEL;
+    /* as allocated (oit_stats in oit.h defines the figures): the pool at its
+     * capacity, head, count and output images, counters, parameters and the
+     * triangle table */
+    stats->memory_bytes = oit_gl_memory_total(&s->memory);
+    stats->bytes_per_fragment =
+        (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_FRAGMENTS) / (double)s->pool_capacity;
+    stats->bytes_per_pixel =
+        (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) / (double)pixels;
     GLuint nonempty = counters[OIT_FRAME_COUNTER_NONEMPTY_PIXELS];
     stats->mean_list = nonempty ? (double)stats->fragments / nonempty : 0.0;
     stats->psi = nonempty ? (double)counters[OIT_IB_COUNTER_PSI_PIXELS] / nonempty : 0.0;

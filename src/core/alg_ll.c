@@ -35,7 +35,10 @@
  *            heat map, peel limit, layer).
  *
  * Statistics: fragments = fragments stored; overflow_retries = fills repeated
- * in this frame; memory_bytes = output + heads + pool + counters, all allocated.
+ * in this frame; memory_bytes = output + heads + pool (at its capacity, headroom
+ * included) + counters, as allocated: every buffer and texture goes through
+ * the tracker s->memory (gl_util.h). bytes_per_fragment = the pool buffers'
+ * bytes / pool_capacity, bytes_per_pixel = heads + output / pixels.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -57,6 +60,7 @@ typedef struct ll_state {
     oit_algorithm_config config; /* config.shader_dir points at shader_dir below */
     char *shader_dir;
     oit_gl_output output;
+    oit_gl_memory memory; /* every buffer and texture below and the output (gl_util.h) */
     oit_stage_timer timer;
 
     GLuint fill_program;
@@ -103,16 +107,15 @@ static oit_status ll_allocate_pool(ll_state *s, uint64_t capacity, oit_error *er
         capacity = 1; /* zero-sized buffers cannot be bound */
     while (glGetError() != GL_NO_ERROR) {
     }
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->node_buffer);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(capacity * OIT_LL_NODE_BYTES), NULL,
-                 GL_DYNAMIC_COPY);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->next_buffer);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(capacity * OIT_LL_NEXT_BYTES), NULL,
-                 GL_DYNAMIC_COPY);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->sorted_next_buffer);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(capacity * OIT_LL_NEXT_BYTES), NULL,
-                 GL_DYNAMIC_COPY);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    const struct {
+        GLuint buffer;
+        uint64_t bytes;
+    } pool[] = {{s->node_buffer, OIT_LL_NODE_BYTES},
+                {s->next_buffer, OIT_LL_NEXT_BYTES},
+                {s->sorted_next_buffer, OIT_LL_NEXT_BYTES}};
+    for (size_t i = 0; i < sizeof pool / sizeof pool[0]; ++i)
+        oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FRAGMENTS, GL_SHADER_STORAGE_BUFFER,
+                                  pool[i].buffer, capacity * pool[i].bytes, NULL, GL_DYNAMIC_COPY);
     const struct {
         GLuint texture, buffer;
         GLenum format;
@@ -171,11 +174,10 @@ static void ll_destroy(oit_algorithm *alg)
     glDeleteProgram(s->fill_program);
     glDeleteProgram(s->sort_program);
     glDeleteProgram(s->compose_program);
-    glDeleteTextures(1, &s->head_image);
-    GLuint textures[] = {s->node_texture, s->next_texture, s->sorted_next_texture};
-    glDeleteTextures(3, textures);
+    GLuint textures[] = {s->head_image, s->node_texture, s->next_texture, s->sorted_next_texture};
+    oit_gl_memory_delete_textures(&s->memory, 4, textures);
     GLuint buffers[] = {s->node_buffer, s->next_buffer, s->sorted_next_buffer, s->counter_buffer};
-    glDeleteBuffers(4, buffers);
+    oit_gl_memory_delete_buffers(&s->memory, 4, buffers);
     oit_gl_output_release(&s->output);
     oit_timer_destroy(&s->timer);
     free(s->shader_dir);
@@ -201,6 +203,7 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
     }
     strcpy(s->shader_dir, dir);
     s->config.shader_dir = s->shader_dir;
+    s->output.memory = &s->memory;
     oit_stats_reset(&s->last_stats);
     oit_timer_create(&s->timer);
 
@@ -241,10 +244,9 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
     s->next_buffer = buffers[1];
     s->sorted_next_buffer = buffers[2];
     s->counter_buffer = buffers[3];
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, OIT_LL_COUNTER_COUNT * sizeof(GLuint), NULL,
-                 GL_DYNAMIC_READ);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+                              s->counter_buffer, OIT_LL_COUNTER_COUNT * sizeof(GLuint), NULL,
+                              GL_DYNAMIC_READ);
 
     status = oit_gl_check("ll create", err);
     if (status != OIT_OK) {
@@ -261,8 +263,9 @@ static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error
     oit_status status = oit_gl_output_resize(&s->output, width, height, err);
     if (status != OIT_OK)
         return status;
-    glDeleteTextures(1, &s->head_image);
-    s->head_image = oit_gl_texture_2d(GL_R32UI, width, height);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->head_image);
+    s->head_image =
+        oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
 
     /* The first pool: a few fragments per pixel (or what the config asks for),
      * within the budget. Frames that need more grow it in render(). */
@@ -479,10 +482,12 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     stats.list_histogram[0] = pixels - non_empty;
     for (int bin = 1; bin < OIT_HISTOGRAM_BINS; ++bin)
         stats.list_histogram[bin] = counters[OIT_LL_COUNTER_HISTOGRAM + bin];
-    stats.bytes_per_fragment = (double)LL_POOL_BYTES_PER_FRAGMENT;
-    stats.bytes_per_pixel = 4.0 /* head */ + 4.0 /* RGBA8 output */;
-    stats.memory_bytes = pixels * 8u + s->pool_capacity * LL_POOL_BYTES_PER_FRAGMENT +
-                         OIT_LL_COUNTER_COUNT * sizeof(GLuint);
+    /* the figures of what is allocated (oit_stats in oit.h defines them) */
+    stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    stats.bytes_per_fragment = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_FRAGMENTS) /
+                               (double)s->pool_capacity;
+    stats.bytes_per_pixel =
+        (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) / (double)pixels;
     s->last_stats = stats;
     return oit_gl_check("ll render", err);
 

@@ -18,6 +18,7 @@
 typedef struct wboit_state {
     oit_algorithm_config config;
     oit_gl_output output;
+    oit_gl_memory memory; /* the targets and the output */
     oit_stage_timer timer;
     oit_stats stats;
 
@@ -30,15 +31,12 @@ typedef struct wboit_state {
     int width, height;
 } wboit_state;
 
-/* Bytes per pixel of the targets: accumulation (16), revealage (4), the RGBA8 output (4). */
-#define WBOIT_BYTES_PER_PIXEL (16 + 4 + 4)
-
 static void wboit_release_targets(wboit_state *s)
 {
     glDeleteFramebuffers(1, &s->accumulate_framebuffer);
-    glDeleteTextures(1, &s->accumulation);
-    glDeleteTextures(1, &s->revealage);
-    s->accumulate_framebuffer = s->accumulation = s->revealage = 0;
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->accumulation);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->revealage);
+    s->accumulate_framebuffer = 0;
     s->width = s->height = 0;
 }
 
@@ -64,6 +62,7 @@ static oit_status wboit_create(const oit_algorithm_config *config, oit_algorithm
     if (!s)
         return oit_fail(err, OIT_E_RUNTIME, "wboit: out of memory");
     s->config = *config;
+    s->output.memory = &s->memory;
     oit_stats_reset(&s->stats);
     oit_timer_create(&s->timer);
 
@@ -92,8 +91,9 @@ static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_er
     if (status != OIT_OK)
         return status;
 
-    s->accumulation = oit_gl_texture_2d(GL_RGBA32F, width, height);
-    s->revealage = oit_gl_texture_2d(GL_R32F, width, height);
+    s->accumulation =
+        oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_RGBA32F, width, height);
+    s->revealage = oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32F, width, height);
     glGenFramebuffers(1, &s->accumulate_framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, s->accumulate_framebuffer);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->accumulation,
@@ -114,7 +114,7 @@ static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_er
     }
     s->width = width;
     s->height = height;
-    s->stats.memory_bytes = (uint64_t)width * (uint64_t)height * WBOIT_BYTES_PER_PIXEL;
+    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
     return OIT_OK;
 }
 
@@ -187,7 +187,10 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
     oit_timer_frame_end(&s->timer, &s->stats);
     if (status == OIT_OK)
         status = oit_gl_check("wboit: render", err);
-    s->stats.memory_bytes = (uint64_t)s->width * (uint64_t)s->height * WBOIT_BYTES_PER_PIXEL;
+    /* what the targets and the output hold (the tracker, gl_util.h) */
+    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    s->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) /
+                               ((double)s->width * (double)s->height);
     return status;
 }
 

@@ -70,6 +70,71 @@ oit_status oit_timer_status(const oit_stage_timer *timer, oit_error *err);
 /* Waits for the GPU, fills stats->stages/stage_count/cpu_ms. */
 void oit_timer_frame_end(oit_stage_timer *timer, oit_stats *stats);
 
+/* ---- memory: every buffer and texture an algorithm allocates ---- */
+
+/* Each algorithm keeps one oit_gl_memory and allocates every GL buffer store
+ * and every texture (its output included) through the functions below, which
+ * record the exact bytes of each object: textures width x height x the bytes
+ * per texel of their internal format (oit_gl_texel_bytes), buffers the size
+ * given to glBufferData. stats.memory_bytes is oit_gl_memory_total();
+ * bytes_per_pixel and bytes_per_fragment come from the per-use sums.
+ * Buffer textures (glTexBuffer) own no storage (their buffer is counted), and
+ * framebuffers, vertex arrays, queries and programs hold none either; none of
+ * them is recorded. oit_gl_enumerate_allocated_bytes() below is the
+ * independent check (tests/memory_figures.sh). */
+typedef enum oit_gl_memory_use {
+    OIT_GL_MEMORY_PIXELS,    /* sized by the image: width x height texels (the output too) */
+    OIT_GL_MEMORY_FRAGMENTS, /* sized by the fragment pool: capacity x bytes per fragment */
+    OIT_GL_MEMORY_FIXED,     /* the rest: counters, parameters, per-triangle tables */
+    OIT_GL_MEMORY_USE_COUNT
+} oit_gl_memory_use;
+
+#define OIT_GL_MEMORY_MAX_OBJECTS 32
+
+typedef struct oit_gl_memory_object {
+    GLuint name;
+    bool texture; /* else a buffer */
+    oit_gl_memory_use use;
+    uint64_t bytes;
+} oit_gl_memory_object;
+
+typedef struct oit_gl_memory {
+    oit_gl_memory_object objects[OIT_GL_MEMORY_MAX_OBJECTS]; /* the live ones, count of them */
+    int count;
+    uint64_t bytes[OIT_GL_MEMORY_USE_COUNT]; /* sums over objects by use */
+} oit_gl_memory;
+
+/* Bytes per texel of the sized internal formats the algorithms use (RGBA8,
+ * RGBA32F, RG32F, R32F, R32UI, RG32UI, RGBA32UI, DEPTH_COMPONENT32F, and a few
+ * more); 0 for any other (recorded as 0 bytes with a warning on stderr, so
+ * the independent check fails until the table has it). */
+size_t oit_gl_texel_bytes(GLenum internal_format);
+/* oit_gl_texture_2d, recorded. */
+GLuint oit_gl_memory_texture_2d(oit_gl_memory *memory, oit_gl_memory_use use, GLenum internal_format,
+                                int width, int height);
+/* glDeleteTextures, forgetting the recorded ones; the names are set to 0.
+ * Names not recorded (buffer textures) are deleted all the same. */
+void oit_gl_memory_delete_textures(oit_gl_memory *memory, GLsizei count, GLuint *textures);
+/* glBufferData(target, bytes, data, usage) on buffer (bound to target, then
+ * target is bound to 0): (re)specifies its store and records `bytes`,
+ * replacing what it had. */
+void oit_gl_memory_buffer_data(oit_gl_memory *memory, oit_gl_memory_use use, GLenum target,
+                               GLuint buffer, uint64_t bytes, const void *data, GLenum usage);
+/* glDeleteBuffers, forgetting the recorded ones; the names are set to 0. */
+void oit_gl_memory_delete_buffers(oit_gl_memory *memory, GLsizei count, GLuint *buffers);
+uint64_t oit_gl_memory_total(const oit_gl_memory *memory);
+uint64_t oit_gl_memory_bytes(const oit_gl_memory *memory, oit_gl_memory_use use);
+
+/* The independent count, for tests only (oit render --json,
+ * "gl_allocated_bytes"): enumerates GL object names 1, 2, ... (until 4096
+ * names in a row are not objects) and sums GL_BUFFER_SIZE of every buffer and
+ * the size of every level of every texture other than buffer textures (whose
+ * storage is their buffer's), bytes per texel from the component sizes GL
+ * reports (GL_TEXTURE_RED_SIZE ... GL_TEXTURE_STENCIL_SIZE), times samples;
+ * renderbuffers likewise. Knows nothing of oit_gl_memory. -1 if this GL lacks
+ * the direct state access queries it needs (GL 4.5). */
+int64_t oit_gl_enumerate_allocated_bytes(void);
+
 /* ---- the RGBA8 output every algorithm composes into ---- */
 
 typedef struct oit_gl_output {
@@ -77,6 +142,9 @@ typedef struct oit_gl_output {
     GLuint colour; /* RGBA8 texture */
     GLuint fullscreen_vertex_array; /* empty VAO for full-screen triangles */
     int width, height;
+    /* the algorithm's tracker: the colour texture is recorded there
+     * (OIT_GL_MEMORY_PIXELS); set it before the first resize */
+    oit_gl_memory *memory;
 } oit_gl_output;
 
 oit_status oit_gl_output_resize(oit_gl_output *output, int width, int height, oit_error *err);
