@@ -5,7 +5,9 @@
  * each model loaded and uploaded once, each algorithm created once per scene
  * and size, warm-up frames, then N measured frames whose figures are reported
  * as median, minimum and maximum. One row per run goes to CSV and/or JSON as
- * soon as it is measured, so a long run that is interrupted keeps its rows.
+ * soon as it is measured: into FILE.tmp.XXXXXX beside FILE, renamed over FILE
+ * when the run ends (oit_atomic_file), so a long run that is interrupted
+ * keeps its rows there and the previous FILE stays whole.
  *
  * oit measure is the source's measuring command line (thesis appendix E.3):
  * TASK COUNTER NAME PATH m00..m33 p00..p33 [VIEWPORT], one result line
@@ -195,12 +197,10 @@ static oit_status scene_add(scene_list *list, const render_options *base, int to
 static oit_status scene_list_read(scene_list *list, const render_options *base, const char *path,
                                   oit_error *err)
 {
-    struct stat info;
-    if (stat(path, &info) == 0 && !S_ISREG(info.st_mode)) /* a FIFO would block forever */
-        return oit_fail(err, OIT_E_INPUT, "--scene-list %s: not a regular file", path);
-    FILE *file = fopen(path, "r");
-    if (!file)
-        return oit_fail(err, OIT_E_INPUT, "--scene-list %s: %s", path, strerror(errno));
+    FILE *file; /* a regular file: a FIFO or /dev/zero would never end */
+    oit_status opened = oit_open_regular_file(path, "--scene-list", &file, err);
+    if (opened != OIT_OK)
+        return opened;
     /* getline: lines of any length, and their real length, so that a NUL
      * byte cannot cut a line short without a word */
     char *line = NULL;
@@ -455,8 +455,9 @@ static const char csv_header[] =
     "ref_mean_diff,ref_over_tolerance_percent,stages,error\n";
 
 typedef struct bench_output {
-    FILE *csv;
+    FILE *csv; /* stdout, or the stream of csv_file */
     FILE *json;
+    oit_atomic_file *csv_file, *json_file; /* NULL for stdout */
     int json_rows;
     int tolerance;
 } bench_output;
@@ -756,50 +757,80 @@ static oit_status bench_scenes(const bench_settings *b, scene_list *scenes, int 
     return status;
 }
 
-/* Closes the outputs; a write that failed anywhere (a full disk) is an
- * error naming the file, not an exit 0 with a short file. */
-static oit_status bench_output_close(bench_output *out, const bench_settings *b, oit_error *err)
+/* Closes the outputs. The files are written beside their targets and renamed
+ * over them here (oit_atomic_file), both or neither: when the run succeeded
+ * (keep) and both were written whole; else they are dropped, leaving the
+ * previous files as they were. A write that failed anywhere (a full disk) is
+ * an error naming the file, not an exit 0 with a short file. */
+static oit_status bench_output_close(bench_output *out, bool keep, oit_error *err)
 {
     oit_status status = OIT_OK;
-    FILE *files[2] = {out->csv, out->json};
+    oit_atomic_file *files[2] = {out->csv_file, out->json_file};
+    FILE *streams[2] = {out->csv, out->json};
     const char *flags[2] = {"--csv", "--json"};
-    const char *paths[2] = {b->csv_path ? b->csv_path : "-", b->json_path ? b->json_path : "-"};
+    for (int k = 0; k < 2; ++k) {
+        oit_error file_err;
+        oit_status file_status = OIT_OK;
+        if (files[k] && keep)
+            file_status = oit_atomic_file_finish(files[k], &file_err);
+        else if (!files[k] && streams[k] == stdout && (fflush(stdout) != 0 || ferror(stdout)))
+            file_status = oit_fail(&file_err, OIT_E_RUNTIME, "%s: cannot write stdout: %s", flags[k],
+                                   strerror(errno));
+        if (file_status != OIT_OK && status == OIT_OK) {
+            status = file_status;
+            *err = file_err;
+        }
+    }
     for (int k = 0; k < 2; ++k) {
         if (!files[k])
             continue;
-        bool failed = fflush(files[k]) != 0 || ferror(files[k]);
-        int error = errno;
-        if (files[k] != stdout && fclose(files[k]) != 0 && !failed) {
-            failed = true;
-            error = errno;
+        oit_error file_err;
+        if (keep && status == OIT_OK) {
+            status = oit_atomic_file_commit(files[k], &file_err); /* only the rename is left */
+            if (status != OIT_OK)
+                *err = file_err;
+        } else {
+            oit_atomic_file_abort(files[k], OIT_E_RUNTIME, NULL, NULL);
         }
-        if (failed && status == OIT_OK)
-            status = oit_fail(err, OIT_E_RUNTIME, "%s %s: writing failed: %s", flags[k], paths[k],
-                              strerror(error));
     }
     out->csv = out->json = NULL;
+    out->csv_file = out->json_file = NULL;
     return status;
+}
+
+/* True once a write to an output failed: the run stops rather than measure
+ * what cannot be written. */
+static bool bench_output_failed(const bench_output *out)
+{
+    return (out->csv_file && oit_atomic_file_failed(out->csv_file)) ||
+           (out->json_file && oit_atomic_file_failed(out->json_file)) ||
+           (out->csv == stdout && ferror(stdout)) || (out->json == stdout && ferror(stdout));
 }
 
 static oit_status bench_output_open(const bench_settings *b, bench_output *out, oit_error *err)
 {
     memset(out, 0, sizeof *out);
     out->tolerance = (int)b->tolerance;
-    if (b->csv_path)
-        out->csv = strcmp(b->csv_path, "-") == 0 ? stdout : fopen(b->csv_path, "w");
-    else if (!b->json_path)
+    oit_status status = OIT_OK;
+    if (b->csv_path && strcmp(b->csv_path, "-") != 0) {
+        status = oit_atomic_file_open(b->csv_path, "--csv", 0, &out->csv_file, err);
+        if (status == OIT_OK)
+            out->csv = oit_atomic_file_stream(out->csv_file);
+    } else if (b->csv_path || !b->json_path) {
         out->csv = stdout;
-    if (b->csv_path && !out->csv)
-        return oit_fail(err, OIT_E_INPUT, "--csv: cannot write %s: %s", b->csv_path, strerror(errno));
-    if (b->json_path)
-        out->json = strcmp(b->json_path, "-") == 0 ? stdout : fopen(b->json_path, "w");
-    if (b->json_path && !out->json) {
-        oit_status status = oit_fail(err, OIT_E_INPUT, "--json: cannot write %s: %s", b->json_path, strerror(errno));
-        oit_error ignored;
-        bench_output_close(out, b, &ignored);
-        return status;
     }
-    return OIT_OK;
+    if (status == OIT_OK && b->json_path && strcmp(b->json_path, "-") != 0) {
+        status = oit_atomic_file_open(b->json_path, "--json", 0, &out->json_file, err);
+        if (status == OIT_OK)
+            out->json = oit_atomic_file_stream(out->json_file);
+    } else if (status == OIT_OK && b->json_path) {
+        out->json = stdout;
+    }
+    if (status != OIT_OK) {
+        oit_error ignored;
+        bench_output_close(out, false, &ignored);
+    }
+    return status;
 }
 
 /* The CSV header, and the JSON's opening: date, renderer, machine, command. */
@@ -946,14 +977,14 @@ int command_bench(int argc, char **argv)
         bench_output_begin(&out, b, needs_gl, argc, argv);
         progress_state progress = {isatty(fileno(stderr)) != 0, 0,
                                    selected * b->size_count * b->algorithm_count, NULL, NULL, 0, 0};
-        for (int k = 0; status == OIT_OK && k < scenes.count; ++k) {
+        for (int k = 0; status == OIT_OK && !bench_output_failed(&out) && k < scenes.count; ++k) {
             const bench_scene *scene = &scenes.items[k];
             if (!scene_selected(b->scene_patterns, scene->name))
                 continue;
             /* a model that does not load fails its rows; the other scenes go on */
             oit_error load_err = {{0}};
             oit_status load = session_set_model(&s, scene->options.model_path, &load_err);
-            for (int z = 0; status == OIT_OK && z < b->size_count; ++z) {
+            for (int z = 0; status == OIT_OK && !bench_output_failed(&out) && z < b->size_count; ++z) {
                 int failed = bench_scene_size(b, &s, scene, load, &load_err, b->widths[z], b->heights[z], &out,
                                               &progress);
                 if (failed < 0)
@@ -965,7 +996,7 @@ int command_bench(int argc, char **argv)
         bench_output_end(&out, failures);
     }
     oit_error close_err;
-    oit_status close_status = bench_output_close(&out, b, &close_err);
+    oit_status close_status = bench_output_close(&out, status == OIT_OK, &close_err);
     if (status == OIT_OK && close_status != OIT_OK) {
         status = close_status;
         err = close_err;
@@ -1148,10 +1179,13 @@ int command_measure(int argc, char **argv)
         status = oit_fail(&err, OIT_E_RUNTIME, "out of memory");
     if (status == OIT_OK)
         status = run_algorithm(&s, &o, (int)warmup, (int)frames, 0.0, r, NULL, NULL, NULL, &err);
-    FILE *results = NULL;
-    if (status == OIT_OK && !(results = fopen(results_path, "a")))
-        status = oit_fail(&err, OIT_E_INPUT, "measure: cannot append to %s: %s", results_path, strerror(errno));
+    /* appended atomically: the previous lines and the new one are written
+     * beside the file and renamed over it (oit_atomic_file) */
+    oit_atomic_file *results_file = NULL;
+    if (status == OIT_OK)
+        status = oit_atomic_file_open(results_path, "measure", OIT_ATOMIC_APPEND, &results_file, &err);
     if (status == OIT_OK) {
+        FILE *results = oit_atomic_file_stream(results_file);
         const oit_stats *st = &r->last;
         double task_ms = stages_sum(r, task->timed, task->timed_count);
         double fps = r->cpu_ms.median > 0.0 ? 1000.0 / r->cpu_ms.median : 0.0;
@@ -1160,8 +1194,7 @@ int command_measure(int argc, char **argv)
         for (int j = 0; j < r->stage_count && used < sizeof stages; ++j)
             used += (size_t)snprintf(stages + used, sizeof stages - used, "%s%s=%.4f", j ? ";" : "",
                                      r->stages[j].name, r->stages[j].ms.median);
-        fseek(results, 0, SEEK_END);
-        if (ftell(results) == 0)
+        if (oit_atomic_file_kept_bytes(results_file) == 0)
             fprintf(results, "# oit measure results (thesis appendix E.3); renderer: %s\n"
                              "# task\tname\tcounter\twidth\theight\tvertices\ttriangles\tfragments\tmax_list\t"
                              "psi_percent\ttask_ms\tframe_ms\tfps\tstages\n",
@@ -1171,15 +1204,15 @@ int command_measure(int argc, char **argv)
                  task_number, name, counter, o.width, o.height, s.model.vertex_count, s.model.triangle_count,
                  (long long)st->fragments, (long long)st->max_list, st->psi >= 0.0 ? 100.0 * st->psi : -1.0,
                  task_ms, r->cpu_ms.median, fps, stages);
-        if (fputs(line, results) == EOF || fflush(results) != 0)
-            status = oit_fail(&err, OIT_E_RUNTIME, "measure: cannot write to %s: %s", results_path, strerror(errno));
-        else
+        fputs(line, results);
+        status = oit_atomic_file_commit(results_file, &err);
+        results_file = NULL;
+        if (status == OIT_OK)
             printf("%s %s %ld (%s) %dx%d: %.3f ms, frame %.3f ms, %lld fragments, longest list %lld -> %s\n",
                    task->name, name, counter, model_path, o.width, o.height, task_ms, r->cpu_ms.median,
                    (long long)st->fragments, (long long)st->max_list, results_path);
     }
-    if (results)
-        fclose(results);
+    oit_atomic_file_abort(results_file, status, NULL, NULL);
     free(r);
     session_close(&s);
     return report(status, &err);

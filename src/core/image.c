@@ -1,6 +1,4 @@
 /* image.c: RGBA8 images, PNG input and output (libpng), image comparison. */
-#define _POSIX_C_SOURCE 200809L /* mkstemp, fdopen, fchmod */
-#include <errno.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdio.h>
@@ -8,8 +6,6 @@
 #include <string.h>
 
 #include <png.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "oit.h"
 
@@ -60,33 +56,19 @@ static void on_png_warning(png_structp png, png_const_charp message)
     (void)message; /* warnings (e.g. bad ancillary chunks) are not errors */
 }
 
-/* Writes the PNG into a temporary file beside path, then renames it over
- * path: a write that fails (a full disk) leaves the previous file whole. */
+/* Written through oit_atomic_file: a write that fails (a full disk) leaves
+ * the previous file whole. */
 oit_status oit_png_write(const char *path, const oit_image *image, oit_error *err)
 {
     const char *volatile name = path; /* volatile: used after longjmp */
     if (!image || !image->rgba || image->width <= 0 || image->height <= 0)
         return oit_fail(err, OIT_E_INPUT, "%s: no image to write", name);
-    size_t temporary_size = strlen(path) + 16;
-    char *volatile temporary = malloc(temporary_size);
-    if (!temporary)
-        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
-    snprintf(temporary, temporary_size, "%s.tmp.XXXXXX", path);
-    int descriptor = mkstemp(temporary);
-    FILE *file = descriptor >= 0 ? fdopen(descriptor, "wb") : NULL;
-    if (!file) {
-        int error = errno;
-        if (descriptor >= 0) {
-            close(descriptor);
-            remove(temporary);
-        }
-        free(temporary);
-        return oit_fail(err, OIT_E_INPUT, "%s: cannot write: %s", name, strerror(error));
-    }
-    /* mkstemp makes the file 0600; a PNG is for others to read too */
-    mode_t mask = umask(0);
-    umask(mask);
-    fchmod(descriptor, 0666 & ~mask);
+    oit_atomic_file *volatile output = NULL;
+    oit_atomic_file *opened;
+    oit_status status = oit_atomic_file_open(path, NULL, 0, &opened, err);
+    if (status != OIT_OK)
+        return status;
+    output = opened;
 
     png_context context = {{0}};
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &context, on_png_error,
@@ -97,25 +79,21 @@ oit_status oit_png_write(const char *path, const oit_image *image, oit_error *er
     png_bytep *volatile rows = NULL;
     if (!png || !info) {
         png_destroy_write_struct(&png, &info);
-        fclose(file);
-        remove(temporary);
-        free(temporary);
-        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
+        return oit_atomic_file_abort(output, OIT_E_RUNTIME, "out of memory", err);
     }
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
         free(rows);
-        fclose(file);
-        remove(temporary); /* no half-written files; the previous one stays */
-        free(temporary);
-        return oit_fail(err, OIT_E_RUNTIME, "%s: cannot write PNG: %s", name, context.message);
+        /* no half-written files; the previous one stays. The reason is the
+         * failed write's errno where there was one, else libpng's. */
+        return oit_atomic_file_abort(output, OIT_E_RUNTIME, context.message, err);
     }
     rows = malloc((size_t)image->height * sizeof *rows);
     if (!rows)
         png_error(png, "out of memory");
     for (int y = 0; y < image->height; ++y)
         rows[y] = image->rgba + (size_t)y * (size_t)image->width * 4;
-    png_init_io(png, file);
+    png_init_io(png, oit_atomic_file_stream(output));
     png_set_IHDR(png, info, (png_uint_32)image->width, (png_uint_32)image->height, 8,
                  PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
@@ -125,23 +103,7 @@ oit_status oit_png_write(const char *path, const oit_image *image, oit_error *er
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
     free(rows);
-    bool failed = fflush(file) != 0 || ferror(file);
-    int error = errno;
-    if (fclose(file) != 0 && !failed) {
-        failed = true;
-        error = errno;
-    }
-    if (!failed && rename(temporary, path) != 0) {
-        failed = true;
-        error = errno;
-    }
-    if (failed) {
-        remove(temporary);
-        free(temporary);
-        return oit_fail(err, OIT_E_RUNTIME, "%s: cannot write: %s", name, strerror(error));
-    }
-    free(temporary);
-    return OIT_OK;
+    return oit_atomic_file_commit(output, err);
 }
 
 oit_status oit_png_read(const char *path, oit_image *image, oit_error *err)
@@ -149,15 +111,11 @@ oit_status oit_png_read(const char *path, oit_image *image, oit_error *err)
     const char *volatile name = path; /* volatile: used after longjmp */
     image->width = image->height = 0;
     image->rgba = NULL;
-    struct stat status;
-    if (stat(path, &status) == 0 && S_ISDIR(status.st_mode))
-        return oit_fail(err, OIT_E_INPUT, "%s: is a directory, not a PNG file", name);
     /* a FIFO or a device would block or never end */
-    if (stat(path, &status) == 0 && !S_ISREG(status.st_mode))
-        return oit_fail(err, OIT_E_INPUT, "%s: not a regular file", name);
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return oit_fail(err, OIT_E_INPUT, "%s: cannot open: %s", name, strerror(errno));
+    FILE *file;
+    oit_status status = oit_open_regular_file(path, NULL, &file, err);
+    if (status != OIT_OK)
+        return status;
     png_byte signature[8];
     if (fread(signature, 1, sizeof signature, file) != sizeof signature ||
         png_sig_cmp(signature, 0, sizeof signature) != 0) {

@@ -7,7 +7,6 @@
  * faces stay crisp while positions are still shared. Triangles only, so the
  * triangle counts in the file are the counts the importer reports.
  */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -848,40 +847,46 @@ oit_status oit_scene_generate(const char *name, int complexity, const char *obj_
         return oit_fail(err, OIT_E_INPUT, "%s: the OBJ file must not end in .mtl", base);
     }
 
+    /* Both files are written beside their targets and renamed over them
+     * only once both are written whole (oit_atomic_file). */
     writer w = {0};
-    w.obj = fopen(obj_path, "w");
-    if (!w.obj) {
-        oit_status s = oit_fail(err, OIT_E_INPUT, "%s: cannot write: %s", base, strerror(errno));
-        free(mtl_path);
-        return s;
+    oit_atomic_file *obj_file = NULL, *mtl_file = NULL;
+    oit_status status = oit_atomic_file_open(obj_path, NULL, 0, &obj_file, err);
+    if (status == OIT_OK) {
+        status = oit_atomic_file_open(mtl_path, NULL, 0, &mtl_file, err);
+        if (status != OIT_OK)
+            oit_atomic_file_abort(obj_file, status, NULL, NULL);
     }
-    w.mtl = fopen(mtl_path, "w");
-    if (!w.mtl) {
-        oit_status s = oit_fail(err, OIT_E_INPUT, "%s: cannot write: %s", path_basename(mtl_path),
-                                strerror(errno));
-        fclose(w.obj);
-        remove(obj_path);
+    if (status != OIT_OK) {
         free(mtl_path);
-        return s;
+        return status;
     }
+    w.obj = oit_atomic_file_stream(obj_file);
+    w.mtl = oit_atomic_file_stream(mtl_file);
     fprintf(w.obj, "# oit-workbench scene '%s', complexity %d\nmtllib %s\n", entry->info.name,
             complexity, path_basename(mtl_path));
     fprintf(w.mtl, "# oit-workbench scene '%s', complexity %d\n\n", entry->info.name, complexity);
 
     part p = {0};
-    oit_status status = entry->build(&w, &p, complexity, err);
+    status = entry->build(&w, &p, complexity, err);
     part_release(&p);
     if (status == OIT_OK)
         fprintf(w.obj, "\n# %u parts, %llu triangles\n", w.parts, (unsigned long long)w.triangles);
-    bool write_failed = ferror(w.obj) || ferror(w.mtl);
-    write_failed |= fclose(w.obj) != 0;
-    write_failed |= fclose(w.mtl) != 0;
-    if (status == OIT_OK && write_failed)
-        status = oit_fail(err, OIT_E_RUNTIME, "%s: write failed: %s", base, strerror(errno));
-    if (status != OIT_OK) {
-        remove(obj_path);
-        remove(mtl_path);
+    /* every write's error is kept by the streams; finish both before either is renamed */
+    if (status == OIT_OK)
+        status = oit_atomic_file_finish(obj_file, err);
+    if (status == OIT_OK)
+        status = oit_atomic_file_finish(mtl_file, err);
+    if (status == OIT_OK) {
+        status = oit_atomic_file_commit(mtl_file, err);
+        mtl_file = NULL;
     }
+    if (status == OIT_OK) {
+        status = oit_atomic_file_commit(obj_file, err);
+        obj_file = NULL;
+    }
+    oit_atomic_file_abort(obj_file, status, NULL, NULL);
+    oit_atomic_file_abort(mtl_file, status, NULL, NULL);
     free(mtl_path);
     return status;
 }

@@ -2,9 +2,11 @@
  * else next to the executable (installed: ../share/oit-workbench/shaders;
  * or ./shaders), else the source tree the binary was built from. */
 #define _DEFAULT_SOURCE /* readlink, realpath */
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "oit.h"
@@ -49,6 +51,37 @@ static bool executable_dir(const char *argv0, char *out, size_t out_size)
     return true;
 }
 
+/* Every file in the tree must be a regular file: the shader loader reads
+ * files whole, and a FIFO or a device would block it or never end. The
+ * first other one is named (exit status 3, as a missing shader). */
+static oit_status check_shader_tree(const char *dir, int depth, oit_error *err)
+{
+    if (depth > 8) /* a tree that deep is a link loop */
+        return OIT_OK;
+    DIR *listing = opendir(dir);
+    if (!listing)
+        return OIT_OK; /* what cannot be listed is named when a shader is read from it */
+    oit_status status = OIT_OK;
+    struct dirent *entry;
+    while (status == OIT_OK && (entry = readdir(listing))) {
+        const char *name = entry->d_name;
+        if (strcmp(name, ".") == 0 || strcmp(name, "..") == 0)
+            continue;
+        char path[PATH_SIZE];
+        if (snprintf(path, sizeof path, "%s/%s", dir, name) >= (int)sizeof path)
+            continue;
+        struct stat info;
+        if (stat(path, &info) != 0)
+            continue; /* a dangling link: named when read */
+        if (S_ISDIR(info.st_mode))
+            status = check_shader_tree(path, depth + 1, err);
+        else if (!S_ISREG(info.st_mode) && oit_check_regular_file(path, "shader file", err) != OIT_OK)
+            status = OIT_E_RUNTIME;
+    }
+    closedir(listing);
+    return status;
+}
+
 oit_status oit_find_shader_dir(const char *argv0, char *out, size_t out_size, oit_error *err)
 {
     char candidates[4][PATH_SIZE];
@@ -79,7 +112,7 @@ oit_status oit_find_shader_dir(const char *argv0, char *out, size_t out_size, oi
         if (strlen(found) >= out_size)
             return oit_fail(err, OIT_E_RUNTIME, "shader directory path too long: %s", found);
         snprintf(out, out_size, "%s", found);
-        return OIT_OK;
+        return check_shader_tree(out, 0, err);
     }
     char tried[OIT_ERROR_MESSAGE_SIZE] = "";
     size_t used = 0;
