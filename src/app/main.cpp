@@ -29,6 +29,9 @@ int fail(const QString &message)
 
 int main(int argc, char **argv)
 {
+    // models are imported by this program run again as a contained worker (no Qt there)
+    if (oit_import_worker_requested(argc, argv))
+        return oit_import_worker_main(argc, argv);
     // --help and --version answer without a display
     bool help_only = false;
     for (int i = 1; i < argc; ++i)

@@ -39,6 +39,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QRadioButton>
+#include <QSaveFile>
 #include <QScrollArea>
 #include <QSettings>
 #include <QSlider>
@@ -80,12 +81,26 @@ QAction *menu_action(QMenu *menu, const QString &text, const QKeySequence &key, 
 
 QString read_text_file(const QString &path, QString &error)
 {
-    QFile file(path);
-    if (!file.open(QIODevice::ReadOnly)) {
+    // a regular file only: a FIFO or /dev/zero would block or never end
+    // (oit_open_regular_file opens without blocking and checks with fstat)
+    FILE *handle = nullptr;
+    oit_error err{};
+    if (oit_open_regular_file(QFile::encodeName(path).constData(), nullptr, &handle, &err) != OIT_OK) {
+        error = QString::fromUtf8(err.message);
+        return QString();
+    }
+    QFile file;
+    if (!file.open(handle, QIODevice::ReadOnly, QFileDevice::AutoCloseHandle)) {
+        fclose(handle);
         error = path + ": " + file.errorString();
         return QString();
     }
-    return QString::fromUtf8(file.readAll());
+    QByteArray bytes = file.readAll();
+    if (file.error() != QFileDevice::NoError) {
+        error = path + ": " + file.errorString();
+        return QString();
+    }
+    return QString::fromUtf8(bytes);
 }
 
 QIcon swatch(const float colour[3])
@@ -1422,7 +1437,8 @@ void MainWindow::load_model(const QString &path)
         result->path = target;
         oit_error err{};
         QByteArray bytes = QFile::encodeName(target);
-        result->ok = oit_model_load(bytes.constData(), &result->model, &err) == OIT_OK;
+        // in a contained worker process: a parser crash or hang is an error, not our crash
+        result->ok = oit_model_load_contained(bytes.constData(), nullptr, &result->model, &err) == OIT_OK;
         result->error = QString::fromUtf8(err.message);
         return result;
     }));
@@ -1554,12 +1570,19 @@ bool MainWindow::load_preset(const QString &path, QString &error)
 
 bool MainWindow::save_preset(const QString &path, QString &error)
 {
-    QFile file(path);
-    if (!file.open(QIODevice::WriteOnly | QIODevice::Truncate)) {
-        error = path + ": " + file.errorString();
+    // written beside the file and renamed over it once whole (QSaveFile): a
+    // failed write (a full disk) leaves the previous preset as it was
+    QSaveFile file(path);
+    if (!file.open(QIODevice::WriteOnly)) {
+        error = path + ": cannot write: " + file.errorString();
         return false;
     }
-    file.write(QByteArray::fromStdString(preset_to_json(view_->settings, view_->camera, model_.get())));
+    QByteArray bytes = QByteArray::fromStdString(preset_to_json(view_->settings, view_->camera, model_.get()));
+    if (file.write(bytes) != bytes.size() || !file.commit()) {
+        error = path + ": cannot write: " + file.errorString();
+        file.cancelWriting(); // the temporary file goes; nothing is renamed
+        return false;
+    }
     return true;
 }
 

@@ -69,6 +69,8 @@ static void print_render_json(FILE *out, const render_options *o, const session 
         fprintf(out, ", \"gpu_ms\": %.4f}", st->stages[i].gpu_ms);
     }
     fprintf(out, "], \"memory_bytes\": %llu", (unsigned long long)st->memory_bytes);
+    if (r->gl_allocated_bytes >= 0) /* the independent count of memory_bytes (tests) */
+        fprintf(out, ", \"gl_allocated_bytes\": %lld", (long long)r->gl_allocated_bytes);
     if (st->fragments >= 0)
         fprintf(out, ", \"fragments\": %lld", (long long)st->fragments);
     if (st->max_list >= 0)
@@ -281,7 +283,10 @@ static int command_info(int argc, char **argv)
         return usage_error("info needs --model PATH%s", "");
     oit_model m;
     oit_error err = {{0}};
-    oit_status status = oit_model_load(model_path, &m, &err);
+    /* a FIFO, /dev/zero or a directory is refused before the importer sees it */
+    oit_status status = oit_check_regular_file(model_path, "model", &err);
+    if (status == OIT_OK)
+        status = oit_model_load_contained(model_path, NULL, &m, &err);
     if (status != OIT_OK)
         return report(status, &err);
     print_model_warnings(&m);
@@ -484,6 +489,9 @@ static const char main_help[] =
 
 int main(int argc, char **argv)
 {
+    /* models are imported by this program run again as a contained worker */
+    if (oit_import_worker_requested(argc, argv))
+        return oit_import_worker_main(argc, argv);
     program_path = argv[0];
     if (argc < 2)
         return usage_error("missing command%s", "");

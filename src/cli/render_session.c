@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "gl_util.h" /* oit_gl_enumerate_allocated_bytes, for --json */
 #include "local_options.h"
 #include "modulation_options.h"
 #include "render_session.h"
@@ -351,7 +352,10 @@ oit_status session_set_model(session *s, const char *model_path, oit_error *err)
         oit_model_free(&s->model);
         s->model_loaded = false;
     }
-    oit_status status = oit_model_load(model_path, &s->model, err);
+    /* a FIFO, /dev/zero or a directory is refused before the importer sees it */
+    oit_status status = oit_check_regular_file(model_path, "model", err);
+    if (status == OIT_OK)
+        status = oit_model_load_contained(model_path, NULL, &s->model, err);
     if (status != OIT_OK)
         return status;
     print_model_warnings(&s->model);
@@ -461,16 +465,33 @@ oit_status render_setup_create(session *s, const render_options *o, render_setup
 oit_status render_frames(session *s, const render_options *o, render_result *result, oit_error *err)
 {
     memset(result, 0, sizeof *result);
+    result->gl_allocated_bytes = -1;
     const oit_algorithm_ops *ops = o->algorithm;
     oit_stats *per_frame = calloc((size_t)o->frames, sizeof *per_frame);
     if (!per_frame)
         return oit_fail(err, OIT_E_RUNTIME, "out of memory for %d frames of statistics", o->frames);
+    /* --json: what GL holds before the algorithm exists (the scene), to
+     * count what the algorithm allocated independently of its figures */
+    int64_t gl_bytes_before = -1;
+    oit_status status = OIT_OK;
+    if (o->json && ops->uses_gl) {
+        status = session_need_gl(s, err);
+        if (status == OIT_OK)
+            gl_bytes_before = oit_gl_enumerate_allocated_bytes();
+    }
     render_setup setup;
-    oit_status status = render_setup_create(s, o, &setup, err);
+    memset(&setup, 0, sizeof setup);
+    if (status == OIT_OK)
+        status = render_setup_create(s, o, &setup, err);
     for (int f = 0; status == OIT_OK && f < o->frames; ++f) {
         status = ops->render(setup.alg, setup.scene, &setup.frame, err);
         if (status == OIT_OK)
             ops->stats(setup.alg, &per_frame[f]);
+    }
+    if (status == OIT_OK && gl_bytes_before >= 0) {
+        int64_t after = oit_gl_enumerate_allocated_bytes();
+        if (after >= 0)
+            result->gl_allocated_bytes = after - gl_bytes_before;
     }
     if (status == OIT_OK)
         status = ops->read_image(setup.alg, &result->image, err);

@@ -25,6 +25,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h> /* FILE */
 
 #ifdef __cplusplus
 extern "C" {
@@ -121,6 +122,31 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err);
 oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *err);
 void oit_model_free(oit_model *model);
 
+/* Import in a contained child process (model_contained.c): the program runs
+ * itself (/proc/self/exe) with OIT_IMPORT_WORKER_FLAG as an import worker
+ * under CPU-time and memory limits, and receives the finished model through
+ * a pipe. A crash, abort, limit or hang of the importer is OIT_E_INPUT with
+ * one line ("FILE: the importer crashed (signal 11, Segmentation fault)",
+ * "... timed out ..."). Every program that calls it must start with
+ *     if (oit_import_worker_requested(argc, argv))
+ *         return oit_import_worker_main(argc, argv);
+ * OIT_IMPORT=in-process imports in the calling process instead (to measure
+ * the overhead); OIT_IMPORT_WORKER_STDERR=1 lets the worker's stderr through. */
+#define OIT_IMPORT_WORKER_FLAG "--oit-import-worker"
+typedef struct oit_import_limits {
+    double cpu_seconds;    /* CPU time of the worker */
+    uint64_t memory_bytes; /* its address space (not under AddressSanitizer) */
+    double wall_seconds;   /* no result by then: the worker is killed */
+} oit_import_limits;
+/* The limits for a file of this size: they grow with it, so that real large
+ * models load and a parser spinning on a small file is stopped. */
+void oit_import_limits_for_file(long long file_bytes, oit_import_limits *limits);
+/* limits NULL: oit_import_limits_for_file of the file's size. */
+oit_status oit_model_load_contained(const char *path, const oit_import_limits *limits, oit_model *out,
+                                    oit_error *err);
+bool oit_import_worker_requested(int argc, char **argv);
+int oit_import_worker_main(int argc, char **argv);
+
 /* ------------------------------------------------------------------- image */
 
 typedef struct oit_image {
@@ -144,6 +170,52 @@ typedef struct oit_image_diff {
 /* Images of different sizes are OIT_E_INPUT. Alpha is ignored. */
 oit_status oit_image_compare(const oit_image *a, const oit_image *b, int tolerance,
                              oit_image_diff *out, oit_error *err);
+
+/* ------------------------------------------------------------------- files */
+/* atomic_file.c. WHAT names the file in the user's words (a flag such as
+ * "--model"); it may be NULL or "". */
+
+/* Inputs must be regular files: a FIFO, a device (/dev/zero), a directory or
+ * a socket is OIT_E_INPUT "WHAT PATH: not a regular file (a FIFO)", as is a
+ * file that does not exist or cannot be opened ("WHAT PATH: cannot open:
+ * <strerror>"; without WHAT "PATH: ...").
+ * Nothing blocks: the file is opened with O_NONBLOCK and checked with fstat. */
+oit_status oit_check_regular_file(const char *path, const char *what, oit_error *err);
+/* The same check, and the open file for reading ("rb", blocking again) in *out. */
+oit_status oit_open_regular_file(const char *path, const char *what, FILE **out, oit_error *err);
+
+/* Outputs are replaced atomically: written to PATH.tmp.XXXXXX beside PATH
+ * (beside a symbolic link's target), flushed, fsync'ed, closed and renamed
+ * over PATH, so a failed write (a full disk) leaves the previous PATH byte
+ * for byte and no temporary file. A PATH that exists and is not a regular
+ * file (/dev/null, /dev/full, a pipe) is written in place. The file keeps
+ * the previous file's permissions, else 0666 less the umask; a read-only
+ * PATH is refused, not replaced. Failing to create is OIT_E_INPUT, failing to
+ * write OIT_E_RUNTIME; both say "WHAT: cannot write PATH: <strerror of the
+ * first failed write>" (without WHAT "PATH: cannot write: ..."; with
+ * OIT_ATOMIC_APPEND "cannot append to PATH"). */
+typedef struct oit_atomic_file oit_atomic_file;
+#define OIT_ATOMIC_APPEND 1 /* start with a copy of the previous contents */
+oit_status oit_atomic_file_open(const char *path, const char *what, int flags, oit_atomic_file **out,
+                                oit_error *err);
+/* Where to write; every write's error is kept (the first errno is reported). */
+FILE *oit_atomic_file_stream(oit_atomic_file *file);
+/* OIT_ATOMIC_APPEND: the bytes of previous contents copied (0 for a new file). */
+long long oit_atomic_file_kept_bytes(const oit_atomic_file *file);
+/* True once a write failed. */
+bool oit_atomic_file_failed(const oit_atomic_file *file);
+/* Flush, fsync and close without renaming yet (to commit several files
+ * together: finish them all, then commit). On failure, abort the file. */
+oit_status oit_atomic_file_finish(oit_atomic_file *file, oit_error *err);
+/* Finish (if not done) and rename over the target; frees file, which is
+ * aborted on failure. */
+oit_status oit_atomic_file_commit(oit_atomic_file *file, oit_error *err);
+/* Give up: remove the temporary file (PATH stays as it was) and free file
+ * (NULL is allowed). Returns status. With err and reason, err gets "cannot
+ * write" with the first failed write's strerror, else reason; with reason
+ * NULL, err is left as it is. */
+oit_status oit_atomic_file_abort(oit_atomic_file *file, oit_status status, const char *reason,
+                                 oit_error *err);
 
 /* ---------------------------------------------------------- frame settings */
 
@@ -233,7 +305,9 @@ typedef enum oit_focus_shape {
 
 typedef struct oit_local_modulation {
     /* per-component opacity multipliers in [0, 1], component_count of them, or
-     * NULL for all 1; 0 hides the part: its fragments are never stored */
+     * NULL for all 1; 0 hides the part: its fragments are never stored.
+     * Parts at or past component_count keep 1. Any number of parts: the GPU
+     * algorithms read them from a buffer (oit_scene.part_alpha_buffer). */
     const float *component_alpha;
     uint32_t component_count;
     oit_focus_shape focus_shape;
@@ -245,8 +319,9 @@ typedef struct oit_local_modulation {
     float focus_default_region;
 } oit_local_modulation;
 
-/* The most components --component-alpha can address (per-frame uniforms,
- * OIT_LOCAL_MAX_COMPONENTS in oit_shared.h). */
+/* Obsolete: per-part opacity has no limit any more (docs/modulation.md). Kept
+ * only because tests/app/test_parts_panel.cpp still names it; remove it with
+ * that test's check of the parts note. */
 #define OIT_LOCAL_COMPONENT_LIMIT 1024
 
 /* Progress of one frame, for shells that render off their GUI thread (the
@@ -343,7 +418,16 @@ typedef struct oit_stats {
     double cpu_ms; /* wall time of the whole frame, including waiting for the GPU */
     int stage_count;
     oit_stage_time stages[OIT_MAX_STAGES];
-    uint64_t memory_bytes;    /* GPU (or CPU for the reference) memory the algorithm holds */
+    /* Memory figures come from the allocations, never from a formula: GPU
+     * algorithms record every buffer and texture they allocate in one tracker
+     * (gl_util.h, oit_gl_memory), the reference sums its arrays' sizes.
+     * tests/memory_figures.sh checks memory_bytes against the GL objects
+     * counted without the tracker (oit render --json, "gl_allocated_bytes"). */
+    uint64_t memory_bytes;    /* what the algorithm holds after the frame: GPU buffers and
+                                 textures (CPU arrays for the reference), the RGBA8 output,
+                                 fragment pools at their capacity (headroom included),
+                                 counters, parameters, per-triangle tables; not the scene's
+                                 buffers (oit_scene.gpu_bytes) */
     int64_t fragments;        /* fragments stored; -1 where not applicable */
     int64_t max_list;         /* longest per-pixel list; -1 where not applicable */
     int64_t layers;           /* layers peeled; -1 where not applicable */
@@ -356,8 +440,13 @@ typedef struct oit_stats {
     double psi;       /* share of non-empty pixels whose list is longer than 2/3 of the longest */
     int histogram_bins; /* 0 when no histogram: bin i counts pixels with list length i, the last bin the rest */
     uint64_t list_histogram[OIT_HISTOGRAM_BINS];
-    double bytes_per_fragment; /* ib / ll: every per-fragment buffer, ping-pong copies included */
-    double bytes_per_pixel;
+    double bytes_per_fragment; /* ll, ib, reference: the bytes of the buffers sized by the fragment
+                                  pool (every per-fragment buffer, ping-pong copies included) /
+                                  the pool's capacity in fragments; capacity x it is the pool's
+                                  share of memory_bytes. -1 where there is no pool */
+    double bytes_per_pixel;    /* the bytes of the allocations sized by the image (output
+                                  included) / width x height; the reference's offset array has
+                                  one entry more than pixels, hence a fraction. -1: n/a */
     double neighbours_four_share;           /* ib: fragments with all four neighbours */
     double neighbours_symmetric_share;      /* ib: links whose partner links back */
     double neighbours_same_component_share; /* ib: links that stay on the same component */
@@ -383,6 +472,11 @@ typedef struct oit_algorithm_config {
     bool debug;                 /* check GL errors after every stage */
     bool neighbour_quality;     /* ib: measure the neighbour links every frame (a pass of its
                                    own; the neighbours_* stats are n/a without it) */
+    /* tests only (0 normally): ll's and ib's fill start their fragment counter
+     * here, as if that many fragments had come before the frame's, so the
+     * 32-bit counter's limits (OIT_MAX_FRAME_FRAGMENTS) are reached without
+     * 2^32 fragments; such a frame fails or needs that much more pool */
+    uint32_t fragment_counter_start;
 } oit_algorithm_config;
 
 void oit_algorithm_config_defaults(oit_algorithm_config *config);
@@ -395,6 +489,12 @@ typedef struct oit_scene {
     unsigned vertex_buffers[4]; /* position, normal, component, welded id */
     unsigned index_buffer;
     unsigned component_buffer;  /* SSBO at OIT_SSBO_COMPONENTS */
+    /* per-part opacity: part_count floats (the model's components, at least 1),
+     * rewritten every frame from oit_local_modulation.component_alpha by
+     * oit_gl_bind_part_alpha, read through the buffer texture at
+     * OIT_TEXUNIT_LOCAL_PART_ALPHA (common/local_modulation.glsl) */
+    unsigned part_alpha_buffer, part_alpha_texture;
+    uint32_t part_count;
     unsigned triangle_reach_buffer; /* oit_model.triangle_reach, one float per triangle */
     /* oit_model.planes and .triangle_plane, and buffer textures over them
      * (OIT_TEXUNIT_PLANES, OIT_TEXUNIT_TRIANGLE_PLANES: common/canonical_depth.glsl) */

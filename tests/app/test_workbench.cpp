@@ -374,6 +374,14 @@ private slots:
         window->load_model(work + "/missing.obj");
         QVERIFY(failed.wait(30000));
         QCOMPARE(window->model(), before);
+        // a file that aborts the importer (tests/data/malformed): it runs in a
+        // contained worker, so the window says so and keeps its model
+        window->load_model(MainWindow::source_root() + "/tests/data/malformed/ply_triangulate_abort.ply");
+        QVERIFY(failed.wait(60000));
+        QVERIFY2(window->last_error().contains("ply_triangulate_abort.ply: the importer crashed (signal 6"),
+                 qPrintable(window->last_error()));
+        QCOMPARE(window->model(), before);
+        QCOMPARE(compare(frame(), image, 0).max, 0);
     }
 
     void import_warnings_are_shown()
@@ -845,6 +853,9 @@ private slots:
 
 int main(int argc, char **argv)
 {
+    // the window imports models by running this program as a contained worker
+    if (oit_import_worker_requested(argc, argv))
+        return oit_import_worker_main(argc, argv);
     QApplication app(argc, argv);
     QApplication::setOrganizationName("oit-workbench-test");
     QApplication::setApplicationName("oit-workbench-test");

@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""fuzz_import.py OIT WORK [--count N] [--seed S] [--keep DIR]: a seeded mutation
+fuzzer over small OBJ, PLY, STL and GLB files.
+
+Every mutant goes through `oit info --model MUTANT`, which imports it in a
+contained worker process (src/core/model_contained.c). Each run must end in
+exit 0, or exit 2 with exactly one `oit: error:` line naming the file (import
+warnings, `oit: warning:` lines, may come before it): never a signal, never
+another status, never a timeout. The mutants are the same for a given seed,
+so a failure is reproducible; --keep DIR saves the failing ones.
+
+Mutations: flip bytes, overwrite a number with a huge, negative or
+non-numeric one, delete, duplicate or insert a range, cut the file short.
+"""
+import argparse
+import os
+import random
+import re
+import shutil
+import subprocess
+import sys
+
+ASSIMP_MODELS = "/usr/share/assimp/models"
+SEEDS = [
+    "PLY/cube.ply",
+    "PLY/cube_binary.ply",
+    "PLY/cube_uv.ply",
+    "PLY/float-color.ply",
+    "STL/triangle.stl",
+    "STL/triangle_with_two_solids.stl",
+    "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
+    "OBJ/box.obj",
+]
+# an OBJ of our own: groups, a material library that is missing, faces with normals
+OWN_OBJ = b"""# two parts
+mtllib parts.mtl
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+vn 0 0 1
+o front
+usemtl red
+f 1//1 2//1 3//1
+f 1//1 3//1 4//1
+o side
+f 2 6 3
+f 5 6 2 1
+"""
+NUMBER = re.compile(rb"-?\d+(\.\d+)?")
+HUGE = [b"99999999999", b"4294967295", b"2147483648", b"-1", b"-2147483649", b"nan", b"1e39", b"0", b"x"]
+
+
+def mutate(data: bytes, rng: random.Random) -> bytes:
+    data = bytearray(data)
+    for _ in range(rng.randint(1, 3)):
+        kind = rng.randrange(6)
+        if not data:
+            break
+        if kind == 0:  # flip some bytes
+            for _ in range(rng.randint(1, 8)):
+                i = rng.randrange(len(data))
+                data[i] = rng.randrange(256)
+        elif kind == 1:  # a number becomes a hostile one
+            numbers = list(NUMBER.finditer(bytes(data)))
+            if numbers:
+                m = rng.choice(numbers)
+                data[m.start():m.end()] = rng.choice(HUGE)
+        elif kind == 2:  # delete a range
+            i = rng.randrange(len(data))
+            del data[i:i + rng.randint(1, 64)]
+        elif kind == 3:  # duplicate a range
+            i = rng.randrange(len(data))
+            piece = data[i:i + rng.randint(1, 64)]
+            j = rng.randrange(len(data) + 1)
+            data[j:j] = piece
+        elif kind == 4:  # insert random bytes
+            j = rng.randrange(len(data) + 1)
+            data[j:j] = bytes(rng.randrange(256) for _ in range(rng.randint(1, 16)))
+        else:  # cut short
+            del data[rng.randrange(len(data)):]
+    return bytes(data)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("oit")
+    parser.add_argument("work")
+    parser.add_argument("--count", type=int, default=240)
+    parser.add_argument("--seed", type=int, default=20261201)
+    parser.add_argument("--keep")
+    parser.add_argument("--timeout", type=float, default=60.0)
+    args = parser.parse_args()
+
+    seeds = []
+    for relative in SEEDS:
+        path = os.path.join(ASSIMP_MODELS, relative)
+        if os.path.isfile(path):
+            with open(path, "rb") as f:
+                seeds.append((os.path.splitext(path)[1].lower(), f.read()))
+    seeds.append((".obj", OWN_OBJ))
+    if len(seeds) < 4:
+        print(f"fuzz_import: too few seed files under {ASSIMP_MODELS} (Debian: assimp-testmodels)", file=sys.stderr)
+        return 1
+
+    shutil.rmtree(args.work, ignore_errors=True)
+    os.makedirs(args.work)
+    rng = random.Random(args.seed)
+    outcomes = {"ok": 0, "error": 0}
+    failures = []
+    for n in range(args.count):
+        extension, data = seeds[n % len(seeds)]
+        mutant = os.path.join(args.work, f"mutant_{n:04d}{extension}")
+        with open(mutant, "wb") as f:
+            f.write(mutate(data, rng))
+        try:
+            run = subprocess.run([args.oit, "info", "--model", mutant], capture_output=True,
+                                 timeout=args.timeout)
+        except subprocess.TimeoutExpired:
+            failures.append((mutant, f"no answer within {args.timeout:.0f} s"))
+            continue
+        lines = run.stderr.decode("utf-8", "replace").splitlines()
+        errors = [line for line in lines if line.startswith("oit: error:")]
+        others = [line for line in lines if not line.startswith(("oit: error:", "oit: warning:"))]
+        if run.returncode == 0 and not errors and not others:
+            outcomes["ok"] += 1
+        elif (run.returncode == 2 and len(errors) == 1 and not others and
+              os.path.basename(mutant) in errors[0]):
+            outcomes["error"] += 1
+        else:
+            failures.append((mutant, f"exit {run.returncode}, stderr {lines[-3:]!r}"))
+        os.remove(mutant) if not failures or failures[-1][0] != mutant else None
+    print(f"fuzz_import: {args.count} mutants (seed {args.seed}): {outcomes['ok']} loaded, "
+          f"{outcomes['error']} refused with one line, {len(failures)} broke the contract")
+    for mutant, why in failures[:10]:
+        print(f"  {mutant}: {why}", file=sys.stderr)
+        if args.keep:
+            os.makedirs(args.keep, exist_ok=True)
+            shutil.copy(mutant, args.keep)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
