@@ -2,18 +2,19 @@
 # run-all.sh: the whole test suite. Builds and tests the project twice:
 # a release build, then an AddressSanitizer + UndefinedBehaviorSanitizer build.
 # Both run every test on both headless back ends (EGL surfaceless, OSMesa).
+# Both build with -DOIT_WERROR=ON: a compiler warning fails the run.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 jobs=$(nproc)
 
 echo "== release build"
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOIT_WERROR=ON >/dev/null
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
 echo "== sanitizer build (ASan + UBSan)"
-cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DOIT_SANITIZE=ON >/dev/null
+cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DOIT_SANITIZE=ON -DOIT_WERROR=ON >/dev/null
 cmake --build build-sanitize -j "$jobs"
 # Leaks inside Mesa's own libraries (llvmpipe, LLVM, the EGL/OSMesa drivers)
 # are suppressed, and only those: see tests/lsan.supp.

@@ -1,6 +1,7 @@
 // local_modulation.glsl: the local opacity modulations every algorithm applies
 // per fragment (docs/modulation.md), the GLSL twin of src/core/local_modulation.c.
-// Uniforms are set by oit_gl_set_frame_uniforms() (gl_util.c) by these names.
+// Uniforms are set by oit_gl_set_frame_uniforms() (gl_util.c) by these names;
+// the per-part opacity is a buffer texture, filled by oit_gl_bind_part_alpha().
 //   alpha' = alpha * component_alpha[component] * saturate(d / focus_region)
 // with d the distance, in model coordinates, to the focus point, to the focus
 // plane, or to the focus box (0 inside it). alpha' == 0: the fragment is never stored.
@@ -15,9 +16,10 @@ layout(location = OIT_UNIFORM_LOCAL_FOCUS_B) uniform vec4 u_local_focus_b; // bo
 layout(location = OIT_UNIFORM_LOCAL_FOCUS_REGION) uniform float u_local_focus_region;
 layout(location = OIT_UNIFORM_LOCAL_CONTRAST) uniform float u_local_contrast;
 layout(location = OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW) uniform mat4 u_local_inverse_modelview;
-layout(location = OIT_UNIFORM_LOCAL_COMPONENT_COUNT) uniform int u_local_component_count;
-layout(location = OIT_UNIFORM_LOCAL_COMPONENT_ALPHA)
-uniform vec4 u_local_component_alpha[OIT_LOCAL_MAX_COMPONENTS / 4];
+// Per-part opacity: one float per part of the model, every part (1 where the
+// frame sets none; no limit on the number of parts). The one place the GLSL
+// side reads oit_local_modulation.component_alpha.
+layout(binding = OIT_TEXUNIT_LOCAL_PART_ALPHA) uniform samplerBuffer u_local_part_alpha;
 
 layout(location = OIT_UNIFORM_LOCAL_INVERSE_PROJECTION) uniform mat4 u_local_inverse_projection;
 layout(location = OIT_UNIFORM_DISTANCE_MODE) uniform int u_distance_mode; // -1: off
@@ -65,8 +67,8 @@ float oit_focus_distance(vec3 p)
 // focus factor at eye_position (eye space; the shapes are in model space).
 float oit_local_alpha(float alpha, uint component, vec3 eye_position)
 {
-    if (int(component) < u_local_component_count)
-        alpha *= u_local_component_alpha[component >> 2u][component & 3u];
+    if (component < uint(textureSize(u_local_part_alpha))) // past the end texelFetch gives 0
+        alpha *= texelFetch(u_local_part_alpha, int(component)).x;
     if (u_local_focus_shape != OIT_FOCUS_SHAPE_NONE && alpha > 0.0) {
         vec3 p = (u_local_inverse_modelview * vec4(eye_position, 1.0)).xyz;
         alpha *= clamp(oit_focus_distance(p) / u_local_focus_region, 0.0, 1.0);

@@ -56,7 +56,15 @@
 #define OIT_LL_HISTOGRAM_BINS 65     /* == OIT_HISTOGRAM_BINS in oit.h: lengths 0..63, then 64 or more */
 /* distance modulation: floatBitsToUint of the frame's largest distance */
 #define OIT_LL_COUNTER_MAX_DISTANCE 70
-#define OIT_LL_COUNTER_COUNT 71
+/* times the 32-bit fragment counter wrapped past 0xFFFFFFFF in the fill: the
+ * high word of the frame's 64-bit fragment count (a frame past
+ * OIT_MAX_FRAME_FRAGMENTS is an error, never a wrapped index) */
+#define OIT_LL_COUNTER_FRAGMENTS_WRAPS 71
+/* fragments the sort walked, summed over pixels: fewer than were stored means
+ * a shader loop was cut short (llvmpipe ends a loop after 65535 iterations),
+ * and the frame is an error, not an image missing fragments */
+#define OIT_LL_COUNTER_SORTED_FRAGMENTS 72
+#define OIT_LL_COUNTER_COUNT 73
 /* ll compose: what it shows (the numbers of oit_view) and its parameter (int) */
 #define OIT_LL_VIEW_COLOUR 0
 #define OIT_LL_VIEW_HEATMAP 1
@@ -86,6 +94,14 @@
 /* ---- limits ---- */
 /* the end-of-list marker in list heads and next pointers */
 #define OIT_LIST_END 0xFFFFFFFFu
+/* ll, ib: the most fragments one frame may have: node indices are 32-bit and
+ * OIT_LIST_END is reserved (the fill counts in 64 bits, see
+ * OIT_LL_COUNTER_FRAGMENTS_WRAPS, so a frame past it is an error) */
+#define OIT_MAX_FRAME_FRAGMENTS 0xFFFFFFFFu
+/* every GPU algorithm: the widest and tallest image (oit_gl_output_resize), so
+ * that per-pixel counters (pixels with fragments, histogram bins) stay below
+ * 2^32 and ib's epsilon queue can pack a pixel as x | y << 16 */
+#define OIT_MAX_IMAGE_SIDE 65535
 /* local-array sort: the longest list that can be sorted in registers */
 #define OIT_LOCAL_ARRAY_CAPACITY 64
 /* peeling: the most layers one frame may peel (each is one timed stage) */
@@ -109,11 +125,11 @@
 #define OIT_UNIFORM_LOCAL_FOCUS_REGION 10
 #define OIT_UNIFORM_LOCAL_CONTRAST 11
 #define OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW 12
-/* per-component opacity: how many (int, 0 = none) and the values, 4 per vec4
- * (OIT_LOCAL_MAX_COMPONENTS / 4 locations from OIT_UNIFORM_LOCAL_COMPONENT_ALPHA) */
-#define OIT_UNIFORM_LOCAL_COMPONENT_COUNT 48
-#define OIT_UNIFORM_LOCAL_COMPONENT_ALPHA 64
-#define OIT_LOCAL_MAX_COMPONENTS 1024
+/* per-part opacity (oit_local_modulation.component_alpha): no uniform, a buffer
+ * texture (samplerBuffer, r32f) with one float per part of the model, every
+ * part (1 where the frame sets none), filled each frame by
+ * oit_gl_bind_part_alpha (gl_util.c) and read by oit_local_alpha */
+#define OIT_TEXUNIT_LOCAL_PART_ALPHA 23
 /* distance along the ray (dp, ddp, ll; ib has its own): the inverse projection
  * (mat4, 52..55), the distance mode (int: OIT_IB_DISTANCE_*, -1 when the frame's
  * modulation is not distance), skip k (int) and the normalising length (float:
@@ -220,9 +236,19 @@
 #define OIT_IB_COUNTER_EPSILON_DISPATCH 76
 #define OIT_IB_ITEMS_PER_GROUP 64      /* local size of the per-item passes */
 #define OIT_IB_MAX_GROUPS_X 65535      /* the dispatch limit every GL guarantees per axis */
-#define OIT_IB_COUNTER_COUNT 79
+/* high words (times the 32-bit counter wrapped) of 64-bit counts: the fill's
+ * fragments (as OIT_LL_COUNTER_FRAGMENTS_WRAPS) and neighbour_stats' link
+ * counts, which reach 4 per fragment */
+#define OIT_IB_COUNTER_FRAGMENTS_WRAPS 79
+#define OIT_IB_COUNTER_LINKS_WRAPS 80
+#define OIT_IB_COUNTER_SYMMETRIC_LINKS_WRAPS 81
+#define OIT_IB_COUNTER_SAME_COMPONENT_LINKS_WRAPS 82
+#define OIT_IB_COUNTER_COUNT 83
 /* a neighbour slot without a neighbour */
 #define OIT_IB_NO_NEIGHBOUR 65535
+/* the longest run (a pixel's list) whose layers a 16-bit link addresses:
+ * layers 0..65534, 65535 is OIT_IB_NO_NEIGHBOUR; a longer one is an error */
+#define OIT_IB_MAX_RUN_LENGTH 65535
 /* ib passes: the capacity of the fill pool (uint), the pass parameter (int:
  * ping-pong source copy, blur direction) */
 #define OIT_UNIFORM_IB_POOL_CAPACITY 16

@@ -20,7 +20,9 @@ void main()
     if (oit_fragment_alpha() <= 0.0)
         return; // hidden parts (opacity 0, local modulation included) are not stored
     uint node = atomicAdd(ib_counters[OIT_FRAME_COUNTER_FRAGMENTS], 1u);
-    if (node >= pool_capacity)
+    if (node == 0xFFFFFFFFu) // the counter wrapped to 0: its high word (the 64-bit count)
+        atomicAdd(ib_counters[OIT_IB_COUNTER_FRAGMENTS_WRAPS], 1u);
+    if (node >= pool_capacity) // (capacity < 0xFFFFFFFF: the wrapping fragment stores nothing)
         return;
     uint next = imageAtomicExchange(ib_heads, ivec2(gl_FragCoord.xy), node);
     ib_nodes[node] = uvec4(floatBitsToUint(oit_canonical_depth()), uint(gl_PrimitiveID),

@@ -11,6 +11,14 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
+// counters[low] += value, carrying into counters[high] when the low word wraps
+void add64(int low, int high, uint value)
+{
+    uint before = atomicAdd(ib_counters[low], value);
+    if (before + value < before)
+        atomicAdd(ib_counters[high], 1u);
+}
+
 void main()
 {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -47,8 +55,9 @@ void main()
         if (count == 4)
             ++four;
     }
-    atomicAdd(ib_counters[OIT_IB_COUNTER_FOUR_NEIGHBOURS], four);
-    atomicAdd(ib_counters[OIT_IB_COUNTER_LINKS], links);
-    atomicAdd(ib_counters[OIT_IB_COUNTER_SYMMETRIC_LINKS], symmetric);
-    atomicAdd(ib_counters[OIT_IB_COUNTER_SAME_COMPONENT_LINKS], same_component);
+    atomicAdd(ib_counters[OIT_IB_COUNTER_FOUR_NEIGHBOURS], four); // <= fragments < 2^32
+    // up to 4 links per fragment: 64-bit counts (low word, and its wraps)
+    add64(OIT_IB_COUNTER_LINKS, OIT_IB_COUNTER_LINKS_WRAPS, links);
+    add64(OIT_IB_COUNTER_SYMMETRIC_LINKS, OIT_IB_COUNTER_SYMMETRIC_LINKS_WRAPS, symmetric);
+    add64(OIT_IB_COUNTER_SAME_COMPONENT_LINKS, OIT_IB_COUNTER_SAME_COMPONENT_LINKS_WRAPS, same_component);
 }

@@ -21,7 +21,9 @@ void main()
     if (u_distance_mode >= 0) // distance modulation: compose sets alpha; keep the local factor
         colour.a = oit_local_alpha(1.0, v_component, v_eye_position);
     uint node = atomicAdd(ll_counters[OIT_FRAME_COUNTER_FRAGMENTS], 1u);
-    if (node >= pool_capacity)
+    if (node == 0xFFFFFFFFu) // the counter wrapped to 0: its high word, so the C side sees
+        atomicAdd(ll_counters[OIT_LL_COUNTER_FRAGMENTS_WRAPS], 1u); // the 64-bit count
+    if (node >= pool_capacity) // (capacity < 0xFFFFFFFF: the wrapping fragment stores nothing)
         return;
     ll_nodes[node] = ll_pack_node(colour, oit_canonical_depth(), uint(gl_PrimitiveID));
     ll_next[node] = imageAtomicExchange(ll_heads, ivec2(gl_FragCoord.xy), node);

@@ -105,6 +105,7 @@ void ll_finish_sort(ivec2 pixel, uint sorted_head, uint length)
 {
     imageStore(ll_heads, pixel, uvec4(sorted_head, 0u, 0u, 0u));
     if (length > 0u) {
+        atomicAdd(ll_counters[OIT_LL_COUNTER_SORTED_FRAGMENTS], length); // checked against the fill
         atomicMax(ll_counters[OIT_FRAME_COUNTER_MAX_LIST], length);
         atomicAdd(ll_counters[OIT_FRAME_COUNTER_NONEMPTY_PIXELS], 1u);
         uint bin = min(length, uint(OIT_LL_HISTOGRAM_BINS - 1));

@@ -579,11 +579,7 @@ void PartsPanel::set_model(const oit_model *model, const std::vector<float> &alp
     const bool had_selection = view_->selectionModel()->hasSelection();
     model_->set_model(model, alpha, visible);
     const int count = model_->part_count();
-    QString note = QStringLiteral("%1 parts; checkbox: visible, slider: opacity (--component-alpha).").arg(count);
-    if (count > OIT_LOCAL_COMPONENT_LIMIT)
-        note += QStringLiteral(" On the GPU, per-part opacity (and hiding) reaches only the first %1 parts "
-                               "(--component-alpha's limit).")
-                    .arg(OIT_LOCAL_COMPONENT_LIMIT);
+    const QString note = QStringLiteral("%1 parts; checkbox: visible, slider: opacity (--component-alpha).").arg(count);
     note_->setText(note);
     update_buttons();
     if (had_selection)

@@ -253,14 +253,7 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
                             model->component_count > NAMES_LISTED ? ", ..." : "",
                             model->component_count - 1);
         }
-        if (c >= OIT_LOCAL_COMPONENT_LIMIT) {
-            free(alpha);
-            return oit_fail(err, OIT_E_INPUT,
-                            "%s %s: component %u is past the %d components the GPU algorithms can "
-                            "address",
-                            setting->flag, setting->name, c, OIT_LOCAL_COMPONENT_LIMIT);
-        }
-        alpha[c] = setting->alpha; /* later flags win */
+        alpha[c] = setting->alpha; /* later flags win; any part of the model (no GPU limit) */
     }
     options.resolved_alpha = alpha;
     local->component_alpha = alpha;

@@ -126,6 +126,8 @@ static const char render_help[] =
     "  --sort VARIANT         ll: insertion (in place, default) | array (local array of 64)\n"
     "  --fragment-pool N      ll, ib: initial fragment pool capacity (default: automatic); it grows\n"
     "                         as needed\n"
+    "  --fragment-counter-start N  ll, ib (tests): start the fill's 32-bit fragment counter at N,\n"
+    "                         0..4294967295 (default 0), to reach its limit without 2^32 fragments\n"
     "  --max-layers N         dp, ddp: peel at most N layers, 1..1000000 (default: no cap, peel\n"
     "                         until nothing is left); a frame the cap cuts short gets a warning\n"
     "                         and \"truncated\": true\n"

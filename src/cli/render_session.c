@@ -287,6 +287,16 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
             return -1;
         }
         o->config.initial_fragment_capacity = (uint64_t)capacity;
+    } else if (strcmp(flag, "--fragment-counter-start") == 0) {
+        NEED_VALUE();
+        long start;
+        if (!parse_int(value, 0, 4294967295L, &start)) {
+            *status = oit_fail(err, OIT_E_INPUT,
+                               "--fragment-counter-start must be a whole number in [0, 4294967295], got '%s'",
+                               value);
+            return -1;
+        }
+        o->config.fragment_counter_start = (uint32_t)start;
     } else if (strcmp(flag, "--frames") == 0) {
         NEED_VALUE();
         long frames;

@@ -114,6 +114,7 @@ static oit_status blend_render(oit_algorithm *alg, const oit_scene *scene,
     alg->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&alg->memory, OIT_GL_MEMORY_PIXELS) /
                                  ((double)frame->width * (double)frame->height);
     oit_timer_frame_begin(&alg->timer, frame);
+    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
 
     oit_timer_stage_begin(&alg->timer, "draw");
     glBindFramebuffer(GL_FRAMEBUFFER, alg->accumulation_framebuffer);

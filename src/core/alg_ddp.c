@@ -525,6 +525,7 @@ static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,
     oit_status status = OIT_OK;
     oit_stats_reset(&s->stats);
     oit_timer_frame_begin(&s->timer, frame);
+    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
 
     glViewport(0, 0, s->width, s->height);
     glDisable(GL_CULL_FACE); /* both sides of every surface are layers */

@@ -12,7 +12,11 @@
  *     nodes        uvec4: the fill's node (depth, triangle, normal, next); after
  *                  the sort the two ping-pong copies of the transparency fields
  *     run core     uvec4: depth, triangle, octahedral normal, curvature | distance
- *     run links    uvec2: the four neighbours' layer indices, 16 bit each
+ *     run links    uvec2: the four neighbours' layer indices, 16 bit each (so a
+ *                  run may hold OIT_IB_MAX_RUN_LENGTH fragments; a longer one
+ *                  fails the frame, as do a fill count past 32 bits and a sort
+ *                  that walked fewer fragments than the fill stored:
+ *                  docs/algorithms.md, "Limits")
  *   The triangle's vertices, welded ids, component and eye-space plane come from
  *   the scene's own index and vertex buffers, bound as storage buffers.
  *
@@ -610,7 +614,8 @@ static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_fra
     oit_timer_stage_begin(&s->timer, retry ? "clear_retry" : "clear");
     const GLuint list_end = OIT_LIST_END;
     glClearTexImage(s->head_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
-    const GLuint zeros[OIT_IB_COUNTER_COUNT] = {0};
+    GLuint zeros[OIT_IB_COUNTER_COUNT] = {0};
+    zeros[OIT_FRAME_COUNTER_FRAGMENTS] = s->config.fragment_counter_start; /* 0 but in tests */
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zeros, zeros);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
@@ -648,13 +653,18 @@ static void ib_fill_stats(const ib_state *s, const GLuint *counters, int retries
     if (!s->config.neighbour_quality)
         return; /* the neighbours_* figures stay n/a */
     GLuint fragments = counters[OIT_FRAME_COUNTER_FRAGMENTS];
-    GLuint links = counters[OIT_IB_COUNTER_LINKS];
+    /* up to 4 links per fragment: 64-bit counts (neighbour_stats.comp) */
+#define IB_COUNT64(low, high) ((uint64_t)counters[high] << 32 | counters[low])
+    uint64_t links = IB_COUNT64(OIT_IB_COUNTER_LINKS, OIT_IB_COUNTER_LINKS_WRAPS);
+    uint64_t symmetric =
+        IB_COUNT64(OIT_IB_COUNTER_SYMMETRIC_LINKS, OIT_IB_COUNTER_SYMMETRIC_LINKS_WRAPS);
+    uint64_t same_component = IB_COUNT64(OIT_IB_COUNTER_SAME_COMPONENT_LINKS,
+                                         OIT_IB_COUNTER_SAME_COMPONENT_LINKS_WRAPS);
+#undef IB_COUNT64
     stats->neighbours_four_share =
         fragments ? (double)counters[OIT_IB_COUNTER_FOUR_NEIGHBOURS] / fragments : 0.0;
-    stats->neighbours_symmetric_share =
-        links ? (double)counters[OIT_IB_COUNTER_SYMMETRIC_LINKS] / links : 0.0;
-    stats->neighbours_same_component_share =
-        links ? (double)counters[OIT_IB_COUNTER_SAME_COMPONENT_LINKS] / links : 0.0;
+    stats->neighbours_symmetric_share = links ? (double)symmetric / (double)links : 0.0;
+    stats->neighbours_same_component_share = links ? (double)same_component / (double)links : 0.0;
 }
 
 static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
@@ -681,6 +691,7 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     oit_stats stats;
     oit_stats_reset(&stats);
     oit_timer_frame_begin(&s->timer, frame);
+    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
 
     glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
     glViewport(0, 0, s->output.width, s->output.height);
@@ -694,24 +705,32 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     ib_bind(s, scene);
 
     int retries = 0;
-    GLuint needed = 0;
+    uint64_t needed = 0;
     for (;;) {
         ib_clear_and_fill(s, scene, frame, retries);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        /* the fill's 64-bit count: the counter and the times it wrapped */
+        GLuint low = 0, wraps = 0;
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
         glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_FRAME_COUNTER_FRAGMENTS * sizeof(GLuint),
-                           sizeof needed, &needed);
+                           sizeof low, &low);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_IB_COUNTER_FRAGMENTS_WRAPS * sizeof(GLuint),
+                           sizeof wraps, &wraps);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+        needed = (uint64_t)wraps << 32 | low;
         status = ib_check(s, "ib fill", err);
+        if (status != OIT_OK)
+            goto failed;
+        status = oit_gl_check_frame_fragments("ib", needed, s->config.fragment_counter_start, err);
         if (status != OIT_OK)
             goto failed;
         if (needed <= s->pool_capacity)
             break;
         if (retries + 1 >= IB_MAX_FILLS) {
             status = oit_fail(err, OIT_E_RUNTIME,
-                              "ib: the frame still needs %u fragments after growing the pool to "
+                              "ib: the frame still needs %llu fragments after growing the pool to "
                               "%llu",
-                              (unsigned)needed, (unsigned long long)s->pool_capacity);
+                              (unsigned long long)needed, (unsigned long long)s->pool_capacity);
             goto failed;
         }
         status = ib_grow_pool(s, needed, err);
@@ -788,6 +807,21 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     glUseProgram(0);
     oit_timer_frame_end(&s->timer, &stats);
+    /* the runs hold what the sort walked; the fill stored nodes
+     * fragment_counter_start..needed - 1 (0 but in tests) */
+    status = oit_gl_check_sorted_fragments("ib", needed - s->config.fragment_counter_start,
+                                           counters[OIT_IB_COUNTER_RUN_ALLOCATOR], err);
+    if (status != OIT_OK)
+        return status;
+    /* A run longer than a 16-bit link can address: its layers past 65534 had
+     * no neighbour links and the search ignored them, so the frame is refused.
+     * Checked here, where the counters are read anyway: the passes in between
+     * stay inside the runs (a link is below min(length, 65535)). */
+    if (counters[OIT_FRAME_COUNTER_MAX_LIST] > OIT_IB_MAX_RUN_LENGTH)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ib: a pixel's list has %u fragments, more than the %d a neighbour link "
+                        "can address (16-bit layer indices)",
+                        (unsigned)counters[OIT_FRAME_COUNTER_MAX_LIST], OIT_IB_MAX_RUN_LENGTH);
     ib_fill_stats(s, counters, retries, &stats);
     s->last_stats = stats;
     return oit_gl_check("ib render", err);

@@ -7,8 +7,9 @@
  *   next          uint per node, OIT_SSBO_FRAGMENT_NEXT: the list as the fill built it
  *   sorted next   uint per node, OIT_SSBO_FRAGMENT_SORTED_NEXT: the list front to back
  *   counters      uint[OIT_LL_COUNTER_COUNT], OIT_SSBO_FRAME_COUNTERS: fragments
- *                 needed, longest list, non-empty pixels, pixels the local array
- *                 could not hold, psi pixels, list-length histogram
+ *                 needed (and the times that counter wrapped), longest list,
+ *                 non-empty pixels, pixels the local array could not hold, psi
+ *                 pixels, list-length histogram, fragments sorted
  * The nodes, next and sorted next buffers form the fragment pool; it has room
  * for pool_capacity nodes.
  *
@@ -21,7 +22,9 @@
  *            pass it is the number of fragments the frame needs: when that is
  *            more than the pool holds, the pool grows (x1.25, within the memory
  *            budget) and clear + fill run again. No fragment is ever dropped:
- *            a frame either has all of them or fails with a message.
+ *            a frame either has all of them or fails with a message. The count
+ *            is 64-bit (the counter and its wraps): past OIT_MAX_FRAME_FRAGMENTS
+ *            (32-bit node indices) the frame fails (docs/algorithms.md, Limits).
  *   sort     full-screen pass: sorts each list by (depth, triangle index) into
  *            sorted next and writes the sorted list's first node into the head
  *            image. Afterwards heads + sorted next are the front-to-back lists;
@@ -29,7 +32,9 @@
  *            Two programs: in-place insertion sort over the lists (thesis
  *            algorithm 10), or insertion sort in a local array of
  *            OIT_LOCAL_ARRAY_CAPACITY that falls back to the in-place sort for
- *            longer lists, so every pixel stays exact.
+ *            longer lists, so every pixel stays exact. The fragments it walked
+ *            are summed: fewer than stored (a shader loop cut short, as
+ *            llvmpipe does after 65535 iterations) fails the frame.
  *   compose  full-screen pass: walks the sorted lists, composites front to back
  *            in float and writes the RGBA8 output once (or shows a buffer view:
  *            heat map, peel limit, layer).
@@ -341,7 +346,8 @@ static void ll_clear_and_fill(ll_state *s, const oit_scene *scene,
     oit_timer_stage_begin(&s->timer, retry ? "clear_retry" : "clear");
     const GLuint list_end = OIT_LIST_END;
     glClearTexImage(s->head_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
-    const GLuint zeros[OIT_LL_COUNTER_COUNT] = {0};
+    GLuint zeros[OIT_LL_COUNTER_COUNT] = {0};
+    zeros[OIT_FRAME_COUNTER_FRAGMENTS] = s->config.fragment_counter_start; /* 0 but in tests */
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zeros, zeros);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
@@ -378,6 +384,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     oit_stats stats;
     oit_stats_reset(&stats);
     oit_timer_frame_begin(&s->timer, frame);
+    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
 
     glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
     glViewport(0, 0, s->output.width, s->output.height);
@@ -390,24 +397,32 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
 
     /* Fill until the pool holds the whole frame. */
     int retries = 0;
-    GLuint needed = 0;
+    uint64_t needed = 0;
     for (;;) {
         ll_clear_and_fill(s, scene, frame, retries);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        /* the fill's 64-bit count: the counter and the times it wrapped */
+        GLuint low = 0, wraps = 0;
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
         glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_FRAME_COUNTER_FRAGMENTS * sizeof(GLuint),
-                           sizeof needed, &needed);
+                           sizeof low, &low);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_LL_COUNTER_FRAGMENTS_WRAPS * sizeof(GLuint),
+                           sizeof wraps, &wraps);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+        needed = (uint64_t)wraps << 32 | low;
         status = ll_check(s, "ll fill", err);
+        if (status != OIT_OK)
+            goto failed;
+        status = oit_gl_check_frame_fragments("ll", needed, s->config.fragment_counter_start, err);
         if (status != OIT_OK)
             goto failed;
         if (needed <= s->pool_capacity)
             break;
         if (retries + 1 >= LL_MAX_FILLS) {
             status = oit_fail(err, OIT_E_RUNTIME,
-                              "ll: the frame still needs %u fragments after growing the pool to "
+                              "ll: the frame still needs %llu fragments after growing the pool to "
                               "%llu",
-                              (unsigned)needed, (unsigned long long)s->pool_capacity);
+                              (unsigned long long)needed, (unsigned long long)s->pool_capacity);
             goto failed;
         }
         status = ll_grow_pool(s, needed, err);
@@ -468,6 +483,11 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     glUseProgram(0);
     oit_timer_frame_end(&s->timer, &stats);
+    /* the fill stored nodes fragment_counter_start..needed - 1 (0 but in tests) */
+    status = oit_gl_check_sorted_fragments("ll", needed - s->config.fragment_counter_start,
+                                           counters[OIT_LL_COUNTER_SORTED_FRAGMENTS], err);
+    if (status != OIT_OK)
+        return status;
 
     s->overflow_retries_total += retries;
     s->long_list_pixels = counters[OIT_FRAME_COUNTER_LONG_LIST_PIXELS];

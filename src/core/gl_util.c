@@ -709,6 +709,12 @@ oit_status oit_gl_output_resize(oit_gl_output *output, int width, int height, oi
 {
     if (width <= 0 || height <= 0)
         return oit_fail(err, OIT_E_INPUT, "image size %dx%d is not positive", width, height);
+    if (width > OIT_MAX_IMAGE_SIDE || height > OIT_MAX_IMAGE_SIDE)
+        return oit_fail(err, OIT_E_INPUT,
+                        "image size %dx%d: frame.width and frame.height must be within 1..%d "
+                        "(pixels are counted in 32-bit counters; ib packs a pixel's x and y in 16 "
+                        "bits each)",
+                        width, height, OIT_MAX_IMAGE_SIDE);
     if (!output->fullscreen_vertex_array)
         glGenVertexArrays(1, &output->fullscreen_vertex_array);
     if (output->framebuffer && output->width == width && output->height == height)
@@ -835,19 +841,40 @@ static void set_local_uniforms(GLuint p, const oit_local_modulation *local,
     /* auto (0): the algorithm sets the frame's largest distance once it knows it */
     if (uniform_active(p, "u_distance_norm", OIT_UNIFORM_DISTANCE_NORM))
         glUniform1f(OIT_UNIFORM_DISTANCE_NORM, m->focus_region > 0.0f ? m->focus_region : 1.0f);
-    bool has_alpha = local->component_alpha && local->component_count > 0;
-    GLint count = has_alpha ? (GLint)(local->component_count < OIT_LOCAL_MAX_COMPONENTS
-                                          ? local->component_count
-                                          : OIT_LOCAL_MAX_COMPONENTS)
-                            : 0;
-    if (uniform_active(p, "u_local_component_count", OIT_UNIFORM_LOCAL_COMPONENT_COUNT))
-        glUniform1i(OIT_UNIFORM_LOCAL_COMPONENT_COUNT, count);
-    if (count > 0 &&
-        uniform_active(p, "u_local_component_alpha", OIT_UNIFORM_LOCAL_COMPONENT_ALPHA)) {
-        float packed[OIT_LOCAL_MAX_COMPONENTS] = {0};
-        memcpy(packed, local->component_alpha, (size_t)count * sizeof packed[0]);
-        glUniform4fv(OIT_UNIFORM_LOCAL_COMPONENT_ALPHA, (count + 3) / 4, packed);
-    }
+    /* per-part opacity is no uniform: oit_gl_bind_part_alpha */
+}
+
+static void bind_part_alpha_texture(const oit_scene *scene)
+{
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_LOCAL_PART_ALPHA);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->part_alpha_texture);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+/* The one place C hands per-part opacity to the GPU. The buffer is the
+ * scene's (allocated once at upload, part_count floats, counted in
+ * oit_scene.gpu_bytes), so every algorithm drawing the scene shares it and
+ * no algorithm's memory figures change with the number of parts. */
+void oit_gl_bind_part_alpha(const oit_scene *scene, const oit_frame_settings *frame)
+{
+    if (!scene->has_gpu || !scene->part_alpha_buffer)
+        return;
+    const oit_local_modulation *local = &frame->local;
+    const uint32_t given = local->component_alpha
+                               ? (local->component_count < scene->part_count ? local->component_count
+                                                                            : scene->part_count)
+                               : 0;
+    const float one = 1.0f;
+    glBindBuffer(GL_TEXTURE_BUFFER, scene->part_alpha_buffer);
+    if (given > 0)
+        glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)given * (GLsizeiptr)sizeof(float),
+                        local->component_alpha);
+    if (given < scene->part_count) /* the parts the frame does not set: 1 */
+        glClearBufferSubData(GL_TEXTURE_BUFFER, GL_R32F, (GLintptr)given * (GLintptr)sizeof(float),
+                             (GLsizeiptr)(scene->part_count - given) * (GLsizeiptr)sizeof(float),
+                             GL_RED, GL_FLOAT, &one);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    bind_part_alpha_texture(scene);
 }
 
 void oit_gl_set_frame_uniforms(const oit_frame_settings *frame)
@@ -889,6 +916,36 @@ void oit_gl_set_frame_uniforms(const oit_frame_settings *frame)
     set_local_uniforms(p, &frame->local, frame);
 }
 
+/* --------------------------------------------------------------- limits */
+
+oit_status oit_gl_check_frame_fragments(const char *algorithm, uint64_t fragments,
+                                        uint32_t counter_start, oit_error *err)
+{
+    if (fragments <= OIT_MAX_FRAME_FRAGMENTS)
+        return OIT_OK;
+    char started[96] = "";
+    if (counter_start)
+        snprintf(started, sizeof started, " (config.fragment_counter_start %u included)",
+                 (unsigned)counter_start);
+    return oit_fail(err, OIT_E_RUNTIME,
+                    "%s: the frame has %llu fragments%s, more than the %llu its 32-bit fragment "
+                    "counter and node indices can number",
+                    algorithm, (unsigned long long)fragments, started,
+                    (unsigned long long)OIT_MAX_FRAME_FRAGMENTS);
+}
+
+oit_status oit_gl_check_sorted_fragments(const char *algorithm, uint64_t stored, uint64_t sorted,
+                                         oit_error *err)
+{
+    if (sorted == stored)
+        return OIT_OK;
+    return oit_fail(err, OIT_E_RUNTIME,
+                    "%s: the sort found %llu of the frame's %llu fragments: this GL cut a per-pixel "
+                    "shader loop short (Mesa llvmpipe ends a loop after 65535 iterations, the "
+                    "loops nested in it included), so a pixel's list is too long for it",
+                    algorithm, (unsigned long long)sorted, (unsigned long long)stored);
+}
+
 void oit_gl_draw_scene(const oit_scene *scene)
 {
     if (!scene->has_gpu || scene->index_count == 0)
@@ -899,6 +956,7 @@ void oit_gl_draw_scene(const oit_scene *scene)
     glBindTexture(GL_TEXTURE_BUFFER, scene->plane_texture);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_TRIANGLE_PLANES);
     glBindTexture(GL_TEXTURE_BUFFER, scene->triangle_plane_texture);
+    bind_part_alpha_texture(scene); /* bound by oit_gl_bind_part_alpha already; kept robust */
     glDrawElements(GL_TRIANGLES, (GLsizei)scene->index_count, GL_UNSIGNED_INT, NULL);
     glBindVertexArray(0);
 }

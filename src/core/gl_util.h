@@ -160,6 +160,30 @@ void oit_gl_draw_fullscreen(const oit_gl_output *output);
 void oit_gl_set_frame_uniforms(const oit_frame_settings *frame);
 /* One glDrawElements over the whole model, so gl_PrimitiveID is the triangle index. */
 void oit_gl_draw_scene(const oit_scene *scene);
+/* Per-part opacity for this frame: writes frame->local.component_alpha (its
+ * component_count floats; 1 for the scene's parts past them, and for all when
+ * NULL) into the scene's part-alpha buffer and binds its buffer texture at
+ * OIT_TEXUNIT_LOCAL_PART_ALPHA, where common/local_modulation.glsl reads it.
+ * Every part, however many: no limit. Every GPU algorithm calls it once at
+ * the start of render(), before its first pass. */
+void oit_gl_bind_part_alpha(const oit_scene *scene, const oit_frame_settings *frame);
+
+/* ---- limits ---- */
+
+/* ll, ib: the fill's fragment count (64-bit: the 32-bit counter plus the times
+ * it wrapped) must fit the 32-bit node indices (OIT_MAX_FRAME_FRAGMENTS);
+ * past it OIT_E_RUNTIME naming the algorithm, the count and the limit.
+ * counter_start is oit_algorithm_config.fragment_counter_start (tests), named
+ * in the message when it is not 0. */
+oit_status oit_gl_check_frame_fragments(const char *algorithm, uint64_t fragments,
+                                        uint32_t counter_start, oit_error *err);
+
+/* ll, ib: every fragment the fill stored must have been walked by the sort;
+ * fewer means a shader loop was cut short (Mesa llvmpipe ends any loop after
+ * 65535 iterations, nested loops included), and the frame is OIT_E_RUNTIME
+ * instead of an image that silently misses fragments. */
+oit_status oit_gl_check_sorted_fragments(const char *algorithm, uint64_t stored, uint64_t sorted,
+                                         oit_error *err);
 
 /* Create a 2D texture with storage, nearest filtering, clamped. */
 GLuint oit_gl_texture_2d(GLenum internal_format, int width, int height);

@@ -1,6 +1,8 @@
-/* local_modulation.c: the local opacity modulations (per-component opacity,
- * focus shapes, contrast) in C, for the reference renderer; the GLSL twin is
- * shaders/common/local_modulation.glsl. Definitions: docs/modulation.md. */
+/* local_modulation.c: what the GPU set-up needs on the CPU for the local
+ * modulations (docs/modulation.md): the focus shapes' fall-off length and
+ * the inverse matrices the uniforms carry. The reference renderer has its
+ * own code for all of it (alg_reference.c), so the oracle shares nothing it
+ * checks; the per-fragment formulas live in shaders/common/local_modulation.glsl. */
 #include <math.h>
 #include <string.h>
 
@@ -69,52 +71,3 @@ bool oit_mat4_inverse_double(const double m[16], double out[16])
     return true;
 }
 
-static double focus_distance(const oit_local_modulation *local, const double p[3])
-{
-    const float *f = local->focus;
-    switch (local->focus_shape) {
-    case OIT_FOCUS_POINT: {
-        double d[3] = {p[0] - f[0], p[1] - f[1], p[2] - f[2]};
-        return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    }
-    case OIT_FOCUS_PLANE: {
-        double length = sqrt((double)f[0] * f[0] + (double)f[1] * f[1] + (double)f[2] * f[2]);
-        return length > 0.0 ? fabs(f[0] * p[0] + f[1] * p[1] + f[2] * p[2] + f[3]) / length : 0.0;
-    }
-    case OIT_FOCUS_BOX: {
-        double sum = 0.0;
-        for (int i = 0; i < 3; ++i) {
-            double below = f[i] - p[i], above = p[i] - f[3 + i];
-            double outside = below > above ? below : above;
-            if (outside > 0.0)
-                sum += outside * outside;
-        }
-        return sqrt(sum);
-    }
-    default: return 0.0;
-    }
-}
-
-double oit_local_alpha(const oit_frame_settings *frame, double alpha, uint32_t component,
-                       const double model_position[3])
-{
-    const oit_local_modulation *local = &frame->local;
-    if (local->component_alpha && component < local->component_count)
-        alpha *= local->component_alpha[component];
-    if (local->focus_shape != OIT_FOCUS_NONE && alpha > 0.0) {
-        double factor = focus_distance(local, model_position) / oit_local_focus_region(frame);
-        alpha *= factor < 0.0 ? 0.0 : (factor > 1.0 ? 1.0 : factor);
-    }
-    return alpha;
-}
-
-void oit_local_contrast(const oit_frame_settings *frame, float rgb[3])
-{
-    float c = frame->local.contrast;
-    if (c == 0.0f || c == 1.0f)
-        return;
-    for (int i = 0; i < 3; ++i) {
-        float v = (rgb[i] - 0.5f) * c + 0.5f;
-        rgb[i] = v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
-    }
-}

@@ -216,28 +216,3 @@ void oit_plane_to_eye(const oit_frame_settings *frame, float out[16])
         out[i] = (float)m[i];
 }
 
-void oit_shade(const oit_frame_settings *frame, const float colour[3], const float eye_normal[3],
-               const float eye_position[3], float out_rgb[3])
-{
-    float factor = 1.0f;
-    if (frame->shading == OIT_SHADE_HEADLIGHT) {
-        float n_length = sqrtf(eye_normal[0] * eye_normal[0] + eye_normal[1] * eye_normal[1] +
-                               eye_normal[2] * eye_normal[2]);
-        float v_length = sqrtf(eye_position[0] * eye_position[0] +
-                               eye_position[1] * eye_position[1] +
-                               eye_position[2] * eye_position[2]);
-        if (n_length > 0.0f) {
-            float v[3] = {0.0f, 0.0f, 1.0f};
-            if (v_length > 0.0f)
-                for (int i = 0; i < 3; ++i)
-                    v[i] = -eye_position[i] / v_length;
-            float n_dot_v = (eye_normal[0] * v[0] + eye_normal[1] * v[1] + eye_normal[2] * v[2]) /
-                            n_length;
-            const float ambient = OIT_HEADLIGHT_AMBIENT_PERCENT / 100.0f;
-            /* two-sided: through transparent surfaces back faces are seen */
-            factor = ambient + (1.0f - ambient) * fabsf(n_dot_v);
-        }
-    }
-    for (int i = 0; i < 3; ++i)
-        out_rgb[i] = colour[i] * factor;
-}

@@ -196,8 +196,12 @@ static oit_status keep_warnings(oit_model *model, const char *name, const import
             snprintf(repeats, sizeof repeats, " (%u times)", w->repeats[i]);
         if (i + 1 == w->count && w->left_out)
             snprintf(left_out, sizeof left_out, "; %u other warnings left out", w->left_out);
-        snprintf(model->warnings[i], sizeof model->warnings[i], "%s: %s%s%s", name, w->text[i],
-                 repeats, left_out);
+        /* a warning longer than a message is cut: say so with its last byte, and
+         * keep the compiler's format-truncation check quiet honestly (checked) */
+        int written = snprintf(model->warnings[i], sizeof model->warnings[i], "%s: %s%s%s", name,
+                               w->text[i], repeats, left_out);
+        if (written >= (int)sizeof model->warnings[i])
+            memcpy(model->warnings[i] + sizeof model->warnings[i] - 4, "...", 4);
     }
     model->warning_count = w->count;
     return OIT_OK;

@@ -319,11 +319,6 @@ typedef struct oit_local_modulation {
     float focus_default_region;
 } oit_local_modulation;
 
-/* Obsolete: per-part opacity has no limit any more (docs/modulation.md). Kept
- * only because tests/app/test_parts_panel.cpp still names it; remove it with
- * that test's check of the parts note. */
-#define OIT_LOCAL_COMPONENT_LIMIT 1024
-
 /* Progress of one frame, for shells that render off their GUI thread (the
  * workbench). report is called after every stage (every peel of dp and ddp,
  * every fill, sort, compose...; the reference: after counting and after
@@ -382,22 +377,15 @@ oit_status oit_default_camera(const oit_model *model, int width, int height, flo
  * common/canonical_depth.glsl). */
 void oit_plane_to_eye_double(const oit_frame_settings *frame, double out[16]);
 void oit_plane_to_eye(const oit_frame_settings *frame, float out[16]);
-/* The per-fragment shading shared by every algorithm and the reference. */
-void oit_shade(const oit_frame_settings *frame, const float colour[3], const float eye_normal[3],
-               const float eye_position[3], float out_rgb[3]);
 
-/* Local modulation (local_modulation.c, twin of shaders/common/local_modulation.glsl).
- * The focus shapes' fall-off length, in model units. */
+/* Local modulation set-up for the GPU (local_modulation.c; the per-fragment
+ * formulas are in shaders/common/local_modulation.glsl, the reference has its
+ * own). The focus shapes' fall-off length, in model units. */
 float oit_local_focus_region(const oit_frame_settings *frame);
 /* The inverse of a column-major 4x4 in double; false (and zeros) if singular. */
 bool oit_mat4_inverse_double(const double m[16], double out[16]);
 /* The inverse of the modelview (model <- eye), column-major; false if singular. */
 bool oit_local_inverse_modelview(const float modelview[16], double out[16]);
-/* alpha times the component's opacity and the focus factor at model position p. */
-double oit_local_alpha(const oit_frame_settings *frame, double alpha, uint32_t component,
-                       const double model_position[3]);
-/* rgb = saturate((rgb - 0.5) * contrast + 0.5), unless contrast is 0 or 1. */
-void oit_local_contrast(const oit_frame_settings *frame, float rgb[3]);
 
 /* -------------------------------------------------------------- statistics */
 

@@ -1,4 +1,5 @@
 /* scene_gpu.c: a model's vertex, index and component buffers on the GPU. */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,6 +37,20 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
         return oit_fail(err, OIT_E_INPUT,
                         "model is not finished (positions, normals, components and indices "
                         "are needed)");
+    /* one glDrawElements draws the whole model: its count is a GLsizei */
+    if (model->triangle_count > (uint32_t)(INT32_MAX / 3))
+        return oit_fail(err, OIT_E_INPUT,
+                        "model.triangle_count %u is more than the %d triangles one draw call "
+                        "can draw (3 x triangles indices, a 32-bit GLsizei)",
+                        model->triangle_count, INT32_MAX / 3);
+    /* per-part opacity is read through a buffer texture, one texel per part */
+    GLint max_texels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    if (max_texels > 0 && model->component_count > (uint32_t)max_texels)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "model.component_count %u is more than the %d parts whose opacity this GL "
+                        "holds in one buffer texture (GL_MAX_TEXTURE_BUFFER_SIZE)",
+                        model->component_count, max_texels);
     const size_t vertices = model->vertex_count;
 
     /* Models built in memory may lack welded ids: then every vertex is its own. */
@@ -88,6 +103,21 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
                  component_data, GL_STATIC_DRAW);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     bytes += component_slots * 4 * sizeof(float);
+    /* per-part opacity, one float per part, all 1 until a frame sets them
+     * (oit_gl_bind_part_alpha) */
+    scene->part_count = model->component_count ? model->component_count : 1;
+    const float one = 1.0f;
+    glGenBuffers(1, &scene->part_alpha_buffer);
+    glBindBuffer(GL_TEXTURE_BUFFER, scene->part_alpha_buffer);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)(scene->part_count * sizeof(float)), NULL,
+                 GL_DYNAMIC_DRAW);
+    glClearBufferData(GL_TEXTURE_BUFFER, GL_R32F, GL_RED, GL_FLOAT, &one);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    bytes += scene->part_count * sizeof(float);
+    glGenTextures(1, &scene->part_alpha_texture);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->part_alpha_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, scene->part_alpha_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
     /* per triangle its reach (ib's neighbour search), read as a buffer texture */
     glGenBuffers(1, &scene->triangle_reach_buffer);
     glBindBuffer(GL_TEXTURE_BUFFER, scene->triangle_reach_buffer);
@@ -137,6 +167,8 @@ void oit_scene_release(oit_scene *scene)
         glDeleteBuffers(4, scene->vertex_buffers);
         glDeleteBuffers(1, &scene->index_buffer);
         glDeleteBuffers(1, &scene->component_buffer);
+        glDeleteTextures(1, &scene->part_alpha_texture);
+        glDeleteBuffers(1, &scene->part_alpha_buffer);
         glDeleteBuffers(1, &scene->triangle_reach_buffer);
         glDeleteTextures(1, &scene->plane_texture);
         glDeleteTextures(1, &scene->triangle_plane_texture);
