@@ -13,6 +13,7 @@ Mutations: flip bytes, overwrite a number with a huge, negative or
 non-numeric one, delete, duplicate or insert a range, cut the file short.
 """
 import argparse
+import concurrent.futures
 import os
 import random
 import re
@@ -107,31 +108,42 @@ def main() -> int:
 
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
+    # the mutants are made in order (the seed decides them), then run in parallel
     rng = random.Random(args.seed)
-    outcomes = {"ok": 0, "error": 0}
-    failures = []
+    mutants = []
     for n in range(args.count):
         extension, data = seeds[n % len(seeds)]
         mutant = os.path.join(args.work, f"mutant_{n:04d}{extension}")
         with open(mutant, "wb") as f:
             f.write(mutate(data, rng))
+        mutants.append(mutant)
+
+    def check(mutant):
+        """'ok', 'error', or why the run broke the contract."""
         try:
             run = subprocess.run([args.oit, "info", "--model", mutant], capture_output=True,
                                  timeout=args.timeout)
         except subprocess.TimeoutExpired:
-            failures.append((mutant, f"no answer within {args.timeout:.0f} s"))
-            continue
+            return f"no answer within {args.timeout:.0f} s"
         lines = run.stderr.decode("utf-8", "replace").splitlines()
         errors = [line for line in lines if line.startswith("oit: error:")]
         others = [line for line in lines if not line.startswith(("oit: error:", "oit: warning:"))]
         if run.returncode == 0 and not errors and not others:
-            outcomes["ok"] += 1
-        elif (run.returncode == 2 and len(errors) == 1 and not others and
-              os.path.basename(mutant) in errors[0]):
-            outcomes["error"] += 1
-        else:
-            failures.append((mutant, f"exit {run.returncode}, stderr {lines[-3:]!r}"))
-        os.remove(mutant) if not failures or failures[-1][0] != mutant else None
+            return "ok"
+        if (run.returncode == 2 and len(errors) == 1 and not others and
+                os.path.basename(mutant) in errors[0]):
+            return "error"
+        return f"exit {run.returncode}, stderr {lines[-3:]!r}"
+
+    outcomes = {"ok": 0, "error": 0}
+    failures = []
+    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 2) as pool:
+        for mutant, outcome in zip(mutants, pool.map(check, mutants)):
+            if outcome in outcomes:
+                outcomes[outcome] += 1
+                os.remove(mutant)
+            else:
+                failures.append((mutant, outcome))
     print(f"fuzz_import: {args.count} mutants (seed {args.seed}): {outcomes['ok']} loaded, "
           f"{outcomes['error']} refused with one line, {len(failures)} broke the contract")
     for mutant, why in failures[:10]:

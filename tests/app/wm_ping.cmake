@@ -17,4 +17,5 @@ add_test(NAME app_wm_ping
           $<TARGET_FILE:oit> $<TARGET_FILE:wm_ping> ${APP_WORK}/wm_ping)
 # about 35 s on 2 llvmpipe cores; the limit leaves room for a loaded machine
 set_tests_properties(app_wm_ping PROPERTIES
-  ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
+  ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180
+  RUN_SERIAL TRUE) # a latency limit: measured alone, not beside another test's renders
