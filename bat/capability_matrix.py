@@ -15,16 +15,25 @@ tolerance, and the cost against plain dp and against ib.
 Writes docs/generated/modulation_matrix.md; docs/modulation.md explains it.
 Run from the repository root after a build:
 
-    python3 bat/capability_matrix.py [--oit build/src/cli/oit] [--size 128x128] [--frames 3]
+    python3 bat/capability_matrix.py [--oit build/src/cli/oit] [--size 128x128] [--frames 3] [--jobs N]
+
+A render that appears in more than one cell (the same model, flags and
+algorithm) runs once. --jobs N runs N renders at a time: the page is the same
+but for its timings, which concurrent renders slow down; the committed page is
+made with one (tests/generated_pages.sh, which ignores timings, uses two).
 """
 import argparse
+import atexit
+import concurrent.futures
 import datetime
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
-from pages import commit_of
+import threading
+from pages import commits, machine, machine_line
 
 ALGORITHMS = ["blend", "wboit", "dp", "ddp", "ll", "ib", "reference"]
 EXACT = {"dp", "ddp", "ll", "ib", "reference"}
@@ -141,7 +150,58 @@ def scene_model(oit, work, scene, path):
     return model
 
 
-def curvature_section(oit, work, size, frames, scenes):
+class Runner:
+    """Renders and comparisons, each distinct one run once (memoised on its
+    inputs), up to jobs at a time; every call returns a future."""
+
+    def __init__(self, oit, work, size, frames, jobs):
+        self.oit, self.work, self.size, self.frames = oit, work, size, frames
+        self.pool = concurrent.futures.ThreadPoolExecutor(max_workers=jobs)
+        self.done = {}
+        self.lock = threading.Lock()
+        self.renderers, self.backends = set(), set()
+
+    def _once(self, key, function, *args):
+        with self.lock:
+            if key not in self.done:
+                self.done[key] = self.pool.submit(function, *args)
+            return self.done[key]
+
+    def render(self, model, flags, algorithm):
+        """A future of (JSON, refusal, png): the JSON of the render, or None and the refusal message."""
+        key = ("render", model, tuple(flags), algorithm)
+        out = os.path.join(self.work, f"render_{len(self.done)}_{algorithm}.png")
+        return self._once(key, self._render, model, flags, algorithm, out)
+
+    def _render(self, model, flags, algorithm, out):
+        info, refusal = render(self.oit, model, flags, algorithm, out, self.size, self.frames)
+        if info:
+            with self.lock:
+                self.renderers.add(info.get("renderer"))
+                self.backends.add(info.get("backend"))
+        return info, refusal, out
+
+    def compare(self, a, b):
+        """A future of `oit compare A B --json` (a and b: futures of renders)."""
+        return self._once(("compare", id(a), id(b)), lambda: compare(self.oit, a.result()[2], b.result()[2]))
+
+
+def curvature_queue(runner, work, scenes):
+    """Queues the renders and comparisons of the last section: [(scene, label, plain, renders, comparison)]."""
+    cases = []
+    for scene in scenes:
+        model = scene_model(runner.oit, work, scene, CURVATURE_SCENES[scene])
+        if model is None:
+            print(f"skipping {scene}: model missing", file=sys.stderr)
+            continue
+        plain = runner.render(model, [], "dp")
+        for label, flags in CURVATURE_MODES:
+            renders = {algorithm: runner.render(model, flags, algorithm) for algorithm in ("dp", "ib")}
+            cases.append((scene, label, plain, renders, runner.compare(renders["dp"], renders["ib"])))
+    return cases
+
+
+def curvature_section(cases):
     """dp's curvature against ib's: error and cost per scene and mode."""
     lines = ["## Curvature and edges outside the Illustration Buffer: dp against ib", "",
              "dp approximates the surface neighbours by the fragments of the same peeled layer "
@@ -154,33 +214,23 @@ def curvature_section(oit, work, size, frames, scenes):
              "| scene | modulation | largest | mean | PSNR | over tolerance | ms dp / plain dp / ib "
              "| stages | MB |",
              "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
-    for scene in scenes:
-        model = scene_model(oit, work, scene, CURVATURE_SCENES[scene])
-        if model is None:
-            print(f"skipping {scene}: model missing", file=sys.stderr)
-            continue
-        plain, _ = render(oit, model, [], "dp", os.path.join(work, f"curv_{scene}_plain.png"),
-                          size, frames)
-        for label, flags in CURVATURE_MODES:
-            tag = label.replace(" ", "").replace(",", "_")
-            images, infos = {}, {}
-            for algorithm in ("dp", "ib"):
-                images[algorithm] = os.path.join(work, f"curv_{scene}_{tag}_{algorithm}.png")
-                infos[algorithm], refusal = render(oit, model, flags, algorithm,
-                                                   images[algorithm], size, frames)
-                if refusal:
-                    sys.exit(f"{algorithm} refuses {label} on {scene}: {refusal}")
-            diff = compare(oit, images["dp"], images["ib"])
-            psnr = "inf" if diff["psnr_db"] is None else f"{diff['psnr_db']:.1f}"
-            dp, ib = infos["dp"], infos["ib"]
-            lines.append(
-                f"| {scene} | {label} | {diff['max_channel_diff']} | {diff['mean_diff']:.2f} | "
-                f"{psnr} | {diff['over_tolerance_percent']:.2f}% | "
-                f"{stage_ms(dp):.1f} / {stage_ms(plain):.1f} / {stage_ms(ib):.1f} | "
-                f"{len(dp['stages'])} / {len(plain['stages'])} / {len(ib['stages'])} | "
-                f"{dp['memory_bytes'] / 1048576:.2f} / {plain['memory_bytes'] / 1048576:.2f} / "
-                f"{ib['memory_bytes'] / 1048576:.2f} |")
-            print(f"curvature {scene} {label}: done", file=sys.stderr)
+    for scene, label, plain_render, renders, comparison in cases:
+        plain = plain_render.result()[0]
+        infos = {}
+        for algorithm, future in renders.items():
+            infos[algorithm], refusal, _ = future.result()
+            if refusal:
+                sys.exit(f"{algorithm} refuses {label} on {scene}: {refusal}")
+        diff = comparison.result()
+        psnr = "inf" if diff["psnr_db"] is None else f"{diff['psnr_db']:.1f}"
+        dp, ib = infos["dp"], infos["ib"]
+        lines.append(
+            f"| {scene} | {label} | {diff['max_channel_diff']} | {diff['mean_diff']:.2f} | "
+            f"{psnr} | {diff['over_tolerance_percent']:.2f}% | "
+            f"{stage_ms(dp):.1f} / {stage_ms(plain):.1f} / {stage_ms(ib):.1f} | "
+            f"{len(dp['stages'])} / {len(plain['stages'])} / {len(ib['stages'])} | "
+            f"{dp['memory_bytes'] / 1048576:.2f} / {plain['memory_bytes'] / 1048576:.2f} / "
+            f"{ib['memory_bytes'] / 1048576:.2f} |")
     return lines + [""]
 
 
@@ -229,54 +279,75 @@ def main():
     parser.add_argument("--out", default="docs/generated/modulation_matrix.md")
     parser.add_argument("--scenes", default=",".join(SCENES))
     parser.add_argument("--curvature-scenes", default=",".join(CURVATURE_SCENES))
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="renders at a time (more: the same page but for slower timings)")
     args = parser.parse_args()
 
     work = tempfile.mkdtemp(prefix="oit-matrix-")
+    atexit.register(shutil.rmtree, work, ignore_errors=True)
+    runner = Runner(args.oit, work, args.size, args.frames, max(args.jobs, 1))
+    try:
+        write_page(args, runner, work)
+    finally:
+        # on an error, the renders still queued are dropped rather than waited for
+        runner.pool.shutdown(cancel_futures=True)
+
+
+def write_page(args, runner, work):
     results = {}  # (scene, row, algorithm) -> dict
     plain = {}    # (scene, algorithm) -> info
+    queued = {}   # (scene, row, algorithm) -> future of the render
+    plain_queued = {}
     for scene in [s for s in args.scenes.split(",") if s]:
         model = scene_model(args.oit, work, scene, SCENES[scene])
         if model is None:
             print(f"skipping {scene}: {SCENES[scene]} missing", file=sys.stderr)
             continue
         for algorithm in ALGORITHMS:
-            info, refusal = render(args.oit, model, [], algorithm,
-                                   os.path.join(work, f"{scene}_plain_{algorithm}.png"), args.size,
-                                   args.frames)
-            if refusal:
-                sys.exit(f"{algorithm} refuses to render {scene}: {refusal}")
-            plain[(scene, algorithm)] = info
+            plain_queued[(scene, algorithm)] = runner.render(model, [], algorithm)
         for row, _, flags, oracle in ROWS:
             if isinstance(flags, str):
                 flags = SCENE_FLAGS[scene][flags]
             flags = [DISTANCE_REGION[scene] if f == "REGION" else f for f in flags]
-            images = {}
             for algorithm in ALGORITHMS:
-                out = os.path.join(work, f"{scene}_{row}_{algorithm}.png")
-                info, refusal = render(args.oit, model, flags, algorithm, out, args.size,
-                                       args.frames)
-                results[(scene, row, algorithm)] = {"info": info, "refusal": refusal}
-                if info:
-                    images[algorithm] = out
-            for algorithm in ALGORITHMS:
-                cell = results[(scene, row, algorithm)]
-                if cell["info"] and oracle in images and algorithm != oracle:
-                    cell["diff"] = compare(args.oit, images[algorithm], images[oracle])
-                    cell["oracle"] = oracle
-                if algorithm in ("blend", "wboit") and cell["info"] and "reference" in images:
-                    # the approximation's own error without modulation, for scale
-                    cell["plain_diff"] = compare(
-                        args.oit, os.path.join(work, f"{scene}_plain_{algorithm}.png"),
-                        os.path.join(work, f"{scene}_plain_reference.png"))
-            print(f"{scene} {row}: done", file=sys.stderr)
+                queued[(scene, row, algorithm)] = runner.render(model, flags, algorithm)
+    curvature_scenes = [s for s in args.curvature_scenes.split(",") if s]
+    curvature_cases = curvature_queue(runner, work, curvature_scenes)
+    for (scene, algorithm), future in plain_queued.items():
+        info, refusal, _ = future.result()
+        if refusal:
+            sys.exit(f"{algorithm} refuses to render {scene}: {refusal}")
+        plain[(scene, algorithm)] = info
+    for (scene, row, algorithm), future in queued.items():
+        info, refusal, _ = future.result()
+        results[(scene, row, algorithm)] = {"info": info, "refusal": refusal}
+    comparisons = {}
+    for (scene, row, algorithm), future in queued.items():
+        oracle = next(o for r, _, _, o in ROWS if r == row)
+        cell = results[(scene, row, algorithm)]
+        oracle_render = queued[(scene, row, oracle)]
+        if cell["info"] and results[(scene, row, oracle)]["info"] and algorithm != oracle:
+            comparisons[(scene, row, algorithm, "diff")] = runner.compare(future, oracle_render)
+            cell["oracle"] = oracle
+        if algorithm in ("blend", "wboit") and cell["info"] and results[(scene, row, "reference")]["info"]:
+            # the approximation's own error without modulation, for scale
+            comparisons[(scene, row, algorithm, "plain_diff")] = runner.compare(
+                plain_queued[(scene, algorithm)], plain_queued[(scene, "reference")])
+    for (scene, row, algorithm, key), future in comparisons.items():
+        results[(scene, row, algorithm)][key] = future.result()
+    print(f"matrix: done ({sum(k[0] == 'render' for k in runner.done)} renders, "
+          f"{sum(k[0] == 'compare' for k in runner.done)} comparisons so far)", file=sys.stderr)
 
     scenes = sorted({k[0] for k in results}, key=list(SCENES).index)
+    jobs = f" --jobs {args.jobs}" if args.jobs != 1 else ""
     lines = [
         "# Capability matrix: opacity modulation per algorithm",
         "",
-        f"Generated by `python3 bat/capability_matrix.py --size {args.size} --frames {args.frames}` "
-        f"on {datetime.date.today().isoformat()} at commit {commit_of(__file__)} (llvmpipe, egl); do not edit by hand. "
+        f"Generated by `python3 bat/capability_matrix.py --size {args.size} --frames {args.frames}{jobs}` "
+        f"on {datetime.date.today().isoformat()} at commit {commits(__file__, args.oit)}; do not edit by hand. "
         "Definitions and the reasons behind each cell: [docs/modulation.md](../modulation.md).",
+        "",
+        "MACHINE",
         "",
         "Legend: **yes** = supported, same passes; **modified** = supported with a modified "
         "algorithm; **approx.** = runs, but the image is not the reference's; **no** = not "
@@ -326,9 +397,13 @@ def main():
                 code = code_for(algorithm, row)
                 lines.append(f"| {row} | {algorithm} | {verdict} | {error} | {ms} | {stages} | {mb} | {code} |")
         lines += [""]
-    curvature_scenes = [s for s in args.curvature_scenes.split(",") if s]
     if curvature_scenes:
-        lines += curvature_section(args.oit, work, args.size, args.frames, curvature_scenes)
+        lines += curvature_section(curvature_cases)
+    print(f"{sum(k[0] == 'render' for k in runner.done)} renders, "
+          f"{sum(k[0] == 'compare' for k in runner.done)} comparisons", file=sys.stderr)
+    lines[lines.index("MACHINE")] = (machine_line(machine(), runner.renderers, runner.backends)
+                                     + " The ms columns are wall times on it"
+                                     + (f", {args.jobs} renders at a time" if jobs else "") + ".")
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
     with open(args.out, "w") as f:
         f.write("\n".join(lines))

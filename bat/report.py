@@ -1,12 +1,16 @@
 #!/usr/bin/env python3
 """report.py: turns the benchmark's CSV and result files into docs/benchmarks.md.
 
-Reads RESULTS/bench.csv (+ bench.json for the machine), accuracy.csv and the result
-files of bat/measure_*.sh, and the thesis's tables (../shared/data/*.csv); writes
-DOCS/benchmarks.md and DOCS/images/bench-*.png (matplotlib). Run by bat/run_comparison.sh;
-by hand:
+Reads RESULTS/bench.csv (+ bench.json: renderer, back end, command), machine.json (the
+machine the benchmark ran on, written by bat/run_comparison.sh with `bat/pages.py machine`),
+accuracy.csv and the result files of bat/measure_*.sh, and the thesis's figures from SHARED
+(../shared beside the repository): its tables in data/*.csv, and from the thesis's and the
+paper's text (sources/) the figures no table holds (tables B.1-B.2, the GPU, the bytes per
+fragment). Writes DOCS/benchmarks.md and DOCS/images/bench-*.png (matplotlib). Every figure
+and every statement about the machine on the page is computed from these inputs. Run by
+bat/run_comparison.sh; by hand:
 
-    python3 bat/report.py --results build/bench/results [--docs docs]
+    python3 bat/report.py --results build/bench/results [--docs docs] [--shared ../shared]
 """
 import argparse
 import csv
@@ -14,10 +18,11 @@ import datetime
 import json
 import math
 import os
-import platform
+import re
 import statistics
-import subprocess
 import sys
+
+from pages import commit_of, software_renderer
 
 try:
     import matplotlib
@@ -33,10 +38,21 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-THESIS = os.path.join(os.path.dirname(ROOT), "shared", "data")
+SHARED = os.path.join(os.path.dirname(ROOT), "shared")  # ../shared beside the repository (README.md)
+THESIS_TABLES = {  # data/: the thesis's measurement tables
+    "stages": "thesis_table_5_1_ib_stages.csv",
+    "construction": "thesis_table_5_2_ib_construction.csv",
+    "sort": "thesis_table_5_3_sort_methods.csv",
+    "comparison": "thesis_table_5_4_oit_comparison.csv",
+    "modulation": "thesis_table_5_5_modulation_passes.csv",
+}
+THESIS_TEXT = "sources/000_768ef58642674f75.txt"  # the thesis (shared/README.md)
+PAPER_TEXT = "sources/001_d33ee0e5babd5f13.txt"   # the paper version of it
 ALGORITHMS = ["blend", "dp", "ddp", "ll", "ll-array", "ib", "wboit"]
 IB_CONSTRUCTION = ("clear", "fill", "sort", "neighbours")  # prefixes: clear_retry, fill_retry too
-TARGETS = {"ll_blend": 2.0, "dp_ll": 3.0, "ib_ll": 2.0, "ib_bytes": 64.0}
+# The issue's targets: ll/blend frame time, dp/ll where the longest list reaches deep_list,
+# ib construction / ll, ib bytes per fragment
+TARGETS = {"ll_blend": 2.0, "dp_ll": 3.0, "deep_list": 16, "ib_ll": 2.0, "ib_bytes": 64.0}
 
 
 # ----------------------------------------------------------------- input
@@ -86,30 +102,127 @@ def read_measure(path):
     return rows
 
 
-def read_thesis(name):
-    path = os.path.join(THESIS, name)
-    return read_csv(path)
+def missing_shared(path):
+    sys.exit(f"report: {path} is missing: the thesis's figures are read from ../shared beside the repository "
+             "(shared/README.md; --shared DIR names another copy)")
 
 
-def machine_description():
-    cpu = platform.processor() or "?"
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{cpu}, {os.cpu_count()} logical CPUs, {platform.system()} {platform.release()}"
+def decimal(text):
+    """A number of the thesis's text tables: 4,71 or 126296."""
+    return float(text.replace(",", "."))
 
 
-def mesa_version():
-    try:
-        out = subprocess.run(["dpkg-query", "-W", "-f=${Version}", "libgl1-mesa-dri"], capture_output=True,
-                             text=True).stdout
-        return out.strip() or "?"
-    except OSError:
-        return "?"
+def text_tables(text, label):
+    """The tab-separated tables of the thesis's text whose caption starts with
+    label ('Table B.'): [(caption, [header lines], [data rows])]; a table is the
+    block of non-empty lines just above its caption."""
+    lines = text.split("\n")
+    tables = []
+    for k, line in enumerate(lines):
+        if not line.startswith(label):
+            continue
+        end = k - 1
+        while end >= 0 and not lines[end].strip():
+            end -= 1
+        start = end
+        while start > 0 and lines[start - 1].strip():
+            start -= 1
+        block = [b.split("\t") for b in lines[start:end + 1]]
+        header = [b for b in block if not re.fullmatch(r"\d+(,\d+)?", (b[1:] or [""])[0].strip())]
+        rows = [b for b in block if b not in header]
+        tables.append((line, header, rows))
+    return tables
+
+
+class Thesis:
+    """The thesis's figures, read from SHARED at run time (never typed in here)."""
+
+    def __init__(self, shared):
+        self.tables = {}
+        for key, name in THESIS_TABLES.items():
+            path = os.path.join(shared, "data", name)
+            if not os.path.exists(path):
+                missing_shared(path)
+            self.tables[key] = read_csv(path)
+            if not self.tables[key]:
+                sys.exit(f"report: {path} has no rows")
+        texts = {}
+        for name in (THESIS_TEXT, PAPER_TEXT):
+            path = os.path.join(shared, name)
+            if not os.path.exists(path):
+                missing_shared(path)
+            texts[name] = open(path, encoding="utf-8").read()
+        gpu = re.search(r"\*\*GPU:\*\*\s*([^,\n]+)", texts[THESIS_TEXT])
+        per_fragment = re.search(r"(\d+) bytes per fragment", texts[PAPER_TEXT])
+        if not gpu or not per_fragment:
+            sys.exit(f"report: the thesis's GPU ('**GPU:** ...' in {THESIS_TEXT}) or the Illustration Buffer's "
+                     f"bytes per fragment ('N bytes per fragment' in {PAPER_TEXT}) not found under {shared}")
+        self.gpu = gpu.group(1).strip()
+        self.bytes_per_fragment = int(per_fragment.group(1))
+        self.sweep = self._sweep(texts[THESIS_TEXT], shared)
+        # the size of tables 5.1-5.5: the sweep's column whose fragments are table 5.2's
+        construction = {r["model"]: int(r["fragments"]) for r in self.tables["construction"]}
+        sizes = [size for size in self.sweep_sizes
+                 if all(self.sweep.get(m, {}).get(size, (None,))[0] == f for m, f in construction.items())]
+        self.size = sizes[0] if sizes else None
+
+    def _sweep(self, text, shared):
+        """Tables B.1-B.2: {model: {width: (fragments, ms)}} at 400x400..700x700."""
+        sweep, sizes = {}, []
+        tables = text_tables(text, "Table B.")
+        for caption, header, rows in tables:
+            widths = [int(m.group(1)) for h in header for c in h if (m := re.match(r"^(\d+)x\1$", c.strip()))]
+            sizes += widths
+            for row in rows:
+                values = [c for c in row[1:] if c.strip()]
+                if len(values) != 2 * len(widths):
+                    sys.exit(f"report: {caption.split(':')[0]} of {THESIS_TEXT}: row '{row[0]}' does not have "
+                             f"fragments and ms for each of {widths}")
+                for k, width in enumerate(widths):
+                    sweep.setdefault(row[0].strip(), {})[width] = (int(decimal(values[2 * k])),
+                                                                   decimal(values[2 * k + 1]))
+        if not sweep:
+            sys.exit(f"report: tables B.1-B.2 (the resolution sweep) not found in {os.path.join(shared, THESIS_TEXT)}")
+        self.sweep_sizes = sorted(set(sizes))
+        return sweep
+
+    def size_text(self):
+        return f"{self.size}×{self.size}" if self.size else "an unknown size"
+
+    def scenes(self):
+        return len(self.tables["comparison"])
+
+    def ib_ll(self):
+        """Table 5.4: Illustration Buffer (construction) over linked lists, per scene."""
+        return [float(r["ib_ms"]) / float(r["ll_ms"]) for r in self.tables["comparison"]]
+
+
+def sizes_text(sizes):
+    """'400×400 to 700×700 in steps of 50', or the sizes listed."""
+    if len(sizes) >= 3 and len({b - a for a, b in zip(sizes, sizes[1:])}) == 1:
+        return f"{sizes[0]}×{sizes[0]} to {sizes[-1]}×{sizes[-1]} in steps of {sizes[1] - sizes[0]}"
+    return ", ".join(f"{s}×{s}" for s in sizes)
+
+
+def frames_text(rows):
+    """'one frame after no warm-up' from the rows' frames and warmup columns."""
+    def count(key, noun, none):
+        values = sorted({int(number(r.get(key), 0)) for r in rows})
+        words = {0: none, 1: f"one {noun}"}
+        if len(values) == 1:
+            return words.get(values[0], f"{values[0]} {noun}s")
+        return f"{values[0]} to {values[-1]} {noun}s"
+    return f"{count('frames', 'frame', 'no frame')} after {count('warmup', 'warm-up', 'no warm-up')}"
+
+
+def tests_bound(name):
+    """A bound of tests/CMakeLists.txt (EXACT_TOLERANCE, EXACT_MISMATCH): what the page calls the tests' bounds
+    (bat/run_comparison.sh passes the same tolerance to the accuracy run)."""
+    path = os.path.join(ROOT, "tests", "CMakeLists.txt")
+    match = re.search(rf"^set\({name} ([0-9.]+)\)", open(path).read(), re.M) if os.path.exists(path) else None
+    if not match:
+        sys.exit(f"report: no 'set({name} N)' in {path}")
+    return float(match.group(1))
 
 
 # ----------------------------------------------------------------- helpers
@@ -196,6 +309,77 @@ class Report:
         self.by = {(r["scene"], r["algorithm"]): r for r in self.ok}
         profile_path = os.path.join(args.results, "profile.txt")
         self.profile = open(profile_path).read().strip() if os.path.exists(profile_path) else ""
+        # the machine the benchmark ran on, measured then (bat/run_comparison.sh), not the one reporting
+        machine_path = os.path.join(args.results, "machine.json")
+        self.machine = json.load(open(machine_path)) if os.path.exists(machine_path) else {}
+        self.renderer = self.meta.get("renderer") or self.machine.get("renderer") or "?"
+        self.software = software_renderer(self.renderer)
+        self.thesis = Thesis(args.shared)
+        self.tolerance = tests_bound("EXACT_TOLERANCE")
+        self.mismatch = tests_bound("EXACT_MISMATCH")
+
+    def renderer_name(self):
+        """'llvmpipe' of 'llvmpipe (LLVM 15.0.6, 256 bits)': for titles."""
+        return self.renderer.split(" (")[0]
+
+    def machine_text(self):
+        m = self.machine
+        if not m:
+            return (f"not recorded ({os.path.join(self.args.results, 'machine.json')} is missing: "
+                    f"bat/run_comparison.sh writes it); the kernel: {self.meta.get('machine', '?')}")
+        return (f"{m.get('cpu', '?')}, {m.get('logical_cpus', '?')} logical CPUs"
+                + (" (a virtual machine)" if m.get("virtual_machine") else "") + f", {m.get('kernel', '?')}")
+
+    def commit_text(self):
+        """The commit of the oit that measured (machine.json), and of this script when it differs."""
+        measured, reporting = self.machine.get("commit"), commit_of(__file__)
+        if not measured:
+            return f"at commit {reporting} (report; the benchmark's commit not recorded: no machine.json)"
+        return f"at commit {measured}" + (f" (benchmark) / {reporting} (report)" if measured != reporting else "")
+
+    def gpu_text(self):
+        if self.renderer == "?":
+            return "GPU unknown (no renderer recorded)"
+        return "no GPU" if self.software else "on the GPU"
+
+    def timing_text(self):
+        """How the stages were timed and what the machine adds to it: from the renderer and machine.json."""
+        name = self.renderer_name()
+        cpus = self.machine.get("logical_cpus")
+        if self.software:
+            text = (f"**Timing on {name}.** Its `GL_TIME_ELAPSED` queries do not measure the work, so every stage "
+                    "is timed as wall time between `glFinish()` calls (the \"GPU\" columns), and the frame time is "
+                    "the wall time of the whole frame. Ratios measured in the same run are what carry over to a GPU; "
+                    "absolute times do not.")
+            if cpus and name == "llvmpipe":
+                threads = self.machine.get("lp_num_threads")
+                text += (f" The machine has {cpus} logical CPUs, so llvmpipe runs "
+                         + (f"{threads} threads (LP_NUM_THREADS)." if threads
+                            else f"{min(cpus, 32)} threads (one per CPU, at most 32)."))
+            elif cpus:
+                text += f" The machine has {cpus} logical CPUs."
+        else:
+            text = (f"**Timing on {name}.** Every stage is timed by `GL_TIME_ELAPSED` queries (the \"GPU\" "
+                    "columns), and the frame time is the wall time of the whole frame on the CPU."
+                    + (f" The machine has {cpus} logical CPUs." if cpus else ""))
+        return text + " " + self.spread_text()
+
+    def spread_text(self):
+        """How much one scene's frame times moved between its measured frames, in this run."""
+        spreads = []
+        for r in self.ok:
+            lo, hi, median = (number(r.get(k)) for k in ("cpu_ms_min", "cpu_ms_max", "cpu_ms_median"))
+            if (number(r.get("frames")) or 0) >= 2 and median and lo is not None and hi is not None:
+                spreads.append(((hi - lo) / median, r, lo, hi))
+        if not spreads:
+            return "Each run measured one frame, so this run shows nothing of how much a frame's time varies."
+        worst = max(spreads, key=lambda x: x[0])
+        where = "On this virtual machine" if self.machine.get("virtual_machine") else "On this machine"
+        return (f"{where} a scene's frame times varied between its measured frames by up to "
+                f"{100 * worst[0]:.0f}% of their median ({worst[1]['scene']}'s `{worst[1]['algorithm']}`: "
+                f"{worst[2]:.1f} to {worst[3]:.1f} ms)"
+                + (f", by {100 * statistics.median(x[0] for x in spreads):.0f}% in the median over the "
+                   f"{len(spreads)} runs" if len(spreads) > 1 else "") + "; the tables give medians.")
 
     def row(self, scene, algorithm):
         return self.by.get((scene, algorithm))
@@ -225,14 +409,16 @@ class Report:
         size = f"{self.bench[0]['width']}x{self.bench[0]['height']}"
         frames = self.meta.get("frames", "?")
         self.emit("# Benchmarks: the algorithms compared on real models", "",
-                  f"Generated by `{a.command}` (then `python3 bat/report.py`); do not edit by hand. "
+                  f"Generated by `{a.command}` (then `python3 bat/report.py`) {self.commit_text()}; do not edit "
+                  "by hand. "
                   "How to run it and what each figure means: [cli.md](cli.md#oit-bench) and the end of this page.",
                   "",
                   f"- **Date**: {self.meta.get('date', datetime.datetime.utcnow().isoformat(timespec='seconds') + 'Z')}"
                   + (f"; the whole run took {int(a.elapsed) // 60} min" if a.elapsed else ""),
-                  f"- **Machine**: {machine_description()}",
-                  f"- **Driver**: {self.meta.get('renderer', '?')} (Mesa {mesa_version()}), "
-                  f"{self.meta.get('backend', 'egl')} back end, no GPU",
+                  f"- **Machine**: {self.machine_text()}",
+                  f"- **Driver**: {self.renderer}"
+                  + (f" (Mesa {self.machine['mesa']})" if self.machine.get("mesa") else "") + ", "
+                  f"{self.meta.get('backend', '?')} back end, {self.gpu_text()}",
                   f"- **Command**: `{self.meta.get('command', '?')}`",
                   f"- **Measured**: {len(self.scenes)} scenes × {len(self.algorithms)} algorithms at {size}, "
                   f"{self.meta.get('warmup', '?')} warm-up frame(s) then up to {frames} measured frames each, "
@@ -242,14 +428,8 @@ class Report:
         if "--quick" in a.command:
             self.emit("> **A quick run** (the config's quick models at a small size, few frames): a smoke test of "
                       "the pipeline, not the comparison. `bat/run_comparison.sh` without `--quick` measures every "
-                      "scene at 600×600 and replaces this page.", "")
-        self.emit("**Timing on llvmpipe.** Its `GL_TIME_ELAPSED` queries do not measure the work, so every stage "
-                  "is timed as wall time between `glFinish()` calls (the \"GPU\" columns), and the frame time is the "
-                  "wall time of the whole frame. Ratios measured in the same run are what carry over to a GPU; "
-                  "absolute times do not. The machine has two cores, so llvmpipe runs two threads. On a shared "
-                  "virtual machine a small scene's times can differ by up to a third between two runs of this "
-                  "script (spider-general's `ib` neighbour search: 20 ms in one run, 30 ms in the next, with "
-                  "the same code); medians over the scenes move far less than single scenes.", "")
+                      "scene at the full size and replaces this page.", "")
+        self.emit(self.timing_text(), "")
         if self.failed:
             self.emit(f"**{len(self.failed)} run(s) failed** and are left out of the tables:", "")
             for r in self.failed:
@@ -259,7 +439,7 @@ class Report:
     def targets(self):
         ll_blend = [self.value(s, "ll", "cpu_ms_median") / self.value(s, "blend", "cpu_ms_median")
                     for s in self.scenes if self.value(s, "ll", "cpu_ms_median") and self.value(s, "blend", "cpu_ms_median")]
-        deep = [s for s in self.scenes if (self.value(s, "ll", "max_list") or 0) >= 16]
+        deep = [s for s in self.scenes if (self.value(s, "ll", "max_list") or 0) >= TARGETS["deep_list"]]
         dp_ll = {s: self.value(s, "dp", "cpu_ms_median") / self.value(s, "ll", "cpu_ms_median")
                  for s in deep if self.value(s, "dp", "cpu_ms_median") and self.value(s, "ll", "cpu_ms_median")}
         ib_ll = {s: self.ib_construction(s) / self.value(s, "ll", "gpu_ms_median")
@@ -271,26 +451,32 @@ class Report:
         def verdict(ok, text):
             return ("**met**" if ok else "**missed**") + f" ({text})"
 
+        t = TARGETS
         if ll_blend:
             m = statistics.median(ll_blend)
-            rows.append(["`ll` frame time ≤ 2.0 × `blend` (median over the scenes)", f"{m:.2f}×",
-                         verdict(m <= 2.0, f"{m / 2.0 * 100 - 100:+.0f}% against the target")])
+            rows.append([f"`ll` frame time ≤ {t['ll_blend']:.1f} × `blend` (median over the scenes)", f"{m:.2f}×",
+                         verdict(m <= t["ll_blend"], f"{m / t['ll_blend'] * 100 - 100:+.0f}% against the target")])
         if dp_ll:
             worst = min(dp_ll, key=dp_ll.get)
-            rows.append([f"`ll` ≥ 3 × faster than `dp` where the longest list ≥ 16 ({len(dp_ll)} scenes)",
+            rows.append([f"`ll` ≥ {t['dp_ll']:g} × faster than `dp` where the longest list ≥ {t['deep_list']} "
+                         f"({len(dp_ll)} scenes)",
                          f"lowest {dp_ll[worst]:.2f}× ({worst}), median {statistics.median(dp_ll.values()):.2f}×",
-                         verdict(dp_ll[worst] >= 3.0,
-                                 f"{sum(v >= 3.0 for v in dp_ll.values())} of {len(dp_ll)} scenes at 3× or more")])
+                         verdict(dp_ll[worst] >= t["dp_ll"],
+                                 f"{sum(v >= t['dp_ll'] for v in dp_ll.values())} of {len(dp_ll)} scenes at "
+                                 f"{t['dp_ll']:g}× or more")])
         if ib_ll:
             worst = max(ib_ll, key=ib_ll.get)
-            rows.append(["`ib` construction (fill, sort, neighbours) ≤ 2.0 × `ll` on every scene",
+            theirs = self.thesis.ib_ll()
+            rows.append([f"`ib` construction (fill, sort, neighbours) ≤ {t['ib_ll']:.1f} × `ll` on every scene",
                          f"median {statistics.median(ib_ll.values()):.2f}×, worst {ib_ll[worst]:.2f}× ({worst})",
-                         verdict(ib_ll[worst] <= 2.0,
-                                 f"{sum(v <= 2.0 for v in ib_ll.values())} of {len(ib_ll)} scenes within; "
-                                 f"the worst is {ib_ll[worst] / 2.0:.1f}× the target; the thesis: median 4.58, worst 6.37")])
+                         verdict(ib_ll[worst] <= t["ib_ll"],
+                                 f"{sum(v <= t['ib_ll'] for v in ib_ll.values())} of {len(ib_ll)} scenes within; "
+                                 f"the worst is {ib_ll[worst] / t['ib_ll']:.1f}× the target; the thesis: median "
+                                 f"{statistics.median(theirs):.2f}, worst {max(theirs):.2f}")])
         if ib_bytes:
-            rows.append(["`ib` memory ≤ 64 bytes per fragment", f"{max(ib_bytes):.0f} bytes",
-                         verdict(max(ib_bytes) <= 64, f"the thesis: 208 bytes")])
+            rows.append([f"`ib` memory ≤ {t['ib_bytes']:.0f} bytes per fragment", f"{max(ib_bytes):.0f} bytes",
+                         verdict(max(ib_bytes) <= t["ib_bytes"],
+                                 f"the thesis: {self.thesis.bytes_per_fragment} bytes")])
         self.emit("## Targets", "", *table(["target (issue)", "measured", "verdict"], rows, ["---", "---", "---"]), "")
         self.target_rows = rows
 
@@ -302,12 +488,35 @@ class Report:
                          fmt(number(ll.get("fragments")), 0), fmt(number(ll.get("max_list")), 0),
                          fmt(100 * number(ll.get("psi"), float("nan")), 2), fmt(number(ll.get("mean_list")), 2)])
         self.emit("## Scenes", "",
-                  "Every model in two views, as the thesis measured them: `general` (a three-quarter view) and "
-                  "`longest` (the orbit with the longest lists, found by `bat/find_views.py`). Models and views: "
+                  self.views_text() + " Models and views: "
                   "[config/bench-scenes.json](../config/bench-scenes.json). Figures from `ll` at the bench size; "
                   "Ψ is the share of non-empty pixels whose list is longer than 2/3 of the longest (the thesis's "
                   "\"worst third\"), in percent.", "",
                   *table(["scene", "vertices", "triangles", "fragments", "longest list", "Ψ %", "mean list"], rows), "")
+
+    def views_text(self):
+        """How many views of each model the run measured (bench.csv's model and scene columns), beside the
+        thesis's (its tables name a scene 'Model N')."""
+        per_model = {}
+        for r in self.bench:
+            per_model.setdefault(r["model"], set()).add(r["scene"])
+        counts = sorted({len(v) for v in per_model.values()})
+        views = sorted({s.rsplit("-", 1)[-1] for s in self.scenes})
+        theirs = {}
+        for r in self.thesis.tables["comparison"]:
+            theirs.setdefault(r["model"].rsplit(" ", 1)[0], set()).add(r["model"])
+        their_counts = {len(v) for v in theirs.values()}
+        words = {1: "one view", 2: "two views", 3: "three views", 4: "four views"}
+        if len(counts) == 1:
+            text = f"Every model in {words.get(counts[0], f'{counts[0]} views')}"
+        else:
+            text = f"The models in {counts[0]} to {counts[-1]} views"
+        if their_counts == set(counts):
+            text += ", as the thesis measured them"
+        if set(views) == {"general", "longest"}:
+            return (text + ": `general` (a three-quarter view) and `longest` (the orbit with the longest lists, "
+                    "found by `bat/find_views.py`).")
+        return text + ": " + ", ".join(f"`{v}`" for v in views) + " (the end of each scene's name)."
 
     def frame_times(self):
         rows = []
@@ -341,8 +550,8 @@ class Report:
             "ll-array/ll": [self.value(s, "ll-array", "gpu_ms_median") / self.value(s, "ll", "gpu_ms_median")
                             for s in self.scenes if self.value(s, "ll-array", "gpu_ms_median") and self.value(s, "ll", "gpu_ms_median")],
         }
-        t4 = read_thesis("thesis_table_5_4_oit_comparison.csv")
-        t3 = read_thesis("thesis_table_5_3_sort_methods.csv")
+        t4 = self.thesis.tables["comparison"]
+        t3 = self.thesis.tables["sort"]
         theirs = {
             "ib/ll": [float(r["ib_ms"]) / float(r["ll_ms"]) for r in t4],
             "dp/ll": [float(r["dp_ms"]) / float(r["ll_ms"]) for r in t4],
@@ -360,12 +569,12 @@ class Report:
         ax.axhline(1.0, color="grey", lw=0.5)
         ax.set_yscale("log")
         ax.set_ylabel("time ratio (log)")
-        ax.set_title("Our ratios (black, llvmpipe) beside the thesis's (orange, GTX 660)")
+        ax.set_title(f"Our ratios (black, {self.renderer_name()}) beside the thesis's (orange, {self.thesis.gpu})")
         self.emit("## Our ratios beside the thesis's", "",
                   "Per scene, GPU (stage) time of one algorithm over another; median (minimum–maximum) over the "
                   "scenes. `ib` is its construction (fill, sort, neighbours), as in the thesis's table 5.4; the "
-                  "thesis's figures are from its tables 5.3 and 5.4 (GeForce GTX 660, 600×600, its own 24 scenes, "
-                  "depth peeling from the NVIDIA SDK).", "",
+                  f"thesis's figures are from its tables 5.3 and 5.4 ({self.thesis.gpu}, {self.thesis.size_text()}, "
+                  f"its own {self.thesis.scenes()} scenes, depth peeling from the NVIDIA SDK).", "",
                   *table(["ratio", "ours", "thesis", "our scenes"], rows, ["---", "---:", "---:", "---:"]), "",
                   self.save(fig, "ratios"), "")
 
@@ -399,12 +608,7 @@ class Report:
         ax.set_ylim(0, 100)
         ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
         ax.set_title("Illustration Buffer: each stage's share of the frame (medians)")
-        t1 = read_thesis("thesis_table_5_1_ib_stages.csv")
-        # table 5.1 gives cumulative times: fill, fill+sort, fill+sort+neighbours
-        shares = []
-        for r in t1:
-            fill, sort_cum, nb_cum = float(r["fill_ms"]), float(r["sort_ms"]), float(r["findneighbors_ms"])
-            shares.append(((fill / nb_cum), (sort_cum - fill) / nb_cum, (nb_cum - sort_cum) / nb_cum))
+        shares = self._thesis_shares()
         ours = []
         for _, v in data:
             c = v[0] + v[1] + v[2] + v[3] + v[4]
@@ -468,6 +672,7 @@ class Report:
         for s in self.scenes:
             rows.append([s] + [fmt((self.value(s, a, "memory_bytes") or float("nan")) / 2 ** 20) for a in self.algorithms])
         per_fragment = []
+        thesis_ib = self.thesis.bytes_per_fragment
         for a in ("ll", "ib"):
             values = [self.value(s, a, "bytes_per_fragment") for s in self.scenes if self.value(s, a, "bytes_per_fragment")]
             if values:
@@ -482,7 +687,7 @@ class Report:
         self.emit("## Memory per algorithm", "",
                   "MB of GPU buffers and targets each algorithm holds at the bench size (the model's own buffers "
                   "not included). " + ("; ".join(per_fragment) + " (every per-fragment buffer, ping-pong copies "
-                                       "included), the thesis's Illustration Buffer 208." if per_fragment else ""), "",
+                                       f"included), the thesis's Illustration Buffer {thesis_ib}." if per_fragment else ""), "",
                   self.save(fig, "memory"), "",
                   *table(["scene"] + [f"`{a}`" for a in self.algorithms], rows), "")
 
@@ -504,8 +709,8 @@ class Report:
         ax.set_xlabel("fragments (log)")
         ax.set_ylabel("ib construction ms (log)")
         ax.legend(fontsize=6, ncol=2)
-        ax.set_title("Illustration Buffer construction against fragments, 400x400..700x700")
         sizes = sorted({int(r["width"]) for r in rows})
+        ax.set_title(f"Illustration Buffer construction against fragments, {sizes[0]}x{sizes[0]}..{sizes[-1]}x{sizes[-1]}")
         table_rows = []
         for name, points in series.items():
             by_size = {p[0]: p for p in points}
@@ -515,11 +720,19 @@ class Report:
         for points in series.values():
             if len(points) >= 2 and points[0][2] > 0 and points[0][1] > 0:
                 growth.append((points[-1][2] / points[0][2]) / (points[-1][1] / points[0][1]))
-        thesis_note = ("In the thesis (tables B.1–B.2, 400×400 to 700×700) the fragments grew ×3.06 and the time "
-                       "×1.46–2.64 (median 2.14): 0.70 (0.48–0.86) times as fast as the fragment count.")
+        # the thesis's sweep (tables B.1-B.2), from its smallest size to its largest
+        their_sizes = self.thesis.sweep_sizes
+        first, last = their_sizes[0], their_sizes[-1]
+        their = [(v[last][0] / v[first][0], v[last][1] / v[first][1]) for v in self.thesis.sweep.values()
+                 if first in v and last in v and v[first][0] and v[first][1]]
+        fragments_m, _, _ = spread([f for f, _ in their])
+        time_m, time_lo, time_hi = spread([t for _, t in their])
+        thesis_note = (f"In the thesis (tables B.1–B.2, {sizes_text(their_sizes).split(' in steps')[0]}) the "
+                       f"fragments grew ×{fragments_m:.2f} and the time ×{time_lo:.2f}–{time_hi:.2f} (median "
+                       f"{time_m:.2f}): {spread_text([t / f for f, t in their])} times as fast as the fragment count.")
         self.emit("## Resolution sweep", "",
                   "`bat/measure_resolutions.sh`: Illustration Buffer construction (`oit measure` task 2) at "
-                  "400×400 to 700×700 in steps of 50, each cell fragments / ms.", "",
+                  f"{sizes_text(sizes)}, each cell fragments / ms.", "",
                   self.save(fig, "resolutions"), "",
                   *table(["view"] + [f"{s}²" for s in sizes], table_rows), "",
                   f"Time grew {spread_text(growth)} times as fast as the fragment count over the sweep (1 = linear). "
@@ -548,8 +761,8 @@ class Report:
                 match = [r for r in rows if f"{r['name']} {r['counter']}" == key and r["width"] == viewport]
                 cells.append(f"{float(match[0]['task_ms']):.1f}" if match else "–")
             table_rows.append(cells)
-        t5 = read_thesis("thesis_table_5_5_modulation_passes.csv")
-        t1 = read_thesis("thesis_table_5_1_ib_stages.csv")
+        t5 = self.thesis.tables["modulation"]
+        t1 = self.thesis.tables["stages"]
         ours_ratio = {}
         construction = {f"{r['name']} {r['counter']}": float(r["task_ms"]) for r in measured["construction (task 2)"]
                         if r["width"] == viewport}
@@ -592,23 +805,23 @@ class Report:
                          f"{float(worst['ref_over_tolerance_percent']):.2f} ({worst['scene']})"])
         outside = sorted({f"`{r['algorithm']}` on {r['scene']}" for r in rows_in
                           if r["algorithm"] in ("dp", "ddp", "ll", "ib") and r["ref_over_tolerance_percent"] != ""
-                          and float(r["ref_over_tolerance_percent"]) > 1.0})
+                          and float(r["ref_over_tolerance_percent"]) > self.mismatch})
+        bounds = f"{self.mismatch:g}% of the pixels more than {self.tolerance:g}/255 off"
         verdict = ("Every exact algorithm (`dp`, `ddp`, `ll`, `ib`) stays within the tests' bounds on every scene "
-                   "(at most 1% of the pixels more than 2/255 off)." if not outside else
-                   "**Outside the tests' bounds** (more than 1% of the pixels more than 2/255 off): "
-                   + ", ".join(outside) + ".")
+                   f"(at most {bounds})." if not outside else
+                   f"**Outside the tests' bounds** (more than {bounds}): " + ", ".join(outside) + ".")
         self.emit("## Difference from the reference", "",
-                  f"Every scene at {size}, one frame after no warm-up, the algorithms in turn in one GL context, "
+                  f"Every scene at {size}, {frames_text(rows_in)}, the algorithms in turn in one GL context, "
                   "against the exact CPU `reference`: the largest channel difference (0..255) over the scenes, the "
-                  "median of the mean difference, and the worst share of pixels more than 2 off. " + verdict +
+                  f"median of the mean difference, and the worst share of pixels more than {self.tolerance:g} off. " + verdict +
                   " `blend` and `wboit` are approximations.", "",
-                  *table(["algorithm", "largest diff", "median mean diff", "worst % over 2"], rows), "")
+                  *table(["algorithm", "largest diff", "median mean diff", f"worst % over {self.tolerance:g}"], rows), "")
 
     def why_missed(self):
         """Where a target is missed: the stage breakdown says where the time goes."""
         notes = []
         ib_ll = self.ratios.get("ib_ll", {})
-        if ib_ll and max(ib_ll.values()) > 2.0:
+        if ib_ll and max(ib_ll.values()) > TARGETS["ib_ll"]:
             sort_ratio, nb_share, epsilon_share, fill_ratio = [], [], [], []
             for s in ib_ll:
                 ib = stages_of(self.row(s, "ib"))
@@ -652,9 +865,9 @@ class Report:
             if self.profile:
                 notes.append("  " + self.profile)
         dp_ll = self.ratios.get("dp_ll", {})
-        if dp_ll and min(dp_ll.values()) < 3.0:
+        if dp_ll and min(dp_ll.values()) < TARGETS["dp_ll"]:
             parts = []
-            for s in (s for s, v in dp_ll.items() if v < 3.0):
+            for s in (s for s, v in dp_ll.items() if v < TARGETS["dp_ll"]):
                 dp_row, ll_row = self.row(s, "dp"), self.row(s, "ll")
                 layers = number(dp_row["layers"]) or 0
                 peel = stage_sum(stages_of(dp_row), ("peel_",))
@@ -663,10 +876,17 @@ class Report:
                              f"{peel / max(layers + 1, 1):.1f} ms per geometry pass over {ll_row['triangles']} triangles; "
                              f"`ll` fill {stage_sum(llst, ('fill',)):.1f}, sort {llst.get('sort', 0):.1f}, "
                              f"compose {llst.get('compose', 0):.1f} ms")
-            notes.append("- **`ll` vs `dp`** below 3×: " + "; ".join(parts) + ". Depth peeling costs layers × "
-                         "geometry passes, so it is cheapest relative to `ll` on small models.")
+            # does dp's disadvantage grow with the model? (dp/ll against the triangle count, every scene)
+            pairs = [(number(self.row(s, "ll")["triangles"]), v) for s, v in dp_ll.items()]
+            rho = spearman([p[0] for p in pairs], [p[1] for p in pairs])
+            notes.append(f"- **`ll` vs `dp`** below {TARGETS['dp_ll']:g}×: " + "; ".join(parts) + ". Depth peeling "
+                         "costs layers × geometry passes"
+                         + (", so it is cheapest relative to `ll` on small models" if rho is not None and rho > 0
+                            else "")
+                         + f" (`ll`'s advantage against the triangle count over the {len(pairs)} scenes: "
+                         f"Spearman ρ = {fmt(rho)}).")
         ll_blend = self.ratios.get("ll_blend", [])
-        if ll_blend and statistics.median(ll_blend) > 2.0:
+        if ll_blend and statistics.median(ll_blend) > TARGETS["ll_blend"]:
             fill_share = []
             for s in self.scenes:
                 ll = self.row(s, "ll")
@@ -685,9 +905,11 @@ class Report:
                 f"{spread_text([100 * x for x in fill_share], 0)} % of its frame and alone costs "
                 f"{spread_text(fill_over_blend)} × `blend`'s whole frame: the same geometry pass, but every "
                 "fragment takes a node with an atomic counter, stores it and swaps its pixel's head with an "
-                "image atomic, and llvmpipe executes storage-buffer accesses lane by lane "
-                "([illustration-buffer.md](illustration-buffer.md#speed-on-llvmpipe)) where `blend`'s "
-                "blending is vectorised. The rest is the sort and the compose over every fragment, "
+                "image atomic"
+                + (", and llvmpipe executes storage-buffer accesses lane by lane "
+                   "([illustration-buffer.md](illustration-buffer.md#speed-on-llvmpipe)) where `blend`'s "
+                   "blending is vectorised" if self.renderer_name() == "llvmpipe" else "")
+                + ". The rest is the sort and the compose over every fragment, "
                 "work `blend` does not do (they already read through buffer textures, "
                 "[algorithms.md](algorithms.md#ll-per-pixel-linked-lists-yang-et-al-2010)).")
         if notes:
@@ -695,7 +917,8 @@ class Report:
 
     def _thesis_shares(self):
         out = []
-        for r in read_thesis("thesis_table_5_1_ib_stages.csv"):
+        # table 5.1 gives cumulative times: fill, fill+sort, fill+sort+neighbours
+        for r in self.thesis.tables["stages"]:
             fill, sort_cum, nb_cum = float(r["fill_ms"]), float(r["sort_ms"]), float(r["findneighbors_ms"])
             out.append((fill / nb_cum, (sort_cum - fill) / nb_cum, (nb_cum - sort_cum) / nb_cum))
         return out
@@ -708,7 +931,8 @@ class Report:
                   "```", "",
                   "Raw results: `build/bench/results/bench.csv` (one row per scene × algorithm: median, minimum and "
                   "maximum of frame and stage times, memory, fragments, longest list, Ψ), `bench.json` (the same with "
-                  "the machine), `accuracy.csv`, and one text file per `oit measure` script.", "")
+                  "the renderer and the command), `machine.json` (the machine: CPU, cores, GL renderer), "
+                  "`accuracy.csv`, and one text file per `oit measure` script.", "")
 
     def write(self):
         self.header()
@@ -736,6 +960,9 @@ def main():
     parser.add_argument("--docs", default=os.path.join(ROOT, "docs"))
     parser.add_argument("--command", default="bat/run_comparison.sh")
     parser.add_argument("--elapsed", type=float, default=0)
+    parser.add_argument("--shared", default=SHARED,
+                        help="the shared folder with the thesis's data/ and sources/ (default: ../shared beside the "
+                             "repository)")
     Report(parser.parse_args()).write()
 
 

@@ -7,7 +7,8 @@
 #      against the CPU reference -> accuracy.csv
 #   4. the source's six measurements (bat/measure_*.sh) -> BUILD/bench/results/*.txt
 #   5. a perf profile of ll and ib on one scene (bat/profile.sh; skipped without perf)
-#   6. bat/report.py -> docs/benchmarks.md and docs/images/bench-*.png
+#   6. bat/report.py -> docs/benchmarks.md and docs/images/bench-*.png (with the machine of step 3,
+#      recorded in BUILD/bench/results/machine.json by bat/pages.py machine)
 # Options:
 #   --build DIR   build directory (default build)
 #   --quick       4 models, 256x256, fewer frames, measurements at 300x300, resolution sweep
@@ -70,6 +71,12 @@ else
     docs=$ROOT/docs
 fi
 
+step "the machine (CPU, cores, GL renderer) -> $RESULTS/machine.json"
+python3 "$ROOT/bat/pages.py" machine --oit "$OIT" >"$RESULTS/machine.json"
+# the accuracy run counts a pixel as off as the tests do (report.py reads the same bound)
+tolerance=$(sed -n 's/^set(EXACT_TOLERANCE \([0-9]*\))$/\1/p' "$ROOT/tests/CMakeLists.txt")
+[ -n "$tolerance" ] || { echo "run_comparison.sh: no set(EXACT_TOLERANCE N) in tests/CMakeLists.txt" >&2; exit 2; }
+
 step "oit bench (progress on stderr)"
 set +e
 "$OIT" bench --scene-list "$SCENES" --algorithms blend,dp,ddp,ll,ll-array,ib,wboit "${bench_flags[@]}" \
@@ -77,7 +84,7 @@ set +e
 bench_status=$?
 step "accuracy against the reference at ${accuracy_size}x${accuracy_size}"
 "$OIT" bench --scene-list "$SCENES" --algorithms blend,dp,ddp,ll,ib,wboit --sizes $accuracy_size \
-    --frames 1 --warmup 0 --reference-max-pixels $((accuracy_size * accuracy_size)) --quiet \
+    --frames 1 --warmup 0 --reference-max-pixels $((accuracy_size * accuracy_size)) --tolerance "$tolerance" --quiet \
     --csv "$RESULTS/accuracy.csv"
 accuracy_status=$?
 set -e

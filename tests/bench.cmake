@@ -10,3 +10,12 @@ set_tests_properties(bench_report PROPERTIES FIXTURES_REQUIRED scenes)
 add_test(NAME bench_algorithm_order
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench_order.sh ${OIT} ${WORK}/bench_order ${SCENES})
 set_tests_properties(bench_algorithm_order PROPERTIES FIXTURES_REQUIRED scenes)
+# The committed docs/generated pages (accuracy, capability matrix) are what their
+# generators make from this tree: regenerated and compared, timings and commit aside
+# (tests/generated_pages.sh). Two processors: it renders two at a time. Not in the
+# sanitizer build: it checks the pages' content, which the release build has shown.
+if(NOT OIT_SANITIZE)
+  add_test(NAME generated_pages_current
+    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/generated_pages.sh ${OIT} ${WORK}/generated_pages ${PROJECT_SOURCE_DIR})
+  set_tests_properties(generated_pages_current PROPERTIES PROCESSORS 2 TIMEOUT 900)
+endif()

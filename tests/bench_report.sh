@@ -16,6 +16,7 @@ for size in 24 32; do
     # shellcheck disable=SC2086
     "$oit" measure --results "$work/results/ib_resolutions.txt" --frames 1 --warmup 0 2 1 onion "$scenes/onion.obj" $mv $p $size >/dev/null || fail "measure"
 done
+python3 "$source/bat/pages.py" machine --oit "$oit" >"$work/results/machine.json" || fail "pages.py machine"
 python3 "$source/bat/report.py" --results "$work/results" --docs "$work/docs" --command "tests/bench_report.sh" \
     || fail "report.py"
 page=$work/docs/benchmarks.md
@@ -28,4 +29,65 @@ grep -q "llvmpipe" "$page" || fail "benchmarks.md must name the driver"
 for image in frame-times ratios ib-stages parallel memory resolutions; do
     [ -s "$work/docs/images/bench-$image.png" ] || fail "no plot bench-$image.png"
 done
+
+# The sentences about the machine and the thesis are computed from the inputs: this machine's ...
+grep -qF "$(nproc) logical CPUs" "$page" || fail "benchmarks.md must say this machine's $(nproc) logical CPUs"
+grep -q "at commit [0-9a-f]" "$page" || fail "benchmarks.md must name the commit"
+renderer=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["renderer"])' "$work/results/bench.json")
+grep -qF -- "- **Driver**: $renderer" "$page" || fail "benchmarks.md must name the renderer of bench.json ($renderer)"
+case $renderer in
+*llvmpipe* | *softpipe* | *swrast*) grep -q "back end, no GPU$" "$page" || fail "a software renderer is 'no GPU'" ;;
+*) grep -q "back end, on the GPU$" "$page" || fail "a GPU renderer is 'on the GPU'" ;;
+esac
+# ... another machine's (8 cores, a GPU, frames that varied) ...
+cp -r "$work/results" "$work/other"
+python3 - "$work/other" <<'PY' || fail "could not write the other machine's results"
+import csv, json, os, sys
+results = sys.argv[1]
+meta = json.load(open(os.path.join(results, "bench.json")))
+meta["renderer"] = "NVIDIA GeForce RTX 3060/PCIe/SSE2"
+json.dump(meta, open(os.path.join(results, "bench.json"), "w"))
+json.dump({"cpu": "Test CPU 9000", "logical_cpus": 8, "virtual_machine": False, "kernel": "Linux 9.9",
+           "mesa": None, "lp_num_threads": None, "renderer": meta["renderer"], "backend": "egl",
+           "commit": "abcdef1"}, open(os.path.join(results, "machine.json"), "w"))
+rows = list(csv.DictReader(open(os.path.join(results, "bench.csv"))))
+for r in rows:
+    if r["scene"] == "onion-a" and r["algorithm"] == "ll":
+        r.update(frames="3", cpu_ms_min="10", cpu_ms_median="20", cpu_ms_max="40")
+with open(os.path.join(results, "bench.csv"), "w", newline="") as f:
+    writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+    writer.writeheader()
+    writer.writerows(rows)
+PY
+python3 "$source/bat/report.py" --results "$work/other" --docs "$work/other-docs" --command "tests/bench_report.sh" \
+    >/dev/null || fail "report.py on the other machine's results"
+other=$work/other-docs/benchmarks.md
+for text in "Test CPU 9000, 8 logical CPUs, Linux 9.9" "NVIDIA GeForce RTX 3060/PCIe/SSE2" "back end, on the GPU" \
+    "timed by \`GL_TIME_ELAPSED\` queries" "The machine has 8 logical CPUs." "at commit abcdef1" \
+    "by up to 150% of their median (onion-a's \`ll\`: 10.0 to 40.0 ms)"; do
+    grep -qF -- "$text" "$other" || fail "the other machine's page lacks '$text'"
+done
+for text in "no GPU" "llvmpipe runs" "two cores" "AMD EPYC"; do
+    ! grep -qF -- "$text" "$other" || fail "the other machine's page still says '$text'"
+done
+# ... and the thesis's figures come from ../shared (a changed copy changes them) ...
+mkdir -p "$work/shared"
+cp -r "$source/../shared/data" "$source/../shared/sources" "$work/shared/" || fail "no ../shared beside $source"
+chmod -R u+w "$work/shared"   # CI's shared/ has no write bits, and cp keeps them
+sed -i 's/^GPU 2,17.111233,58,27.447712,36,20.68,50,[0-9.]*,/GPU 2,17.111233,58,27.447712,36,20.68,50,300.0,/' \
+    "$work/shared/data/thesis_table_5_4_oit_comparison.csv"
+sed -i 's/need 208 bytes per fragment/need 999 bytes per fragment/' "$work/shared/sources/001_d33ee0e5babd5f13.txt"
+python3 "$source/bat/report.py" --results "$work/results" --docs "$work/thesis-docs" --shared "$work/shared" \
+    --command "tests/bench_report.sh" >/dev/null || fail "report.py with a changed thesis"
+grep -qF "worst 14.51)" "$work/thesis-docs/benchmarks.md" || fail "the thesis's worst ib/ll is not read from table 5.4"
+grep -qF "the thesis: 999 bytes" "$work/thesis-docs/benchmarks.md" || fail "the thesis's bytes per fragment are not read"
+! grep -qF "worst 14.51)" "$page" || fail "the real table 5.4 gives 14.51?"
+# ... which must be there
+rm -rf "$work/shared/data/thesis_table_5_4_oit_comparison.csv"
+if python3 "$source/bat/report.py" --results "$work/results" --docs "$work/thesis-docs" --shared "$work/shared" \
+    >/dev/null 2>"$work/missing.err"; then
+    fail "report.py ran without table 5.4"
+fi
+grep -q "thesis_table_5_4_oit_comparison.csv is missing: the thesis's figures are read from ../shared" \
+    "$work/missing.err" || { cat "$work/missing.err" >&2; fail "no clear message for a missing thesis table"; }
 echo "report ok"
