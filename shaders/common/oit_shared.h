@@ -104,6 +104,10 @@
 #define OIT_MAX_IMAGE_SIDE 65535
 /* local-array sort: the longest list that can be sorted in registers */
 #define OIT_LOCAL_ARRAY_CAPACITY 64
+/* kbuffer, hybrid, mlab: the layers kept per pixel (oit_algorithm_config.layers)
+ * by default and at most (shader-local arrays are sized by the maximum) */
+#define OIT_APPROX_LAYERS_DEFAULT 8
+#define OIT_APPROX_LAYERS_MAX 64
 /* peeling: the most layers one frame may peel (each is one timed stage) */
 #define OIT_MAX_PEEL_LAYERS 256
 

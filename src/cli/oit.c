@@ -131,6 +131,8 @@ static const char render_help[] =
     "  --max-layers N         dp, ddp: peel at most N layers, 1..1000000 (default: no cap, peel\n"
     "                         until nothing is left); a frame the cap cuts short gets a warning\n"
     "                         and \"truncated\": true\n"
+    "  --layers K             kbuffer, hybrid, mlab: layers kept per pixel, 1..64 (default 8)\n"
+    "  --moments M            mboit: power4, power6 or trig3 (default power4)\n"
     "  --frames N             render N frames; figures are medians over frames 2..N (default 1)\n"
     "  --json                 print one JSON object with timings and statistics on stdout\n"
     "  --debug                debug GL context: every stage is checked for GL errors\n";

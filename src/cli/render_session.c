@@ -41,16 +41,28 @@ int usage_error(const char *fmt, const char *detail)
 
 /* ------------------------------------------------------------- parsing */
 
-/* A flag whose value is one of two names: "--flag must be A or B, got 'X'" otherwise. */
-static oit_status parse_choice(const char *flag, const char *value, const char *const names[2],
-                               const int values[2], int *out, oit_error *err)
+/* A flag whose value is one of COUNT names: "--flag must be A or B, got 'X'"
+ * (or "one of A, B, C") otherwise. */
+static oit_status parse_choice_of(const char *flag, const char *value, int count, const char *const names[],
+                                  const int values[], int *out, oit_error *err)
 {
-    for (int k = 0; k < 2; ++k)
+    for (int k = 0; k < count; ++k)
         if (strcmp(value, names[k]) == 0) {
             *out = values[k];
             return OIT_OK;
         }
-    return oit_fail(err, OIT_E_INPUT, "%s must be %s or %s, got '%s'", flag, names[0], names[1], value);
+    if (count == 2)
+        return oit_fail(err, OIT_E_INPUT, "%s must be %s or %s, got '%s'", flag, names[0], names[1], value);
+    char list[256] = "";
+    for (int k = 0; k < count; ++k)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", names[k]);
+    return oit_fail(err, OIT_E_INPUT, "%s must be one of %s, got '%s'", flag, list, value);
+}
+
+static oit_status parse_choice(const char *flag, const char *value, const char *const names[2],
+                               const int values[2], int *out, oit_error *err)
+{
+    return parse_choice_of(flag, value, 2, names, values, out, err);
 }
 
 bool parse_double(const char *text, double *out)
@@ -278,6 +290,22 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
             return -1;
         }
         o->config.max_layers = (int)layers;
+    } else if (strcmp(flag, "--layers") == 0) {
+        NEED_VALUE();
+        long layers;
+        if (!parse_int(value, 1, OIT_APPROX_LAYERS_MAX, &layers)) {
+            *status = oit_fail(err, OIT_E_INPUT, "--layers must be a whole number from 1 to %d, got '%s'",
+                               OIT_APPROX_LAYERS_MAX, value);
+            return -1;
+        }
+        o->config.layers = (int)layers;
+    } else if (strcmp(flag, "--moments") == 0) {
+        NEED_VALUE();
+        int moments;
+        CHECK(parse_choice_of(flag, value, 3, (const char *const[]){"power4", "power6", "trig3"},
+                           (const int[]){OIT_MOMENTS_POWER4, OIT_MOMENTS_POWER6, OIT_MOMENTS_TRIG3},
+                           &moments, err));
+        o->config.moments = (oit_moments)moments;
     } else if (strcmp(flag, "--fragment-pool") == 0) {
         NEED_VALUE();
         long capacity;

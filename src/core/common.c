@@ -37,6 +37,20 @@ void oit_stats_reset(oit_stats *stats)
     stats->neighbours_same_component_share = -1.0;
 }
 
+const char *oit_moments_name(oit_moments moments)
+{
+    switch (moments) {
+    case OIT_MOMENTS_DEFAULT:
+    case OIT_MOMENTS_POWER4:
+        return "power4";
+    case OIT_MOMENTS_POWER6:
+        return "power6";
+    case OIT_MOMENTS_TRIG3:
+        return "trig3";
+    }
+    return "unknown";
+}
+
 void oit_algorithm_config_defaults(oit_algorithm_config *config)
 {
     memset(config, 0, sizeof *config);

@@ -449,6 +449,17 @@ typedef enum oit_ll_sort {
     OIT_LL_SORT_LOCAL_ARRAY = 1 /* copy into a fixed local array and sort there */
 } oit_ll_sort;
 
+/* mboit: which moments of the optical depth it keeps (Muenstermann et al. 2018) */
+typedef enum oit_moments {
+    OIT_MOMENTS_DEFAULT = 0, /* power 4 */
+    OIT_MOMENTS_POWER4 = 1,  /* b0 and 4 power moments of warped depth: 5 floats per pixel */
+    OIT_MOMENTS_POWER6 = 2,  /* b0 and 6 power moments: 7 floats per pixel */
+    OIT_MOMENTS_TRIG3 = 3    /* b0 and 3 trigonometric moments (complex): 7 floats per pixel */
+} oit_moments;
+
+/* "power4", "power6", "trig3" (the command line's names); "unknown" outside the enum */
+const char *oit_moments_name(oit_moments moments);
+
 typedef struct oit_algorithm_config {
     const char *shader_dir;     /* root of the shader tree (contains common/) */
     uint64_t max_memory_bytes;  /* budget for buffers that grow (fragment pools) */
@@ -465,6 +476,10 @@ typedef struct oit_algorithm_config {
      * 32-bit counter's limits (OIT_MAX_FRAME_FRAGMENTS) are reached without
      * 2^32 fragments; such a frame fails or needs that much more pool */
     uint32_t fragment_counter_start;
+    /* kbuffer, hybrid, mlab: the layers kept per pixel (k), 1..OIT_APPROX_LAYERS_MAX;
+       0: OIT_APPROX_LAYERS_DEFAULT. Others ignore it. */
+    int layers;
+    oit_moments moments; /* mboit; others ignore it */
 } oit_algorithm_config;
 
 void oit_algorithm_config_defaults(oit_algorithm_config *config);
