@@ -29,8 +29,19 @@
 
 /* --------------------------------------------------------------- JSON */
 
+/* ', "error": {...}' (oit_image_error); psnr is null for identical images (infinite) */
+static void print_error_json(FILE *out, const oit_image_error *e)
+{
+    fprintf(out, ", \"error\": {\"rmse\": %.9g, \"psnr\": ", e->rmse);
+    if (isfinite(e->psnr_db))
+        fprintf(out, "%.9g", e->psnr_db);
+    else
+        fprintf(out, "null");
+    fprintf(out, ", \"ssim\": %.9g, \"max\": %d, \"share_over_2\": %.9g}", e->ssim, e->max, e->share_over_2);
+}
+
 static void print_render_json(FILE *out, const render_options *o, const session *s,
-                              const render_result *r)
+                              const render_result *r, const oit_image_error *error)
 {
     const oit_stats *st = &r->stats;
     fprintf(out, "{\"algorithm\": ");
@@ -106,6 +117,8 @@ static void print_render_json(FILE *out, const render_options *o, const session 
         fprintf(out, ", \"out\": ");
         json_string(out, o->out_path);
     }
+    if (error)
+        print_error_json(out, error);
     fprintf(out, "}\n");
 }
 
@@ -133,6 +146,11 @@ static const char render_help[] =
     "                         and \"truncated\": true\n"
     "  --layers K             kbuffer, hybrid, mlab: layers kept per pixel, 1..64 (default 8)\n"
     "  --moments M            mboit: power4, power6 or trig3 (default power4)\n"
+    "  --error-vs-reference   also render the frame with the CPU reference and report the error:\n"
+    "                         rmse, psnr, ssim, max, share_over_2 (RGB; docs/cli.md); --json adds\n"
+    "                         \"error\": {...}\n"
+    "  --error-map FILE.png   write the per-pixel error against the reference as a heat map with a\n"
+    "                         legend (black: exact; blue to red: 1 to 64+ of 255, logarithmic)\n"
     "  --frames N             render N frames; figures are medians over frames 2..N (default 1)\n"
     "  --json                 print one JSON object with timings and statistics on stdout\n"
     "  --debug                debug GL context: every stage is checked for GL errors\n";
@@ -143,12 +161,24 @@ static int command_render(int argc, char **argv)
     render_options_defaults(&o);
     oit_error err = {{0}};
     oit_status status = OIT_OK;
+    bool error_vs_reference = false;
+    const char *error_map_path = NULL;
     for (int i = 0; i < argc; ++i) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(render_help, stdout);
             oit_cli_print_local_help(stdout);
             oit_cli_print_modulation_help(stdout);
             return EXIT_OK;
+        }
+        if (strcmp(argv[i], "--error-vs-reference") == 0) {
+            error_vs_reference = true;
+            continue;
+        }
+        if (strcmp(argv[i], "--error-map") == 0) {
+            if (i + 1 >= argc)
+                return usage_error("--error-map needs a value%s", "");
+            error_map_path = argv[++i];
+            continue;
         }
         int parsed = parse_render_option(argc, argv, &i, &o, &err, &status);
         if (parsed < 0)
@@ -159,6 +189,8 @@ static int command_render(int argc, char **argv)
     if (!o.model_path)
         return usage_error("render needs --model PATH%s", "");
     if (o.out_path && (status = check_output_path("--out", o.out_path, &err)) != OIT_OK)
+        return report(status, &err);
+    if (error_map_path && (status = check_output_path("--error-map", error_map_path, &err)) != OIT_OK)
         return report(status, &err);
 
     session s;
@@ -171,14 +203,49 @@ static int command_render(int argc, char **argv)
         warn_if_truncated(o.algorithm->name, &o.config, &result.stats);
     if (status == OIT_OK && o.out_path)
         status = oit_png_write(o.out_path, &result.image, &err);
+    /* the same frame with the CPU reference: the error figures and map */
+    oit_image_error error;
+    bool has_error = false;
+    if (status == OIT_OK && (error_vs_reference || error_map_path)) {
+        render_options reference_options = o;
+        reference_options.algorithm = &oit_algorithm_reference;
+        reference_options.frames = 1;
+        reference_options.out_path = NULL;
+        render_result reference;
+        memset(&reference, 0, sizeof reference);
+        status = render_frames(&s, &reference_options, &reference, &err);
+        if (status != OIT_OK) {
+            char reason[OIT_ERROR_MESSAGE_SIZE];
+            snprintf(reason, sizeof reason, "%s", err.message);
+            status = oit_fail(&err, status, "--error-vs-reference: the reference could not render the frame: %s",
+                              reason);
+        }
+        if (status == OIT_OK && error_vs_reference) {
+            status = oit_image_error_compute(&result.image, &reference.image, &error, &err);
+            has_error = status == OIT_OK;
+        }
+        if (status == OIT_OK && error_map_path) {
+            oit_image map;
+            status = oit_image_error_map(&result.image, &reference.image, true, &map, &err);
+            if (status == OIT_OK)
+                status = oit_png_write(error_map_path, &map, &err);
+            oit_image_free(&map);
+        }
+        oit_image_free(&reference.image);
+    }
     if (status == OIT_OK) {
         if (o.json)
-            print_render_json(stdout, &o, &s, &result);
-        else
+            print_render_json(stdout, &o, &s, &result, has_error ? &error : NULL);
+        else {
             fprintf(stdout, "%s: %dx%d, gpu %.3f ms, cpu %.3f ms, memory %.2f MB%s%s\n",
                     o.algorithm->name, o.width, o.height, stages_total(&result.stats),
                     result.stats.cpu_ms, result.stats.memory_bytes / (1024.0 * 1024.0),
                     o.out_path ? ", wrote " : "", o.out_path ? o.out_path : "");
+            if (has_error)
+                fprintf(stdout, "error vs reference: rmse %.3f, psnr %.2f dB, ssim %.5f, max %d, %.3f%% of pixels "
+                                "over 2\n",
+                        error.rmse, error.psnr_db, error.ssim, error.max, error.share_over_2);
+        }
     }
     oit_image_free(&result.image);
     session_close(&s);
@@ -364,12 +431,35 @@ static int command_gen(int argc, char **argv)
     return report(oit_scene_generate(scene, (int)complexity, out, &err), &err);
 }
 
-static int command_algorithms(void)
+static int command_algorithms(int argc, char **argv)
 {
+    bool json = false;
+    for (int i = 0; i < argc; ++i) {
+        if (strcmp(argv[i], "--json") == 0)
+            json = true;
+        else if (strcmp(argv[i], "--help") == 0) {
+            fputs("usage: oit algorithms [--json]   (--json: [{\"name\", \"exact\", \"summary\"}])\n", stdout);
+            return EXIT_OK;
+        } else
+            return usage_error("algorithms: unknown option '%s'", argv[i]);
+    }
     size_t count;
     const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
-    for (size_t i = 0; i < count; ++i)
-        printf("%-10s %s\n", list[i]->name, list[i]->summary);
+    if (json)
+        printf("[");
+    for (size_t i = 0; i < count; ++i) {
+        if (!json) {
+            printf("%-10s %s\n", list[i]->name, list[i]->summary);
+            continue;
+        }
+        printf("%s{\"name\": ", i ? ", " : "");
+        json_string(stdout, list[i]->name);
+        printf(", \"exact\": %s, \"summary\": ", list[i]->exact ? "true" : "false");
+        json_string(stdout, list[i]->summary);
+        printf("}");
+    }
+    if (json)
+        printf("]\n");
     return EXIT_OK;
 }
 
@@ -521,6 +611,6 @@ int main(int argc, char **argv)
     if (strcmp(command, "measure") == 0)
         return command_measure(rest, rest_argv);
     if (strcmp(command, "algorithms") == 0)
-        return command_algorithms();
+        return command_algorithms(rest, rest_argv);
     return usage_error("unknown command '%s'", command);
 }

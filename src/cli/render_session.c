@@ -46,6 +46,7 @@ int usage_error(const char *fmt, const char *detail)
 static oit_status parse_choice_of(const char *flag, const char *value, int count, const char *const names[],
                                   const int values[], int *out, oit_error *err)
 {
+    *out = values[0]; /* on failure the caller reports and stops */
     for (int k = 0; k < count; ++k)
         if (strcmp(value, names[k]) == 0) {
             *out = values[k];

@@ -171,6 +171,32 @@ typedef struct oit_image_diff {
 oit_status oit_image_compare(const oit_image *a, const oit_image *b, int tolerance,
                              oit_image_diff *out, oit_error *err);
 
+/* How far an image is from a reference (image_error.c; docs/cli.md), RGB only:
+ * rmse and max on the 0..255 scale, psnr in dB (INFINITY when identical),
+ * ssim (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5, K1 0.01, K2 0.03,
+ * mean over windows and channels), share_over_2 in percent of the pixels. */
+typedef struct oit_image_error {
+    double rmse;
+    double psnr_db;
+    double ssim;
+    int max;
+    double share_over_2;
+} oit_image_error;
+
+oit_status oit_image_error_compute(const oit_image *image, const oit_image *reference, oit_image_error *out,
+                                   oit_error *err);
+/* A per-pixel heat map of the largest channel difference (black where exact,
+ * then blue, green, yellow, red on a logarithmic scale up to
+ * OIT_ERROR_MAP_SATURATION), the image's size; with legend, a bar with
+ * labelled ticks OIT_ERROR_MAP_LEGEND_HEIGHT rows high below it. */
+#define OIT_ERROR_MAP_SATURATION 64
+#define OIT_ERROR_MAP_LEGEND_HEIGHT 18
+oit_status oit_image_error_map(const oit_image *image, const oit_image *reference, bool legend, oit_image *out,
+                               oit_error *err);
+/* The map's scale: where a difference lies on the bar (0..1), and its colour. */
+double oit_error_map_position(int difference);
+void oit_error_map_colour(int difference, uint8_t rgb[3]);
+
 /* ------------------------------------------------------------------- files */
 /* atomic_file.c. WHAT names the file in the user's words (a flag such as
  * "--model"); it may be NULL or "". */
