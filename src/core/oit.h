@@ -546,6 +546,8 @@ typedef struct oit_algorithm_ops {
     const char *summary; /* one line for `oit algorithms` */
     bool uses_gl;        /* false only for the CPU reference */
     bool exact;          /* true if it composites every fragment in depth order */
+    bool uses_layers;    /* reads oit_algorithm_config.layers (k-layer families) */
+    bool uses_moments;   /* reads oit_algorithm_config.moments (mboit) */
     oit_status (*create)(const oit_algorithm_config *config, oit_algorithm **out, oit_error *err);
     oit_status (*resize)(oit_algorithm *alg, int width, int height, oit_error *err);
     /* Render one frame into the algorithm's RGBA8 output; fills the stage
