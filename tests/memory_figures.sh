@@ -92,7 +92,8 @@ else:
                 ("ll", "--sort", "array"), ("dp", "--modulation", "distance"),
                 ("dp", "--modulation", "dist-curv"), ("ddp", "--modulation", "distance"),
                 ("ll", "--modulation", "distance"), ("ib", "--modulation", "fields"),
-                ("ll", "--frames", "3"), ("ib", "--frames", "3")]
+                ("ll", "--frames", "3"), ("ib", "--frames", "3"), ("kbuffer",), ("hybrid",),
+                ("kbuffer", "--layers", "3"), ("hybrid", "--layers", "64")]
     figures = {}
     for algorithm, *args in variants:
         d = render(algorithm, SIZE, *args)
@@ -107,7 +108,7 @@ else:
 
     # per pixel: two image sizes, the pool (ll, ib) fixed and big enough for both
     pool = ("--fragment-pool", str(2 * fragments))
-    for algorithm in ("blend", "dp", "ddp", "ll", "ib", "wboit"):
+    for algorithm in ("blend", "dp", "ddp", "ll", "ib", "wboit", "kbuffer", "hybrid"):
         args = pool if algorithm in ("ll", "ib") else ()
         big, small = render(algorithm, SIZE, *args), render(algorithm, SMALL, *args)
         if args:
@@ -122,7 +123,10 @@ else:
             check(d["bytes_per_pixel"] == per_pixel,
                   f"{algorithm} {d['width']}x{d['height']}: bytes_per_pixel "
                   f"{d['bytes_per_pixel']} == {per_pixel:g} (GL bytes per pixel between two sizes)")
-        if algorithm not in ("ll", "ib"):
+        if algorithm in ("kbuffer", "hybrid"):  # per pixel, and 69 counters
+            check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel + 69 * 4,
+                  f"{algorithm}: everything it holds is per pixel (output included) but its counters")
+        elif algorithm not in ("ll", "ib"):
             check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel,
                   f"{algorithm}: everything it holds is per pixel (output included)")
 

@@ -71,6 +71,36 @@
 #define OIT_LL_VIEW_PEEL_LIMIT 2
 #define OIT_LL_VIEW_LAYER 3
 
+/* ---- k closest layers: kbuffer and hybrid (src/core/closest_layers.c,
+ * shaders/common/closest_layers.glsl) ----
+ * Each pixel p = y * width + x owns k slots, slot i of it at index p * k + i of
+ * OIT_SSBO_CLOSEST_SLOTS, one uvec4 each:
+ *   x = key: floatBitsToUint(canonical depth) (in [0, 1], so the bits order as
+ *       the floats), OIT_CLOSEST_EMPTY_KEY while empty
+ *   y = owner: the triangle index + 1 of the fragment that claimed the slot, 0 while unclaimed
+ *   z = packUnorm2x16(r, g), w = packUnorm2x16(b, a): its shaded colour, as ll stores it
+ * After the select pass a pixel's keys are its k smallest, ascending. */
+#define OIT_SSBO_CLOSEST_SLOTS 1
+#define OIT_CLOSEST_SLOT_BYTES 16
+#define OIT_CLOSEST_EMPTY_KEY 0xFFFFFFFFu
+/* uint per pixel: the fragments the store pass sent to the tail (for the list lengths) */
+#define OIT_SSBO_CLOSEST_TAIL_COUNTS 2
+#define OIT_CLOSEST_TAIL_COUNT_BYTES 4
+/* counters (uint): fragments kept in the core, sent to the tail, the longest
+ * list, non-empty pixels, then a histogram of list lengths */
+#define OIT_SSBO_CLOSEST_COUNTERS 4
+#define OIT_CLOSEST_COUNTER_CORE 0
+#define OIT_CLOSEST_COUNTER_TAIL 1
+#define OIT_CLOSEST_COUNTER_MAX_LIST 2
+#define OIT_CLOSEST_COUNTER_NONEMPTY_PIXELS 3
+#define OIT_CLOSEST_COUNTER_HISTOGRAM 4 /* OIT_CLOSEST_HISTOGRAM_BINS bins, bin 0 unused */
+#define OIT_CLOSEST_HISTOGRAM_BINS 65   /* == OIT_HISTOGRAM_BINS in oit.h */
+#define OIT_CLOSEST_COUNTER_COUNT 69
+/* the tail's float targets, read by compose (kbuffer: one, premultiplied
+ * "over"; hybrid: sum of (c a, a) and product of (1 - a)) */
+#define OIT_TEXUNIT_CLOSEST_TAIL 2
+#define OIT_TEXUNIT_CLOSEST_TAIL_PRODUCT 3
+
 /* ---- image units ---- */
 #define OIT_IMAGE_LIST_HEAD 0  /* r32ui, one list head per pixel */
 #define OIT_IMAGE_LIST_COUNT 1 /* r32ui, fragments per pixel */
@@ -165,6 +195,8 @@
 /* ll compose with the distance modulation: 0 normalise by u_distance_norm, 1 only
  * find the frame's largest distance, 2 normalise by it (int) */
 #define OIT_UNIFORM_LL_DISTANCE_PASS 19
+/* kbuffer, hybrid: k, the layers kept per pixel (int) */
+#define OIT_UNIFORM_CLOSEST_LAYERS 16
 /* dp peel: 0 for the first layer (nothing to peel against), 1 after (int) */
 #define OIT_UNIFORM_DP_HAS_PREVIOUS 16
 /* dp curvature blend: curvature effect (float), neighbours 4 or 8 (int), the

@@ -1,0 +1,444 @@
+/*
+ * closest_layers.c: the k closest layers of every pixel, kept exactly, and a
+ * tail for the rest: the machinery of kbuffer (alg_kbuffer.c) and hybrid
+ * (alg_hybrid.c), which differ only in the tail.
+ *
+ * This is the two-pass "atomic loop" k-buffer (Bavoil et al. 2007's k-buffer
+ * without read-modify-write hazards, as in NVIDIA's
+ * vk_order_independent_transparency "loop" variants). No fragment interlock:
+ * every step is one atomic, and the result does not depend on the order in
+ * which a pixel's fragments run.
+ *
+ * GPU data (layouts in oit_shared.h, GLSL in shaders/common/closest_layers.glsl):
+ *   slots        uvec4 per pixel and layer (W x H x k), OIT_SSBO_CLOSEST_SLOTS:
+ *                key (canonical depth bits), owner (triangle + 1), RGBA16 colour
+ *   tail counts  uint per pixel, OIT_SSBO_CLOSEST_TAIL_COUNTS: fragments in the tail
+ *   counters     uint[OIT_CLOSEST_COUNTER_COUNT]: core and tail fragments, longest
+ *                list, non-empty pixels, list-length histogram
+ *   tail targets float textures, the algorithm's (closest_layers_tail)
+ *
+ * One frame:
+ *   clear    slots := (OIT_CLOSEST_EMPTY_KEY, owner 0), tail counts and counters
+ *            := 0, tail targets := their clear values.
+ *   select   geometry pass, depth test and colour writes off: every fragment with
+ *            alpha > 0 inserts its key into its pixel's k keys with the atomicMin
+ *            loop (closest_layers_insert): afterwards the keys are the pixel's k
+ *            smallest, ascending, ties included.
+ *   store    geometry pass, depth test off, blending into the tail targets: each
+ *            fragment looks for a slot with its key and claims it with
+ *            atomicCompSwap on the owner word, then stores its colour there. A
+ *            fragment whose key is past the k-th, or that finds every slot with
+ *            its key taken (a tie straddling the k-th place), is the tail: the
+ *            store shader blends it into the tail targets (the algorithm's
+ *            shader and blend factors); a core fragment adds nothing there.
+ *   compose  full-screen pass: sorts the pixel's claimed slots by (key, triangle)
+ *            in a local array of OIT_APPROX_LAYERS_MAX, composites them front to
+ *            back in float as ll does, puts the tail (as the algorithm's compose
+ *            shader resolves it) behind what the core lets through and the background
+ *            behind all; writes the RGBA8 output once and counts the list lengths.
+ *
+ * Exact when k >= the pixel's list length: every fragment is in the core, and
+ * the core is ordered by (depth, triangle) as every exact algorithm is.
+ *
+ * Memory: W x H x (k x OIT_CLOSEST_SLOT_BYTES + OIT_CLOSEST_TAIL_COUNT_BYTES +
+ * the tail targets' texels + 4 for the RGBA8 output) + the counters, checked
+ * against config.max_memory_bytes before anything is allocated.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "closest_layers.h"
+
+_Static_assert(OIT_CLOSEST_HISTOGRAM_BINS == OIT_HISTOGRAM_BINS, "oit_shared.h and oit.h disagree");
+_Static_assert(OIT_CLOSEST_COUNTER_HISTOGRAM + OIT_CLOSEST_HISTOGRAM_BINS == OIT_CLOSEST_COUNTER_COUNT,
+               "the histogram ends the counters");
+
+#define CLOSEST_LAYERS_MEGABYTE (1024.0 * 1024.0)
+#define CLOSEST_LAYERS_OUTPUT_BYTES 4u /* RGBA8 */
+
+typedef struct closest_layers_state {
+    const closest_layers_tail *tail;
+    oit_algorithm_config config; /* config.shader_dir points at shader_dir below */
+    char *shader_dir;
+    int layers; /* k */
+    oit_gl_output output;
+    oit_gl_memory memory; /* every buffer and texture below and the output (gl_util.h) */
+    oit_stage_timer timer;
+    oit_stats stats;
+
+    GLuint select_program;  /* geometry.vert + closest_layers/select.frag */
+    GLuint store_program;   /* geometry.vert + tail->store_shader */
+    GLuint compose_program; /* fullscreen.vert + tail->compose_shader */
+
+    GLuint slot_buffer, tail_count_buffer, counter_buffer;
+    GLuint tail_textures[CLOSEST_LAYERS_MAX_TAIL_TARGETS];
+    GLuint tail_framebuffer;
+    uint64_t max_block_bytes; /* GL_MAX_SHADER_STORAGE_BLOCK_SIZE */
+    int width, height;        /* of the allocated buffers; 0 before the first resize */
+} closest_layers_state;
+
+static closest_layers_state *closest_from(oit_algorithm *alg) { return (closest_layers_state *)alg; }
+
+/* ------------------------------------------------------------ create */
+
+static void closest_release_targets(closest_layers_state *s)
+{
+    glDeleteFramebuffers(1, &s->tail_framebuffer);
+    s->tail_framebuffer = 0;
+    oit_gl_memory_delete_textures(&s->memory, s->tail->target_count, s->tail_textures);
+    GLuint buffers[2] = {s->slot_buffer, s->tail_count_buffer};
+    oit_gl_memory_delete_buffers(&s->memory, 2, buffers);
+    s->slot_buffer = s->tail_count_buffer = 0;
+    s->width = s->height = 0;
+}
+
+void closest_layers_destroy(oit_algorithm *alg)
+{
+    closest_layers_state *s = closest_from(alg);
+    if (!s)
+        return;
+    closest_release_targets(s);
+    oit_gl_memory_delete_buffers(&s->memory, 1, &s->counter_buffer);
+    oit_gl_output_release(&s->output);
+    glDeleteProgram(s->select_program);
+    glDeleteProgram(s->store_program);
+    glDeleteProgram(s->compose_program);
+    oit_timer_destroy(&s->timer);
+    free(s->shader_dir);
+    free(s);
+}
+
+oit_status closest_layers_create(const closest_layers_tail *tail, const oit_algorithm_config *config,
+                                 oit_algorithm **out, oit_error *err)
+{
+    *out = NULL;
+    if (config->layers < 0 || config->layers > OIT_APPROX_LAYERS_MAX)
+        return oit_fail(err, OIT_E_INPUT, "%s: config.layers (k) %d outside 1..%d (0: the default %d)",
+                        tail->algorithm, config->layers, OIT_APPROX_LAYERS_MAX,
+                        OIT_APPROX_LAYERS_DEFAULT);
+    closest_layers_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", tail->algorithm);
+    s->tail = tail;
+    s->config = *config;
+    s->layers = config->layers ? config->layers : OIT_APPROX_LAYERS_DEFAULT;
+    const char *dir = config->shader_dir ? config->shader_dir : ".";
+    s->shader_dir = malloc(strlen(dir) + 1);
+    if (!s->shader_dir) {
+        free(s);
+        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", tail->algorithm);
+    }
+    strcpy(s->shader_dir, dir);
+    s->config.shader_dir = s->shader_dir;
+    s->output.memory = &s->memory;
+    oit_stats_reset(&s->stats);
+    oit_timer_create(&s->timer);
+
+    oit_status status = oit_gl_program(s->shader_dir, "common/geometry.vert",
+                                       "closest_layers/select.frag", &s->select_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(s->shader_dir, "common/geometry.vert", tail->store_shader,
+                                &s->store_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(s->shader_dir, "common/fullscreen.vert", tail->compose_shader,
+                                &s->compose_program, err);
+    if (status == OIT_OK) {
+        GLint64 max_block_bytes = 0;
+        glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
+        s->max_block_bytes = max_block_bytes > 0 ? (uint64_t)max_block_bytes : 0;
+        glGenBuffers(1, &s->counter_buffer);
+        oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+                                  s->counter_buffer, OIT_CLOSEST_COUNTER_COUNT * sizeof(GLuint), NULL,
+                                  GL_DYNAMIC_READ);
+        char where[64];
+        snprintf(where, sizeof where, "%s: create", tail->algorithm);
+        status = oit_gl_check(where, err);
+    }
+    if (status != OIT_OK) {
+        closest_layers_destroy((oit_algorithm *)s);
+        return status;
+    }
+    *out = (oit_algorithm *)s;
+    return OIT_OK;
+}
+
+/* ------------------------------------------------------------ resize */
+
+/* The bytes a frame of width x height holds, by the formula (the tracker
+ * records what is then allocated, the same). */
+static uint64_t closest_bytes_needed(const closest_layers_state *s, int width, int height)
+{
+    uint64_t per_pixel = (uint64_t)s->layers * OIT_CLOSEST_SLOT_BYTES + OIT_CLOSEST_TAIL_COUNT_BYTES +
+                         CLOSEST_LAYERS_OUTPUT_BYTES;
+    for (int t = 0; t < s->tail->target_count; ++t)
+        per_pixel += oit_gl_texel_bytes(s->tail->targets[t].format);
+    return (uint64_t)width * (uint64_t)height * per_pixel + OIT_CLOSEST_COUNTER_COUNT * sizeof(GLuint);
+}
+
+oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_error *err)
+{
+    closest_layers_state *s = closest_from(alg);
+    const char *name = s->tail->algorithm;
+    if (width < 1 || height < 1)
+        return oit_fail(err, OIT_E_INPUT, "%s: bad size %dx%d", name, width, height);
+    const uint64_t needed = closest_bytes_needed(s, width, height);
+    if (needed > s->config.max_memory_bytes)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "%s: %dx%d with k = %d layers needs %llu bytes (%.1f MB), over the --max-memory "
+                        "budget of %llu bytes (%.1f MB)",
+                        name, width, height, s->layers, (unsigned long long)needed,
+                        (double)needed / CLOSEST_LAYERS_MEGABYTE,
+                        (unsigned long long)s->config.max_memory_bytes,
+                        (double)s->config.max_memory_bytes / CLOSEST_LAYERS_MEGABYTE);
+    const uint64_t pixels = (uint64_t)width * (uint64_t)height;
+    const uint64_t slot_bytes = pixels * (uint64_t)s->layers * OIT_CLOSEST_SLOT_BYTES;
+    if (slot_bytes > s->max_block_bytes)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "%s: %dx%d with k = %d layers needs %llu bytes of slots, more than this GL "
+                        "binds as one shader storage block (%llu, GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",
+                        name, width, height, s->layers, (unsigned long long)slot_bytes,
+                        (unsigned long long)s->max_block_bytes);
+
+    closest_release_targets(s);
+    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    if (status != OIT_OK)
+        return status;
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    GLuint buffers[2];
+    glGenBuffers(2, buffers);
+    s->slot_buffer = buffers[0];
+    s->tail_count_buffer = buffers[1];
+    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER, s->slot_buffer,
+                              slot_bytes, NULL, GL_DYNAMIC_COPY);
+    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER,
+                              s->tail_count_buffer, pixels * OIT_CLOSEST_TAIL_COUNT_BYTES, NULL,
+                              GL_DYNAMIC_COPY);
+    GLenum error = glGetError();
+    if (error != GL_NO_ERROR) {
+        closest_release_targets(s);
+        return oit_fail(err, OIT_E_RUNTIME, "%s: could not allocate %llu bytes of slots: GL error 0x%04x",
+                        name, (unsigned long long)slot_bytes, (unsigned)error);
+    }
+
+    glGenFramebuffers(1, &s->tail_framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->tail_framebuffer);
+    GLenum draw_buffers[CLOSEST_LAYERS_MAX_TAIL_TARGETS];
+    for (int t = 0; t < s->tail->target_count; ++t) {
+        s->tail_textures[t] = oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS,
+                                                       s->tail->targets[t].format, width, height);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)t, GL_TEXTURE_2D,
+                               s->tail_textures[t], 0);
+        draw_buffers[t] = GL_COLOR_ATTACHMENT0 + (GLenum)t;
+    }
+    glDrawBuffers(s->tail->target_count, draw_buffers);
+    GLenum complete = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (complete != GL_FRAMEBUFFER_COMPLETE)
+        status = oit_fail(err, OIT_E_RUNTIME, "%s: tail framebuffer incomplete (0x%x)", name,
+                          (unsigned)complete);
+    if (status == OIT_OK) {
+        char where[64];
+        snprintf(where, sizeof where, "%s: resize", name);
+        status = oit_gl_check(where, err);
+    }
+    if (status != OIT_OK) {
+        closest_release_targets(s);
+        return status;
+    }
+    s->width = width;
+    s->height = height;
+    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    return OIT_OK;
+}
+
+/* ------------------------------------------------------------ render */
+
+/* The family keeps whole fragments (shaded by oit_shade_fragment(), so the
+ * local modulation works) but only a pixel's k nearest in order. */
+static oit_status closest_check_frame(const closest_layers_state *s, const oit_frame_settings *frame,
+                                      oit_error *err)
+{
+    const char *name = s->tail->algorithm;
+    const oit_modulation *modulation = &frame->modulation;
+    if (modulation->mode == OIT_MODULATE_DISTANCE)
+        return oit_fail(err, OIT_E_INPUT,
+                        "%s: the distance modulation needs the next fragment along the ray, and the "
+                        "fragments past the k nearest are blended into a tail with no order",
+                        name);
+    if (modulation->mode != OIT_MODULATE_NONE)
+        return oit_fail(err, OIT_E_INPUT,
+                        "%s: opacity modulation '%s' needs surface neighbours (ib only): a pixel "
+                        "keeps its k nearest fragments and no link to the adjacent pixels'",
+                        name, oit_modulation_mode_name(modulation->mode));
+    if (modulation->view != OIT_VIEW_COLOUR)
+        return oit_fail(err, OIT_E_INPUT, "%s: buffer views are ll's and ib's (view '%s')", name,
+                        oit_view_name(modulation->view));
+    return OIT_OK;
+}
+
+/* With config.debug, check for GL errors after each stage; stop if cancelled. */
+static oit_status closest_stage_check(const closest_layers_state *s, const char *stage, oit_error *err)
+{
+    if (s->timer.cancelled)
+        return oit_timer_status(&s->timer, err);
+    if (!s->config.debug)
+        return OIT_OK;
+    char where[64];
+    snprintf(where, sizeof where, "%s: %s", s->tail->algorithm, stage);
+    return oit_gl_check(where, err);
+}
+
+static void closest_bind(const closest_layers_state *s, const oit_scene *scene)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_CLOSEST_SLOTS, s->slot_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_CLOSEST_TAIL_COUNTS, s->tail_count_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_CLOSEST_COUNTERS, s->counter_buffer);
+}
+
+static void closest_clear(const closest_layers_state *s)
+{
+    const GLuint empty_slot[4] = {OIT_CLOSEST_EMPTY_KEY, 0u, 0u, 0u};
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->slot_buffer);
+    glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT, empty_slot);
+    const GLuint zero = 0u;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->tail_count_buffer);
+    glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
+    glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->tail_framebuffer);
+    for (int t = 0; t < s->tail->target_count; ++t)
+        glClearBufferfv(GL_COLOR, t, s->tail->targets[t].clear);
+    /* the clears must land before the select pass's atomics */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* The store pass blends into the tail targets with the tail's factors. */
+static void closest_set_tail_blending(const closest_layers_state *s)
+{
+    glEnable(GL_BLEND);
+    for (int t = 0; t < s->tail->target_count; ++t) {
+        glBlendEquationi((GLuint)t, GL_FUNC_ADD);
+        glBlendFunci((GLuint)t, s->tail->targets[t].source, s->tail->targets[t].destination);
+    }
+}
+
+static void closest_finish_stats(closest_layers_state *s, oit_stats *stats)
+{
+    GLuint counters[OIT_CLOSEST_COUNTER_COUNT];
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counters, counters);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    const uint64_t pixels = (uint64_t)s->width * (uint64_t)s->height;
+    const uint64_t non_empty = counters[OIT_CLOSEST_COUNTER_NONEMPTY_PIXELS];
+    /* every fragment with alpha > 0: those in the core and those in the tail */
+    stats->fragments = (int64_t)counters[OIT_CLOSEST_COUNTER_CORE] + counters[OIT_CLOSEST_COUNTER_TAIL];
+    stats->max_list = counters[OIT_CLOSEST_COUNTER_MAX_LIST];
+    stats->mean_list = non_empty ? (double)stats->fragments / (double)non_empty : 0.0;
+    stats->histogram_bins = OIT_HISTOGRAM_BINS;
+    stats->list_histogram[0] = pixels - non_empty;
+    for (int bin = 1; bin < OIT_HISTOGRAM_BINS; ++bin)
+        stats->list_histogram[bin] = counters[OIT_CLOSEST_COUNTER_HISTOGRAM + bin];
+    stats->memory_bytes = oit_gl_memory_total(&s->memory);
+    stats->bytes_per_pixel =
+        (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) / (double)pixels;
+}
+
+oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
+                                 const oit_frame_settings *frame, oit_error *err)
+{
+    closest_layers_state *s = closest_from(alg);
+    if (!scene->has_gpu)
+        return oit_fail(err, OIT_E_INPUT, "%s: the scene has no GPU buffers", s->tail->algorithm);
+    oit_status status = closest_check_frame(s, frame, err);
+    if (status != OIT_OK)
+        return status;
+    if (frame->width != s->width || frame->height != s->height) {
+        status = closest_layers_resize(alg, frame->width, frame->height, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    oit_stats stats;
+    oit_stats_reset(&stats);
+    oit_timer_frame_begin(&s->timer, frame);
+    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+
+    glViewport(0, 0, s->width, s->height);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST); /* every fragment counts, in any order */
+    glDepthMask(GL_FALSE);
+    glDisable(GL_BLEND);
+    closest_bind(s, scene);
+
+    oit_timer_stage_begin(&s->timer, "clear");
+    closest_clear(s);
+    status = closest_stage_check(s, "clear", err);
+
+    if (status == OIT_OK) {
+        oit_timer_stage_begin(&s->timer, "select");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glUseProgram(s->select_program);
+        oit_gl_set_frame_uniforms(frame);
+        glUniform1i(OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
+        oit_gl_draw_scene(scene);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        status = closest_stage_check(s, "select", err);
+    }
+    if (status == OIT_OK) {
+        oit_timer_stage_begin(&s->timer, "store");
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); /* the keys are final */
+        glBindFramebuffer(GL_FRAMEBUFFER, s->tail_framebuffer);
+        closest_set_tail_blending(s);
+        glUseProgram(s->store_program);
+        oit_gl_set_frame_uniforms(frame);
+        glUniform1i(OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
+        oit_gl_draw_scene(scene);
+        glDisable(GL_BLEND);
+        status = closest_stage_check(s, "store", err);
+    }
+    if (status == OIT_OK) {
+        oit_timer_stage_begin(&s->timer, "compose");
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                        GL_FRAMEBUFFER_BARRIER_BIT);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        glUseProgram(s->compose_program);
+        oit_gl_set_frame_uniforms(frame);
+        glUniform1i(OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
+        for (int t = 0; t < s->tail->target_count; ++t) {
+            glActiveTexture(GL_TEXTURE0 + s->tail->targets[t].texture_unit);
+            glBindTexture(GL_TEXTURE_2D, s->tail_textures[t]);
+        }
+        glActiveTexture(GL_TEXTURE0);
+        oit_gl_draw_fullscreen(&s->output);
+        oit_timer_stage_end(&s->timer);
+        status = closest_stage_check(s, "compose", err);
+    }
+    oit_timer_stage_end(&s->timer);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    if (status != OIT_OK)
+        return status;
+    closest_finish_stats(s, &stats);
+    oit_timer_frame_end(&s->timer, &stats);
+    s->stats = stats;
+    char where[64];
+    snprintf(where, sizeof where, "%s: render", s->tail->algorithm);
+    return oit_gl_check(where, err);
+}
+
+/* ------------------------------------------------------------ the rest */
+
+oit_status closest_layers_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
+{
+    return oit_gl_output_read(&closest_from(alg)->output, out, err);
+}
+
+void closest_layers_stats(const oit_algorithm *alg, oit_stats *out)
+{
+    *out = ((const closest_layers_state *)alg)->stats;
+}
