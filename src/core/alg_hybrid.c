@@ -35,6 +35,7 @@ const oit_algorithm_ops oit_algorithm_hybrid = {
     .summary = "hybrid transparency (Maule et al. 2013): k nearest layers exact, tail averaged",
     .uses_gl = true,
     .exact = false,
+    .uses_layers = true,
     .create = hybrid_create,
     .resize = closest_layers_resize,
     .render = closest_layers_render,

@@ -33,6 +33,7 @@ const oit_algorithm_ops oit_algorithm_kbuffer = {
     .summary = "k-buffer (Bavoil et al. 2007), atomic loop: k nearest layers exact, tail blended in order",
     .uses_gl = true,
     .exact = false,
+    .uses_layers = true,
     .create = kbuffer_create,
     .resize = closest_layers_resize,
     .render = closest_layers_render,
