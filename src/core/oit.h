@@ -541,6 +541,7 @@ extern const oit_algorithm_ops oit_algorithm_ddp;
 extern const oit_algorithm_ops oit_algorithm_ll;
 extern const oit_algorithm_ops oit_algorithm_ib;
 extern const oit_algorithm_ops oit_algorithm_wboit;
+extern const oit_algorithm_ops oit_algorithm_mboit;
 extern const oit_algorithm_ops oit_algorithm_reference;
 
 /* ------------------------------------------------------------- GL context */
