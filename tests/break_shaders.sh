@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# break_shaders.sh SHADER_DIR OUT_DIR: a copy of the shader tree with two deliberate,
+# break_shaders.sh SHADER_DIR OUT_DIR: a copy of the shader tree with deliberate,
 # plausible bugs, for the broken-shader tests (tests/approx_bounds.cmake): with
-# OIT_SHADER_DIR=OUT_DIR, blend and wboit must then fall outside their recorded
-# error bounds. Only blend's and wboit's own shaders change (common/ stays).
+# OIT_SHADER_DIR=OUT_DIR, blend, wboit and mboit must then fall outside their
+# recorded error bounds. Only their own shaders change (common/ stays).
 #  - blend/draw.frag: the colour leaves premultiplied by alpha while the blender
 #    (GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA) multiplies by alpha again, a
 #    straight/premultiplied mix-up: every translucent fragment adds a times too little.
 #  - wboit/accumulate.frag: the weight's depth runs the wrong way (gl_FragCoord.z
 #    instead of 1 - z), so the far surfaces outweigh the near ones.
+#  - mboit/common.glsl: the power moments' depth warp reversed (1 - 2 s instead of
+#    2 s - 1, in both passes), so the reconstruction puts the far layers in front.
 set -eu
 src=$1 out=$2
 rm -rf "$out"
@@ -25,3 +27,5 @@ replace blend/draw.frag "o_colour = oit_shade_fragment();" \
     "o_colour = oit_shade_fragment(); o_colour.rgb *= o_colour.a; // BROKEN: premultiplied twice"
 replace wboit/accumulate.frag "float d = 1.0 - gl_FragCoord.z;" \
     "float d = gl_FragCoord.z; // BROKEN: depth reversed"
+replace mboit/common.glsl "return 2.0 * s - 1.0;" \
+    "return 1.0 - 2.0 * s; // BROKEN: warp reversed"

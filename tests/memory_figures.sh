@@ -93,7 +93,8 @@ else:
                 ("dp", "--modulation", "dist-curv"), ("ddp", "--modulation", "distance"),
                 ("ll", "--modulation", "distance"), ("ib", "--modulation", "fields"),
                 ("ll", "--frames", "3"), ("ib", "--frames", "3"), ("kbuffer",), ("hybrid",),
-                ("kbuffer", "--layers", "3"), ("hybrid", "--layers", "64")]
+                ("kbuffer", "--layers", "3"), ("hybrid", "--layers", "64"),
+                ("mboit",), ("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3")]
     figures = {}
     for algorithm, *args in variants:
         d = render(algorithm, SIZE, *args)
@@ -108,10 +109,12 @@ else:
 
     # per pixel: two image sizes, the pool (ll, ib) fixed and big enough for both
     pool = ("--fragment-pool", str(2 * fragments))
-    for algorithm in ("blend", "dp", "ddp", "ll", "ib", "wboit", "kbuffer", "hybrid"):
-        args = pool if algorithm in ("ll", "ib") else ()
+    for algorithm, *variant in (("blend",), ("dp",), ("ddp",), ("ll",), ("ib",), ("wboit",), ("kbuffer",),
+                                ("hybrid",), ("mboit",), ("mboit", "--moments", "power6"),
+                                ("mboit", "--moments", "trig3")):
+        args = pool if algorithm in ("ll", "ib") else tuple(variant)
         big, small = render(algorithm, SIZE, *args), render(algorithm, SMALL, *args)
-        if args:
+        if algorithm in ("ll", "ib"):
             check(big["overflow_retries"] == 0 and small["overflow_retries"] == 0,
                   f"{algorithm}: the pool of {2 * fragments} holds both sizes")
         for d in (big, small):
@@ -123,6 +126,9 @@ else:
             check(d["bytes_per_pixel"] == per_pixel,
                   f"{algorithm} {d['width']}x{d['height']}: bytes_per_pixel "
                   f"{d['bytes_per_pixel']} == {per_pixel:g} (GL bytes per pixel between two sizes)")
+        if algorithm == "mboit": # b0 4, moments 16, (power6, trig3: 8 more), accumulation 16, output 4
+            want = 48 if variant else 40
+            check(per_pixel == want, f"mboit {' '.join(variant)}: {per_pixel:g} bytes per pixel == {want}")
         if algorithm in ("kbuffer", "hybrid"):  # per pixel, and 69 counters
             check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel + 69 * 4,
                   f"{algorithm}: everything it holds is per pixel (output included) but its counters")

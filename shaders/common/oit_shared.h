@@ -141,6 +141,26 @@
 /* peeling: the most layers one frame may peel (each is one timed stage) */
 #define OIT_MAX_PEEL_LAYERS 256
 
+/* ---- moment-based OIT (alg_mboit.c, shaders/mboit/) ----
+ * The variants, the numbers of oit_moments in oit.h; each variant's shaders
+ * define MBOIT_VARIANT as one of them before including mboit/common.glsl. */
+#define OIT_MBOIT_POWER4 1
+#define OIT_MBOIT_POWER6 2
+#define OIT_MBOIT_TRIG3 3
+/* the "moments" pass's colour attachments (= fragment output locations):
+ * b0 (r32f: the pixel's total optical depth), moments 1..4 (rgba32f; trig3:
+ * real and imaginary parts of moments 1 and 2) and, for power6 and trig3,
+ * moments 5, 6 (rg32f; trig3: moment 3) */
+#define OIT_MBOIT_TARGET_B0 0
+#define OIT_MBOIT_TARGET_MOMENTS 1
+#define OIT_MBOIT_TARGET_EXTRA 2
+/* the same textures read by the "transmittance" and "compose" passes, and the
+ * transmittance pass's accumulation (rgba32f: sum T a c, sum T a) */
+#define OIT_TEXUNIT_MBOIT_B0 24
+#define OIT_TEXUNIT_MBOIT_MOMENTS 25
+#define OIT_TEXUNIT_MBOIT_EXTRA 26
+#define OIT_TEXUNIT_MBOIT_ACCUM 27
+
 /* ---- uniform locations shared by the algorithms' shaders ---- */
 #define OIT_UNIFORM_MODELVIEW 0
 #define OIT_UNIFORM_PROJECTION 1

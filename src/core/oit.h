@@ -571,6 +571,7 @@ extern const oit_algorithm_ops oit_algorithm_ib;
 extern const oit_algorithm_ops oit_algorithm_wboit;
 extern const oit_algorithm_ops oit_algorithm_kbuffer;
 extern const oit_algorithm_ops oit_algorithm_hybrid;
+extern const oit_algorithm_ops oit_algorithm_mboit;
 extern const oit_algorithm_ops oit_algorithm_reference;
 
 /* ------------------------------------------------------------- GL context */

@@ -1,0 +1,334 @@
+/*
+ * alg_mboit.c: moment-based order-independent transparency (Muenstermann,
+ * Krumpen, Klein & Peters, "Moment-Based Order-Independent Transparency",
+ * Proc. ACM CGIT 1(1), i3D 2018). Approximate, two additive geometry passes
+ * and a resolve, constant memory per pixel.
+ *
+ * The transmittance in front of a fragment, prod (1 - a) over the fragments
+ * in front, is the exponential of minus the absorbance, a sum of optical
+ * depths -ln(1 - a): additive, so the moments of its distribution over depth
+ * can be summed in any order. config.moments picks which moments
+ * (shaders/mboit/common.glsl has the equations, E1..E5):
+ *   power4 (the default): b0 and 4 power moments of the depth warped to [-1, 1]
+ *   power6: b0 and 6 power moments
+ *   trig3:  b0 and 3 trigonometric (complex) moments of the depth as a phase
+ * 1. "moments": depth test off, additive blending; every fragment adds its
+ *    optical depth (opacity clamped below 1) into b0 (R32F) and that times its
+ *    moment vector into an RGBA32F target (moments 1..4) and, for power6 and
+ *    trig3, an RG32F one (moments 5, 6 / the third complex moment).
+ * 2. "transmittance": depth test off, additive blending; every fragment
+ *    reconstructs T, the transmittance in front of its depth, from its pixel's
+ *    moments (the bounds of the Hamburger problem for power moments, of the
+ *    trigonometric problem for trig3, biased and interpolated between the
+ *    bounds by the overestimation, as the paper) and adds (T a c, T a) into an
+ *    RGBA32F target.
+ * 3. "compose": C = (sum T a c) / (sum T a) * (1 - exp(-b0)) + background *
+ *    exp(-b0), the paper's normalisation: the coverage 1 - exp(-b0) is exact.
+ * Memory per pixel: power4 4 + 16 + 16 + 4 (output) = 40 bytes; power6 and
+ * trig3 8 more (the RG32F target): 48.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "gl_util.h"
+#include "oit.h"
+
+typedef struct mboit_state {
+    oit_algorithm_config config;
+    oit_moments moments; /* config.moments resolved: never OIT_MOMENTS_DEFAULT */
+    oit_gl_output output;
+    oit_gl_memory memory; /* the targets and the output */
+    oit_stage_timer timer;
+    oit_stats stats;
+
+    GLuint moments_program;       /* geometry.vert + mboit/moments_<variant>.frag */
+    GLuint transmittance_program; /* geometry.vert + mboit/transmittance_<variant>.frag */
+    GLuint compose_program;       /* fullscreen.vert + mboit/compose.frag */
+
+    GLuint b0;           /* GL_R32F: sum of optical depths */
+    GLuint moment_sums;  /* GL_RGBA32F: moments 1..4 (trig3: re, im of moments 1, 2) */
+    GLuint extra_sums;   /* GL_RG32F: power6 moments 5, 6; trig3 moment 3; 0 for power4 */
+    GLuint accumulation; /* GL_RGBA32F: (sum T a c, sum T a) */
+    GLuint moments_framebuffer;       /* attachments OIT_MBOIT_TARGET_* */
+    GLuint transmittance_framebuffer; /* attachment 0: accumulation */
+    int width, height;
+} mboit_state;
+
+/* The moments other than power4 need the third target. */
+static bool mboit_has_extra(oit_moments moments)
+{
+    return moments != OIT_MOMENTS_POWER4;
+}
+
+static void mboit_release_targets(mboit_state *s)
+{
+    glDeleteFramebuffers(1, &s->moments_framebuffer);
+    glDeleteFramebuffers(1, &s->transmittance_framebuffer);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->b0);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->moment_sums);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->extra_sums);
+    oit_gl_memory_delete_textures(&s->memory, 1, &s->accumulation);
+    s->moments_framebuffer = s->transmittance_framebuffer = 0;
+    s->width = s->height = 0;
+}
+
+/* With config.debug, check for GL errors after each stage. */
+static oit_status mboit_stage_check(const mboit_state *s, const char *stage, oit_error *err)
+{
+    if (s->timer.cancelled)
+        return oit_timer_status(&s->timer, err);
+    if (!s->config.debug)
+        return OIT_OK;
+    char where[64];
+    snprintf(where, sizeof where, "mboit: %s", stage);
+    return oit_gl_check(where, err);
+}
+
+static void mboit_destroy(oit_algorithm *alg);
+
+static oit_status mboit_create(const oit_algorithm_config *config, oit_algorithm **out,
+                               oit_error *err)
+{
+    *out = NULL;
+    oit_moments moments = config->moments;
+    if (moments == OIT_MOMENTS_DEFAULT)
+        moments = OIT_MOMENTS_POWER4;
+    if (moments != OIT_MOMENTS_POWER4 && moments != OIT_MOMENTS_POWER6 && moments != OIT_MOMENTS_TRIG3)
+        return oit_fail(err, OIT_E_INPUT, "mboit: moments must be power4, power6 or trig3 (got %d)",
+                        (int)config->moments);
+    mboit_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return oit_fail(err, OIT_E_RUNTIME, "mboit: out of memory");
+    s->config = *config;
+    s->moments = moments;
+    s->output.memory = &s->memory;
+    oit_stats_reset(&s->stats);
+    oit_timer_create(&s->timer);
+
+    const char *variant = oit_moments_name(moments);
+    char moments_path[64], transmittance_path[64];
+    snprintf(moments_path, sizeof moments_path, "mboit/moments_%s.frag", variant);
+    snprintf(transmittance_path, sizeof transmittance_path, "mboit/transmittance_%s.frag", variant);
+    oit_status status = oit_gl_program(config->shader_dir, "common/geometry.vert", moments_path,
+                                       &s->moments_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/geometry.vert", transmittance_path,
+                                &s->transmittance_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert", "mboit/compose.frag",
+                                &s->compose_program, err);
+    if (status == OIT_OK)
+        status = oit_gl_check("mboit: create", err);
+    if (status != OIT_OK) {
+        mboit_destroy((oit_algorithm *)s);
+        return status;
+    }
+    *out = (oit_algorithm *)s;
+    return OIT_OK;
+}
+
+/* A framebuffer over count colour textures (attachment i = textures[i]). */
+static oit_status mboit_framebuffer(GLuint *framebuffer, const GLuint *textures, int count,
+                                    const char *name, oit_error *err)
+{
+    static const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                      GL_COLOR_ATTACHMENT2};
+    glGenFramebuffers(1, framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, *framebuffer);
+    for (int i = 0; i < count; ++i)
+        glFramebufferTexture2D(GL_FRAMEBUFFER, buffers[i], GL_TEXTURE_2D, textures[i], 0);
+    glDrawBuffers(count, buffers);
+    GLenum complete = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (complete != GL_FRAMEBUFFER_COMPLETE)
+        return oit_fail(err, OIT_E_RUNTIME, "mboit: %s framebuffer incomplete (0x%x)", name,
+                        (unsigned)complete);
+    return OIT_OK;
+}
+
+static oit_status mboit_resize(oit_algorithm *alg, int width, int height, oit_error *err)
+{
+    mboit_state *s = (mboit_state *)alg;
+    if (width < 1 || height < 1)
+        return oit_fail(err, OIT_E_INPUT, "mboit: bad size %dx%d", width, height);
+    mboit_release_targets(s);
+    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    if (status != OIT_OK)
+        return status;
+
+    const oit_gl_memory_use pixels = OIT_GL_MEMORY_PIXELS;
+    s->b0 = oit_gl_memory_texture_2d(&s->memory, pixels, GL_R32F, width, height);
+    s->moment_sums = oit_gl_memory_texture_2d(&s->memory, pixels, GL_RGBA32F, width, height);
+    if (mboit_has_extra(s->moments))
+        s->extra_sums = oit_gl_memory_texture_2d(&s->memory, pixels, GL_RG32F, width, height);
+    s->accumulation = oit_gl_memory_texture_2d(&s->memory, pixels, GL_RGBA32F, width, height);
+
+    GLuint targets[3];
+    targets[OIT_MBOIT_TARGET_B0] = s->b0;
+    targets[OIT_MBOIT_TARGET_MOMENTS] = s->moment_sums;
+    targets[OIT_MBOIT_TARGET_EXTRA] = s->extra_sums;
+    status = mboit_framebuffer(&s->moments_framebuffer, targets,
+                               mboit_has_extra(s->moments) ? 3 : 2, "moments", err);
+    if (status == OIT_OK)
+        status = mboit_framebuffer(&s->transmittance_framebuffer, &s->accumulation, 1,
+                                   "transmittance", err);
+    if (status == OIT_OK)
+        status = oit_gl_check("mboit: resize", err);
+    if (status != OIT_OK) {
+        mboit_release_targets(s);
+        return status;
+    }
+    s->width = width;
+    s->height = height;
+    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    return OIT_OK;
+}
+
+/* What mboit cannot show, refused before any work (as wboit). */
+static oit_status mboit_check_frame(const oit_frame_settings *frame, oit_error *err)
+{
+    const oit_modulation *modulation = &frame->modulation;
+    if (modulation->mode == OIT_MODULATE_DISTANCE)
+        return oit_fail(err, OIT_E_INPUT,
+                        "mboit: the distance modulation needs the next fragment along the ray, and "
+                        "moment-based OIT keeps only moments of the depths, not the fragments");
+    if (modulation->mode != OIT_MODULATE_NONE)
+        return oit_fail(err, OIT_E_INPUT,
+                        "mboit: opacity modulation '%s' needs surface neighbours (ib only): "
+                        "moment-based OIT keeps no fragment, so no pixel sees its neighbours' "
+                        "fragments",
+                        oit_modulation_mode_name(modulation->mode));
+    if (modulation->view != OIT_VIEW_COLOUR)
+        return oit_fail(err, OIT_E_INPUT, "mboit: buffer views are ll's and ib's (view '%s')",
+                        oit_view_name(modulation->view));
+    return OIT_OK;
+}
+
+static void mboit_bind_texture(GLenum unit, GLuint texture)
+{
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, texture);
+}
+
+static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
+                               const oit_frame_settings *frame, oit_error *err)
+{
+    mboit_state *s = (mboit_state *)alg;
+    if (!scene->has_gpu)
+        return oit_fail(err, OIT_E_INPUT, "mboit: the scene has no GPU buffers");
+    oit_status status = mboit_check_frame(frame, err);
+    if (status != OIT_OK)
+        return status;
+    if (frame->width != s->width || frame->height != s->height) {
+        status = mboit_resize(alg, frame->width, frame->height, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    oit_stats_reset(&s->stats);
+    oit_timer_frame_begin(&s->timer, frame);
+    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+
+    glViewport(0, 0, s->width, s->height);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST); /* every fragment counts, in any order */
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
+    static const GLfloat zeros[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD); /* every target of both passes: plain sums */
+    glBlendFunc(GL_ONE, GL_ONE);
+
+    /* 1. the moments of the optical depth over depth */
+    oit_timer_stage_begin(&s->timer, "moments");
+    glBindFramebuffer(GL_FRAMEBUFFER, s->moments_framebuffer);
+    glClearBufferfv(GL_COLOR, OIT_MBOIT_TARGET_B0, zeros);
+    glClearBufferfv(GL_COLOR, OIT_MBOIT_TARGET_MOMENTS, zeros);
+    if (mboit_has_extra(s->moments))
+        glClearBufferfv(GL_COLOR, OIT_MBOIT_TARGET_EXTRA, zeros);
+    glUseProgram(s->moments_program);
+    oit_gl_set_frame_uniforms(frame);
+    oit_gl_draw_scene(scene);
+    oit_timer_stage_end(&s->timer);
+    status = mboit_stage_check(s, "moments", err);
+
+    /* 2. every fragment weighted by the transmittance reconstructed in front of it */
+    if (status == OIT_OK) {
+        oit_timer_stage_begin(&s->timer, "transmittance");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->transmittance_framebuffer);
+        glClearBufferfv(GL_COLOR, 0, zeros);
+        glUseProgram(s->transmittance_program);
+        oit_gl_set_frame_uniforms(frame);
+        mboit_bind_texture(OIT_TEXUNIT_MBOIT_B0, s->b0);
+        mboit_bind_texture(OIT_TEXUNIT_MBOIT_MOMENTS, s->moment_sums);
+        if (mboit_has_extra(s->moments))
+            mboit_bind_texture(OIT_TEXUNIT_MBOIT_EXTRA, s->extra_sums);
+        oit_gl_draw_scene(scene);
+        oit_timer_stage_end(&s->timer);
+        status = mboit_stage_check(s, "transmittance", err);
+    }
+    glDisable(GL_BLEND);
+
+    /* 3. the normalised composite over the background */
+    if (status == OIT_OK) {
+        oit_timer_stage_begin(&s->timer, "compose");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        glUseProgram(s->compose_program);
+        oit_gl_set_frame_uniforms(frame);
+        mboit_bind_texture(OIT_TEXUNIT_MBOIT_B0, s->b0);
+        mboit_bind_texture(OIT_TEXUNIT_MBOIT_ACCUM, s->accumulation);
+        oit_gl_draw_fullscreen(&s->output);
+        oit_timer_stage_end(&s->timer);
+        status = mboit_stage_check(s, "compose", err);
+    }
+    glActiveTexture(GL_TEXTURE0);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    oit_timer_frame_end(&s->timer, &s->stats);
+    if (status == OIT_OK)
+        status = oit_gl_check("mboit: render", err);
+    /* what the targets and the output hold (the tracker, gl_util.h) */
+    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    s->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) /
+                               ((double)s->width * (double)s->height);
+    return status;
+}
+
+static oit_status mboit_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
+{
+    mboit_state *s = (mboit_state *)alg;
+    return oit_gl_output_read(&s->output, out, err);
+}
+
+static void mboit_stats(const oit_algorithm *alg, oit_stats *out)
+{
+    const mboit_state *s = (const mboit_state *)alg;
+    *out = s->stats;
+}
+
+static void mboit_destroy(oit_algorithm *alg)
+{
+    mboit_state *s = (mboit_state *)alg;
+    if (!s)
+        return;
+    mboit_release_targets(s);
+    oit_gl_output_release(&s->output);
+    glDeleteProgram(s->moments_program);
+    glDeleteProgram(s->transmittance_program);
+    glDeleteProgram(s->compose_program);
+    oit_timer_destroy(&s->timer);
+    free(s);
+}
+
+const oit_algorithm_ops oit_algorithm_mboit = {
+    .name = "mboit",
+    .summary = "moment-based OIT (Muenstermann et al. 2018): two additive passes, approximate",
+    .uses_gl = true,
+    .exact = false,
+    .uses_moments = true,
+    .create = mboit_create,
+    .resize = mboit_resize,
+    .render = mboit_render,
+    .read_image = mboit_read_image,
+    .stats = mboit_stats,
+    .destroy = mboit_destroy,
+};
