@@ -11,6 +11,10 @@ and every statement about the machine on the page is computed from these inputs.
 bat/run_comparison.sh; by hand:
 
     python3 bat/report.py --results build/bench/results [--docs docs] [--shared ../shared]
+
+Given two `oit bench --bundle` directories instead, it compares them (bat/compare_bundles.py):
+
+    python3 bat/report.py BUNDLE_A BUNDLE_B [--out FILE.md] [--oit PATH]
 """
 import argparse
 import csv
@@ -22,7 +26,13 @@ import re
 import statistics
 import sys
 
-from pages import commit_of, software_renderer
+if __name__ == "__main__" and len(sys.argv) > 2 and not sys.argv[1].startswith("-") \
+        and not sys.argv[2].startswith("-"):
+    # report.py BUNDLE_A BUNDLE_B: two `oit bench --bundle` directories compared (no matplotlib needed)
+    from compare_bundles import main as compare_bundles_main
+    sys.exit(compare_bundles_main(sys.argv[1:]))
+
+from pages import commit_of, software_renderer  # noqa: E402
 
 try:
     import matplotlib

@@ -7,6 +7,18 @@ set_tests_properties(measure PROPERTIES FIXTURES_REQUIRED scenes)
 add_test(NAME bench_report
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench_report.sh ${OIT} ${WORK}/bench_report ${SCENES} ${PROJECT_SOURCE_DIR})
 set_tests_properties(bench_report PROPERTIES FIXTURES_REQUIRED scenes)
+# --algorithms NAME:K / NAME:MOMENTS and the error_* columns (= oit render --error-vs-reference)
+add_test(NAME bench_variants
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench_variants.sh ${OIT} ${WORK}/bench_variants ${SCENES})
+set_tests_properties(bench_variants PROPERTIES FIXTURES_REQUIRED scenes)
+# --orbit-sequence: flicker recomputed from oit render's PNGs of the same orbit; ~0 for ll, not for blend
+add_test(NAME bench_orbit
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench_orbit.sh ${OIT} ${WORK}/bench_orbit ${SCENES} ${PROJECT_SOURCE_DIR})
+set_tests_properties(bench_orbit PROPERTIES FIXTURES_REQUIRED scenes)
+# --bundle DIR, and bat/report.py BUNDLE_A BUNDLE_B (egl against osmesa: the same images)
+add_test(NAME bench_bundle
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench_bundle.sh ${OIT} ${WORK}/bench_bundle ${SCENES} ${PROJECT_SOURCE_DIR})
+set_tests_properties(bench_bundle PROPERTIES FIXTURES_REQUIRED scenes)
 add_test(NAME bench_algorithm_order
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench_order.sh ${OIT} ${WORK}/bench_order ${SCENES})
 set_tests_properties(bench_algorithm_order PROPERTIES FIXTURES_REQUIRED scenes)

@@ -14,6 +14,8 @@
  * appended to a results file per run.
  */
 #define _XOPEN_SOURCE 700 /* strtok_r, strdup, fnmatch */
+#include <dirent.h>
+#include <ctype.h>
 #include <errno.h>
 #include <fnmatch.h>
 #include <math.h>
@@ -27,6 +29,7 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "gl_util.h" /* glGetString (the bundle's driver), OIT_APPROX_LAYERS_MAX */
 #include "render_session.h"
 
 #define BENCH_DEFAULT_FRAMES 10
@@ -38,6 +41,12 @@
 #define BENCH_MAX_ALGORITHMS 16
 #define BENCH_MAX_TOKENS 256
 #define BENCH_MIN_FRAMES 3
+#define BENCH_ORBIT_MIN 2
+#define BENCH_ORBIT_MAX 3600
+#define BENCH_DEFAULT_ORBIT_STEP 0.5 /* degrees of azimuth per frame of --orbit-sequence */
+/* --orbit-sequence keeps the reference's frames of a scene and size for the
+ * next algorithms when they fit in this many bytes (else renders them again) */
+#define BENCH_ORBIT_CACHE_BYTES (256ull << 20)
 
 /* ------------------------------------------------------------ helpers */
 
@@ -259,12 +268,84 @@ static bool scene_selected(const char *patterns, const char *name)
 /* -------------------------------------------------------- one run */
 
 /* One algorithm variant: a registry name, optionally with the ll sort
- * ("ll-array" is ll --sort array, as the thesis's table 5.3 compares). */
+ * ("ll-array" is ll --sort array, as the thesis's table 5.3 compares) or a
+ * parameter after a colon: NAME:K sets the layers of an algorithm that reads
+ * them (kbuffer:16), NAME:MOMENTS its moments (mboit:power6). The label is
+ * the text as given. */
 typedef struct bench_algorithm {
-    char label[32];
+    char label[48];
     const oit_algorithm_ops *ops;
     bool sort_array;
+    int layers;          /* 0: the scene's --layers */
+    oit_moments moments; /* OIT_MOMENTS_DEFAULT: the scene's --moments */
 } bench_algorithm;
+
+static const char *const moments_names[] = {"power4", "power6", "trig3"};
+static const oit_moments moments_values[] = {OIT_MOMENTS_POWER4, OIT_MOMENTS_POWER6, OIT_MOMENTS_TRIG3};
+
+/* What an algorithm's parameter may be, for messages. */
+static const char *parameter_kind(const oit_algorithm_ops *ops)
+{
+    if (ops->uses_layers && ops->uses_moments)
+        return "layers K or moments power4, power6 or trig3";
+    return ops->uses_layers ? "layers K" : "moments power4, power6 or trig3";
+}
+
+/* NAME[:PARAMETER] (item is modified). */
+static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err)
+{
+    memset(a, 0, sizeof *a);
+    if (strlen(item) >= sizeof a->label)
+        return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s' is too long (at most %d characters)", item,
+                        (int)sizeof a->label - 1);
+    snprintf(a->label, sizeof a->label, "%s", item);
+    char *colon = strchr(item, ':');
+    const char *parameter = NULL;
+    if (colon) {
+        *colon = '\0';
+        parameter = colon + 1;
+    }
+    const char *name = item;
+    if (strcmp(name, "ll-array") == 0) {
+        a->ops = oit_algorithm_find("ll");
+        a->sort_array = true;
+    } else {
+        a->ops = oit_algorithm_find(name);
+    }
+    if (!a->ops)
+        return oit_fail(err, OIT_E_INPUT,
+                        "--algorithms: unknown algorithm '%s' (oit algorithms lists them; also ll-array)",
+                        name);
+    if (!parameter)
+        return OIT_OK;
+    if (!*parameter)
+        return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': no parameter after the colon", a->label);
+    bool numeric = strspn(parameter, "+-0123456789") == strlen(parameter);
+    int moments = -1;
+    for (int k = 0; k < 3; ++k)
+        if (strcmp(parameter, moments_names[k]) == 0)
+            moments = k;
+    const oit_algorithm_ops *ops = a->ops;
+    if (numeric && ops->uses_layers) {
+        long layers;
+        if (!parse_int(parameter, 1, OIT_APPROX_LAYERS_MAX, &layers))
+            return oit_fail(err, OIT_E_INPUT,
+                            "--algorithms: '%s': layers must be a whole number from 1 to %d", a->label,
+                            OIT_APPROX_LAYERS_MAX);
+        a->layers = (int)layers;
+    } else if (moments >= 0 && ops->uses_moments) {
+        a->moments = moments_values[moments];
+    } else if (ops->uses_layers || ops->uses_moments) {
+        return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': %s takes %s, got '%s'", a->label, name,
+                        parameter_kind(ops), parameter);
+    } else {
+        return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': %s takes no %s", a->label, name,
+                        numeric        ? "layers"
+                        : moments >= 0 ? "moments"
+                                       : "parameter");
+    }
+    return OIT_OK;
+}
 
 static oit_status parse_algorithms(const char *text, bench_algorithm *out, int *count, oit_error *err)
 {
@@ -274,22 +355,12 @@ static oit_status parse_algorithms(const char *text, bench_algorithm *out, int *
     strcpy(buffer, text);
     *count = 0;
     char *save = NULL;
-    for (char *name = strtok_r(buffer, ",", &save); name; name = strtok_r(NULL, ",", &save)) {
+    for (char *item = strtok_r(buffer, ",", &save); item; item = strtok_r(NULL, ",", &save)) {
         if (*count == BENCH_MAX_ALGORITHMS)
             return oit_fail(err, OIT_E_INPUT, "--algorithms: at most %d", BENCH_MAX_ALGORITHMS);
-        bench_algorithm *a = &out[*count];
-        memset(a, 0, sizeof *a);
-        if (strcmp(name, "ll-array") == 0) {
-            a->ops = oit_algorithm_find("ll");
-            a->sort_array = true;
-        } else {
-            a->ops = oit_algorithm_find(name);
-        }
-        if (!a->ops)
-            return oit_fail(err, OIT_E_INPUT,
-                            "--algorithms: unknown algorithm '%s' (oit algorithms lists them; also ll-array)",
-                            name);
-        snprintf(a->label, sizeof a->label, "%s", name);
+        oit_status status = parse_algorithm(item, &out[*count], err);
+        if (status != OIT_OK)
+            return status;
         ++*count;
     }
     if (*count == 0)
@@ -344,6 +415,11 @@ typedef struct run_result {
     uint64_t memory_max;
     bool has_reference_diff;
     oit_image_diff diff;
+    bool has_error; /* the oit_image_error figures against the same reference */
+    oit_image_error error_figures;
+    /* --orbit-sequence: the temporal stability of the error (orbit_sequence) */
+    int orbit_frames; /* 0: not measured */
+    double flicker, flicker_max, orbit_rmse_mean;
 } run_result;
 
 /* Runs warm-up + measured frames of one algorithm on the session's model;
@@ -446,13 +522,152 @@ static double stages_sum(const run_result *r, const char *const *prefixes, int p
     return sum;
 }
 
+/* -------------------------------------------------------- orbit sequence */
+
+/* modelview * T(centre) * Ry(-degrees) * T(-centre): the camera orbited about
+ * the model's vertical axis through its bounding sphere's centre. For the
+ * default camera this is the camera of azimuth + degrees (oit_default_camera
+ * builds translate * rotate_x(el) * rotate_y(-az) * translate(-centre)). */
+static void orbit_modelview(const float modelview[16], const float centre[3], double degrees, float out[16])
+{
+    double angle = -degrees * 3.14159265358979323846 / 180.0;
+    double c = cos(angle), sn = sin(angle);
+    /* M = T(centre) * Ry * T(-centre), column-major, in double */
+    double m[16] = {c, 0.0, -sn, 0.0, 0.0, 1.0, 0.0, 0.0, sn, 0.0, c, 0.0, 0.0, 0.0, 0.0, 1.0};
+    double t[3];
+    for (int row = 0; row < 3; ++row)
+        t[row] = centre[row] - (m[row] * centre[0] + m[4 + row] * centre[1] + m[8 + row] * centre[2]);
+    m[12] = t[0];
+    m[13] = t[1];
+    m[14] = t[2];
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row) {
+            double sum = 0.0;
+            for (int k = 0; k < 4; ++k)
+                sum += (double)modelview[k * 4 + row] * m[col * 4 + k];
+            out[col * 4 + row] = (float)sum;
+        }
+}
+
+/* The reference's image of one frame: from the cache when it is there, else
+ * rendered (and kept in the cache when there is one, else in *scratch). */
+static oit_status orbit_reference(session *s, const render_options *o, const oit_frame_settings *frame,
+                                  render_setup *reference, oit_image *cached, oit_image *scratch,
+                                  const oit_image **out, oit_error *err)
+{
+    if (cached && cached->rgba) {
+        *out = cached;
+        return OIT_OK;
+    }
+    oit_status status = OIT_OK;
+    if (!reference->alg) {
+        render_options ro = *o;
+        ro.algorithm = &oit_algorithm_reference;
+        status = render_setup_create(s, &ro, reference, err);
+    }
+    reference->frame = *frame;
+    if (status == OIT_OK)
+        status = oit_algorithm_reference.render(reference->alg, reference->scene, &reference->frame, err);
+    oit_image *target = cached ? cached : scratch;
+    oit_image_free(target);
+    if (status == OIT_OK)
+        status = oit_algorithm_reference.read_image(reference->alg, target, err);
+    *out = target;
+    return status;
+}
+
+/* --orbit-sequence: count frames of a slow orbit (step_degrees of azimuth a
+ * frame) with the algorithm, and the CPU reference of each. e = image -
+ * reference per RGB channel (0..255); flicker is the mean over consecutive
+ * frame pairs of mean |e(i) - e(i-1)| over pixels and channels, flicker_max
+ * the largest pair, orbit_rmse_mean the mean of the frames' error rmse.
+ * reference_frames: count images kept between the algorithms of one scene
+ * and size (NULL: render the reference every time). */
+static oit_status run_orbit(session *s, const render_options *o, int count, double step_degrees,
+                            oit_image *reference_frames, run_result *r, oit_error *err)
+{
+    const oit_algorithm_ops *ops = o->algorithm;
+    render_options timed = *o;
+    timed.config.neighbour_quality = false;
+    render_setup setup, reference;
+    memset(&reference, 0, sizeof reference);
+    oit_status status = render_setup_create(s, &timed, &setup, err);
+    size_t values = (size_t)o->width * (size_t)o->height * 3;
+    int16_t *previous = malloc(values * sizeof *previous), *current = malloc(values * sizeof *current);
+    if (status == OIT_OK && (!previous || !current))
+        status = oit_fail(err, OIT_E_RUNTIME, "--orbit-sequence: out of memory for %dx%d error images",
+                          o->width, o->height);
+    float base[16];
+    memcpy(base, setup.frame.modelview, sizeof base);
+    oit_image image = {0}, scratch = {0};
+    double pair_sum = 0.0, pair_max = 0.0, rmse_sum = 0.0;
+    for (int i = 0; status == OIT_OK && i < count; ++i) {
+        orbit_modelview(base, s->model.centre, step_degrees * i, setup.frame.modelview);
+        status = ops->render(setup.alg, setup.scene, &setup.frame, err);
+        if (status == OIT_OK) {
+            oit_image_free(&image);
+            status = ops->read_image(setup.alg, &image, err);
+        }
+        const oit_image *ref = NULL;
+        if (status == OIT_OK) {
+            status = orbit_reference(s, o, &setup.frame, &reference,
+                                     reference_frames ? &reference_frames[i] : NULL, &scratch, &ref, err);
+            if (status != OIT_OK) {
+                char reason[OIT_ERROR_MESSAGE_SIZE];
+                snprintf(reason, sizeof reason, "%s", err->message);
+                status =
+                    oit_fail(err, status, "--orbit-sequence: the reference of frame %d: %s", i + 1, reason);
+            }
+        }
+        oit_image_error figures;
+        if (status == OIT_OK)
+            status = oit_image_error_compute(&image, ref, &figures, err);
+        if (status != OIT_OK)
+            break;
+        rmse_sum += figures.rmse;
+        size_t n = 0;
+        for (size_t p = 0; p < (size_t)o->width * (size_t)o->height; ++p)
+            for (int c = 0; c < 3; ++c, ++n)
+                current[n] = (int16_t)((int)image.rgba[4 * p + c] - (int)ref->rgba[4 * p + c]);
+        if (i > 0) {
+            double sum = 0.0;
+            for (size_t k = 0; k < values; ++k)
+                sum += abs((int)current[k] - (int)previous[k]);
+            double pair = sum / (double)values;
+            pair_sum += pair;
+            if (pair > pair_max)
+                pair_max = pair;
+        }
+        int16_t *swap = previous;
+        previous = current;
+        current = swap;
+    }
+    if (status == OIT_OK) {
+        r->orbit_frames = count;
+        r->flicker = pair_sum / (count - 1);
+        r->flicker_max = pair_max;
+        r->orbit_rmse_mean = rmse_sum / count;
+    }
+    oit_image_free(&image);
+    oit_image_free(&scratch);
+    free(previous);
+    free(current);
+    if (setup.alg)
+        ops->destroy(setup.alg);
+    if (reference.alg)
+        oit_algorithm_reference.destroy(reference.alg);
+    return status;
+}
+
 /* ------------------------------------------------------------- output */
 
 static const char csv_header[] =
     "scene,model,view,algorithm,width,height,vertices,triangles,components,warmup,frames,"
     "cpu_ms_median,cpu_ms_min,cpu_ms_max,gpu_ms_median,gpu_ms_min,gpu_ms_max,memory_bytes,scene_bytes,"
     "fragments,max_list,mean_list,psi,layers,overflow_retries,bytes_per_fragment,ref_max_diff,"
-    "ref_mean_diff,ref_over_tolerance_percent,stages,error\n";
+    "ref_mean_diff,ref_over_tolerance_percent,error_rmse,error_psnr,error_ssim,error_max,error_share_over_2,"
+    "flicker,flicker_max,orbit_rmse_mean,stages,error\n";
+#define CSV_RUN_COLUMNS 29 /* warmup .. stages: empty in a failed run's row */
 
 typedef struct bench_output {
     FILE *csv; /* stdout, or the stream of csv_file */
@@ -461,6 +676,11 @@ typedef struct bench_output {
     int json_rows;
     int tolerance;
 } bench_output;
+
+/* The files a bundle holds for one row (empty strings: none). */
+typedef struct row_files {
+    char image[512], reference[512], error_map[512];
+} row_files;
 
 static void format_optional_int(char *out, size_t size, int64_t value)
 {
@@ -478,115 +698,167 @@ static void format_optional_double(char *out, size_t size, double value)
         out[0] = '\0';
 }
 
-static void write_row(bench_output *out, const bench_scene *scene, const session *s, const char *label,
-                      int width, int height, const run_result *r)
+static void write_csv_row(FILE *f, const bench_scene *scene, const session *s, const char *label, int width,
+                          int height, const run_result *r)
 {
     const oit_stats *st = &r->last;
     const oit_model *m = &s->model;
+    csv_field(f, scene->name);
+    fputc(',', f);
+    csv_field(f, scene->options.model_path);
+    fputc(',', f);
+    csv_field(f, scene->view);
+    fprintf(f, ",%s,%d,%d,", label, width, height);
+    if (s->model_loaded)
+        fprintf(f, "%u,%u,%u", m->vertex_count, m->triangle_count, m->component_count);
+    else
+        fputs(",,", f);
+    if (!r->ok) {
+        for (int column = 0; column < CSV_RUN_COLUMNS; ++column)
+            fputc(',', f);
+        fputc(',', f);
+        csv_field(f, r->error);
+        fputc('\n', f);
+        return;
+    }
+    char fragments[32], max_list[32], mean_list[32], psi[32], layers[32], retries[32], bpf[32];
+    format_optional_int(fragments, sizeof fragments, st->fragments);
+    format_optional_int(max_list, sizeof max_list, st->max_list);
+    format_optional_double(mean_list, sizeof mean_list, st->mean_list);
+    format_optional_double(psi, sizeof psi, st->psi);
+    format_optional_int(layers, sizeof layers, st->layers);
+    format_optional_int(retries, sizeof retries, st->overflow_retries);
+    format_optional_double(bpf, sizeof bpf, st->bytes_per_fragment);
+    fprintf(f, ",%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%llu,%llu,%s,%s,%s,%s,%s,%s,%s,", r->warmup, r->frames,
+            r->cpu_ms.median, r->cpu_ms.min, r->cpu_ms.max, r->gpu_ms.median, r->gpu_ms.min, r->gpu_ms.max,
+            (unsigned long long)r->memory_max, (unsigned long long)s->gpu_scene.gpu_bytes, fragments,
+            max_list, mean_list, psi, layers, retries, bpf);
+    if (r->has_reference_diff)
+        fprintf(f, "%d,%.6f,%.6f,", r->diff.max_channel_diff, r->diff.mean_diff,
+                100.0 * r->diff.share_over_tolerance);
+    else
+        fputs(",,,", f);
+    if (r->has_error) {
+        const oit_image_error *e = &r->error_figures;
+        fprintf(f, "%.9g,", e->rmse);
+        if (isfinite(e->psnr_db)) /* empty: identical images */
+            fprintf(f, "%.9g", e->psnr_db);
+        fprintf(f, ",%.9g,%d,%.9g,", e->ssim, e->max, e->share_over_2);
+    } else {
+        fputs(",,,,,", f);
+    }
+    if (r->orbit_frames > 0)
+        fprintf(f, "%.9g,%.9g,%.9g,", r->flicker, r->flicker_max, r->orbit_rmse_mean);
+    else
+        fputs(",,,", f);
+    /* stages: name=median/min/max, separated by ';' */
+    for (int j = 0; j < r->stage_count; ++j)
+        fprintf(f, "%s%s=%.4f/%.4f/%.4f", j ? ";" : "", r->stages[j].name, r->stages[j].ms.median,
+                r->stages[j].ms.min, r->stages[j].ms.max);
+    fputs(",\n", f);
+}
+
+/* One row as a JSON object (--json's results, and the bundle's), with the
+ * bundle's file names where files is not NULL. */
+static void write_json_row(FILE *f, const bench_scene *scene, const session *s,
+                           const bench_algorithm *algorithm, int width, int height, const run_result *r,
+                           int tolerance, const row_files *files)
+{
+    const oit_stats *st = &r->last;
+    const oit_model *m = &s->model;
+    fprintf(f, "{\"scene\": ");
+    json_string(f, scene->name);
+    fprintf(f, ", \"model\": ");
+    json_string(f, scene->options.model_path);
+    fprintf(f, ", \"view\": ");
+    json_string(f, scene->view);
+    fprintf(f, ", \"algorithm\": ");
+    json_string(f, algorithm->label);
+    fprintf(f, ", \"width\": %d, \"height\": %d", width, height);
+    if (s->model_loaded) {
+        fprintf(f, ", \"vertices\": %u, \"triangles\": %u, \"components\": %u", m->vertex_count,
+                m->triangle_count, m->component_count);
+        json_warnings(f, m);
+    }
+    if (files) {
+        const char *keys[3] = {"image", "reference_image", "error_map"};
+        const char *names[3] = {files->image, files->reference, files->error_map};
+        for (int k = 0; k < 3; ++k)
+            if (names[k][0]) {
+                fprintf(f, ", \"%s\": ", keys[k]);
+                json_string(f, names[k]);
+            }
+    }
+    if (!r->ok) {
+        fprintf(f, ", \"error\": ");
+        json_string(f, r->error);
+        fputc('}', f);
+        return;
+    }
+    fprintf(f, ", \"warmup\": %d, \"frames\": %d", r->warmup, r->frames);
+    fprintf(f, ", \"cpu_ms\": {\"median\": %.4f, \"min\": %.4f, \"max\": %.4f}", r->cpu_ms.median,
+            r->cpu_ms.min, r->cpu_ms.max);
+    fprintf(f, ", \"gpu_ms\": {\"median\": %.4f, \"min\": %.4f, \"max\": %.4f}", r->gpu_ms.median,
+            r->gpu_ms.min, r->gpu_ms.max);
+    fprintf(f, ", \"stages\": [");
+    for (int j = 0; j < r->stage_count; ++j)
+        fprintf(f, "%s{\"name\": \"%s\", \"median\": %.4f, \"min\": %.4f, \"max\": %.4f}", j ? ", " : "",
+                r->stages[j].name, r->stages[j].ms.median, r->stages[j].ms.min, r->stages[j].ms.max);
+    fprintf(f, "], \"memory_bytes\": %llu, \"scene_bytes\": %llu", (unsigned long long)r->memory_max,
+            (unsigned long long)s->gpu_scene.gpu_bytes);
+    if (st->fragments >= 0)
+        fprintf(f, ", \"fragments\": %lld", (long long)st->fragments);
+    if (st->max_list >= 0)
+        fprintf(f, ", \"max_list\": %lld", (long long)st->max_list);
+    if (st->mean_list >= 0.0)
+        fprintf(f, ", \"mean_list\": %.6g", st->mean_list);
+    if (st->psi >= 0.0)
+        fprintf(f, ", \"psi\": %.6g", st->psi);
+    if (st->layers >= 0)
+        fprintf(f, ", \"layers\": %lld", (long long)st->layers);
+    if (st->overflow_retries >= 0)
+        fprintf(f, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
+    fprintf(f, ", \"truncated\": %s", st->truncated ? "true" : "false");
+    if (st->bytes_per_fragment >= 0.0)
+        fprintf(f, ", \"bytes_per_fragment\": %.6g", st->bytes_per_fragment);
+    if (r->has_reference_diff)
+        fprintf(f,
+                ", \"reference\": {\"max_channel_diff\": %d, \"mean_diff\": %.6f, "
+                "\"over_tolerance_percent\": %.6f, \"tolerance\": %d}",
+                r->diff.max_channel_diff, r->diff.mean_diff, 100.0 * r->diff.share_over_tolerance, tolerance);
+    if (r->has_error) {
+        const oit_image_error *e = &r->error_figures;
+        fprintf(f, ", \"error_rmse\": %.9g, \"error_psnr\": ", e->rmse);
+        if (isfinite(e->psnr_db))
+            fprintf(f, "%.9g", e->psnr_db);
+        else
+            fputs("null", f); /* identical images */
+        fprintf(f, ", \"error_ssim\": %.9g, \"error_max\": %d, \"error_share_over_2\": %.9g", e->ssim, e->max,
+                e->share_over_2);
+    }
+    if (r->orbit_frames > 0)
+        fprintf(f,
+                ", \"orbit_frames\": %d, \"flicker\": %.9g, \"flicker_max\": %.9g, \"orbit_rmse_mean\": %.9g",
+                r->orbit_frames, r->flicker, r->flicker_max, r->orbit_rmse_mean);
+    fputc('}', f);
+}
+
+static void write_row(bench_output *out, const bench_scene *scene, const session *s,
+                      const bench_algorithm *algorithm, int width, int height, const run_result *r)
+{
     if (r->ok) {
         char what[OIT_NAME_SIZE * 2];
-        snprintf(what, sizeof what, "%s, %s", scene->name, label);
-        warn_if_truncated(what, &scene->options.config, st);
+        snprintf(what, sizeof what, "%s, %s", scene->name, algorithm->label);
+        warn_if_truncated(what, &scene->options.config, &r->last);
     }
     if (out->csv) {
-        FILE *f = out->csv;
-        csv_field(f, scene->name);
-        fputc(',', f);
-        csv_field(f, scene->options.model_path);
-        fputc(',', f);
-        csv_field(f, scene->view);
-        fprintf(f, ",%s,%d,%d,", label, width, height);
-        if (s->model_loaded)
-            fprintf(f, "%u,%u,%u", m->vertex_count, m->triangle_count, m->component_count);
-        else
-            fputs(",,", f);
-        if (!r->ok) {
-            for (int column = 0; column < 21; ++column) /* warmup .. stages are empty */
-                fputc(',', f);
-            fputc(',', f);
-            csv_field(f, r->error);
-            fputc('\n', f);
-        } else {
-            char fragments[32], max_list[32], mean_list[32], psi[32], layers[32], retries[32], bpf[32];
-            format_optional_int(fragments, sizeof fragments, st->fragments);
-            format_optional_int(max_list, sizeof max_list, st->max_list);
-            format_optional_double(mean_list, sizeof mean_list, st->mean_list);
-            format_optional_double(psi, sizeof psi, st->psi);
-            format_optional_int(layers, sizeof layers, st->layers);
-            format_optional_int(retries, sizeof retries, st->overflow_retries);
-            format_optional_double(bpf, sizeof bpf, st->bytes_per_fragment);
-            fprintf(f, ",%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%llu,%llu,%s,%s,%s,%s,%s,%s,%s,", r->warmup,
-                    r->frames, r->cpu_ms.median, r->cpu_ms.min, r->cpu_ms.max, r->gpu_ms.median,
-                    r->gpu_ms.min, r->gpu_ms.max, (unsigned long long)r->memory_max,
-                    (unsigned long long)s->gpu_scene.gpu_bytes, fragments, max_list, mean_list, psi,
-                    layers, retries, bpf);
-            if (r->has_reference_diff)
-                fprintf(f, "%d,%.6f,%.6f,", r->diff.max_channel_diff, r->diff.mean_diff,
-                        100.0 * r->diff.share_over_tolerance);
-            else
-                fputs(",,,", f);
-            /* stages: name=median/min/max, separated by ';' */
-            for (int j = 0; j < r->stage_count; ++j)
-                fprintf(f, "%s%s=%.4f/%.4f/%.4f", j ? ";" : "", r->stages[j].name, r->stages[j].ms.median,
-                        r->stages[j].ms.min, r->stages[j].ms.max);
-            fputs(",\n", f);
-        }
-        fflush(f);
+        write_csv_row(out->csv, scene, s, algorithm->label, width, height, r);
+        fflush(out->csv);
     }
     if (out->json) {
-        FILE *f = out->json;
-        fprintf(f, "%s\n    {\"scene\": ", out->json_rows++ ? "," : "");
-        json_string(f, scene->name);
-        fprintf(f, ", \"model\": ");
-        json_string(f, scene->options.model_path);
-        fprintf(f, ", \"view\": ");
-        json_string(f, scene->view);
-        fprintf(f, ", \"algorithm\": \"%s\", \"width\": %d, \"height\": %d", label, width, height);
-        if (s->model_loaded) {
-            fprintf(f, ", \"vertices\": %u, \"triangles\": %u, \"components\": %u", m->vertex_count,
-                    m->triangle_count, m->component_count);
-            json_warnings(f, m);
-        }
-        if (!r->ok) {
-            fprintf(f, ", \"error\": ");
-            json_string(f, r->error);
-            fputc('}', f);
-        } else {
-            fprintf(f, ", \"warmup\": %d, \"frames\": %d", r->warmup, r->frames);
-            fprintf(f, ", \"cpu_ms\": {\"median\": %.4f, \"min\": %.4f, \"max\": %.4f}", r->cpu_ms.median,
-                    r->cpu_ms.min, r->cpu_ms.max);
-            fprintf(f, ", \"gpu_ms\": {\"median\": %.4f, \"min\": %.4f, \"max\": %.4f}", r->gpu_ms.median,
-                    r->gpu_ms.min, r->gpu_ms.max);
-            fprintf(f, ", \"stages\": [");
-            for (int j = 0; j < r->stage_count; ++j)
-                fprintf(f, "%s{\"name\": \"%s\", \"median\": %.4f, \"min\": %.4f, \"max\": %.4f}", j ? ", " : "",
-                        r->stages[j].name, r->stages[j].ms.median, r->stages[j].ms.min, r->stages[j].ms.max);
-            fprintf(f, "], \"memory_bytes\": %llu, \"scene_bytes\": %llu", (unsigned long long)r->memory_max,
-                    (unsigned long long)s->gpu_scene.gpu_bytes);
-            if (st->fragments >= 0)
-                fprintf(f, ", \"fragments\": %lld", (long long)st->fragments);
-            if (st->max_list >= 0)
-                fprintf(f, ", \"max_list\": %lld", (long long)st->max_list);
-            if (st->mean_list >= 0.0)
-                fprintf(f, ", \"mean_list\": %.6g", st->mean_list);
-            if (st->psi >= 0.0)
-                fprintf(f, ", \"psi\": %.6g", st->psi);
-            if (st->layers >= 0)
-                fprintf(f, ", \"layers\": %lld", (long long)st->layers);
-            if (st->overflow_retries >= 0)
-                fprintf(f, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
-            fprintf(f, ", \"truncated\": %s", st->truncated ? "true" : "false");
-            if (st->bytes_per_fragment >= 0.0)
-                fprintf(f, ", \"bytes_per_fragment\": %.6g", st->bytes_per_fragment);
-            if (r->has_reference_diff)
-                fprintf(f,
-                        ", \"reference\": {\"max_channel_diff\": %d, \"mean_diff\": %.6f, "
-                        "\"over_tolerance_percent\": %.6f, \"tolerance\": %d}",
-                        r->diff.max_channel_diff, r->diff.mean_diff, 100.0 * r->diff.share_over_tolerance,
-                        out->tolerance);
-            fputc('}', f);
-        }
-        fflush(f);
+        fprintf(out->json, "%s\n    ", out->json_rows++ ? "," : "");
+        write_json_row(out->json, scene, s, algorithm, width, height, r, out->tolerance, NULL);
+        fflush(out->json);
     }
 }
 
@@ -631,7 +903,9 @@ static const char bench_help[] =
     "                         --modelview/--projection]; '#' comments (bat/setup.py writes one)\n"
     "  --model PATH           a single scene (named --name, default the file name)\n"
     "  --scenes LIST          only these scenes: comma-separated names or patterns (engine*)\n"
-    "  --algorithms LIST      default blend,dp,ddp,ll,ib,wboit; also reference and ll-array\n"
+    "  --algorithms LIST      default blend,dp,ddp,ll,ib,wboit; also reference and ll-array;\n"
+    "                         NAME:K sets the layers of kbuffer, hybrid, mlab (kbuffer:16),\n"
+    "                         NAME:MOMENTS the moments of mboit (mboit:power6)\n"
     "  --sizes LIST           WxH or N (NxN), comma-separated (default 600x600)\n"
     "  --frames N             measured frames per run (default 10)\n"
     "  --warmup N             frames rendered first and not measured (default 2)\n"
@@ -641,6 +915,11 @@ static const char bench_help[] =
     "  --reference-max-pixels N  compare with the CPU reference where width*height <= N\n"
     "                         (default 65536; 0: never)\n"
     "  --tolerance T          channel difference counted as a mismatch (default 2)\n"
+    "  --orbit-sequence N     also render N frames (2..3600) of a slow orbit and the reference of\n"
+    "                         each; report flicker, flicker_max and orbit_rmse_mean\n"
+    "  --orbit-step DEG       azimuth per frame of the orbit sequence (default 0.5)\n"
+    "  --bundle DIR           write a result bundle: images, reference images, error maps and\n"
+    "                         bundle.json (command, commit, machine, driver, scenes, figures)\n"
     "  --quiet                no progress lines on stderr\n"
     "Render options (--backend, --alpha, --shading, --max-memory, ...) apply to every scene; a scene\n"
     "line's own options override them. A run that fails is a row with an error; the exit status is\n"
@@ -650,12 +929,15 @@ static const char bench_help[] =
 typedef struct bench_settings {
     render_options base; /* render options for every scene */
     const char *scene_list_path, *single_model, *single_name, *scene_patterns;
-    const char *csv_path, *json_path;
+    const char *csv_path, *json_path, *bundle_path;
     bench_algorithm algorithms[BENCH_MAX_ALGORITHMS];
     int algorithm_count;
     int widths[BENCH_MAX_SIZES], heights[BENCH_MAX_SIZES], size_count;
     long frames, warmup, reference_pixels, tolerance;
     double budget_ms;
+    long orbit_frames; /* --orbit-sequence; 0: none */
+    double orbit_step; /* degrees of azimuth per frame */
+    bool orbit_step_given;
     bool quiet;
 } bench_settings;
 
@@ -668,6 +950,7 @@ static int parse_bench_arguments(int argc, char **argv, bench_settings *b)
     b->warmup = BENCH_DEFAULT_WARMUP;
     b->reference_pixels = BENCH_DEFAULT_REFERENCE_PIXELS;
     b->tolerance = BENCH_DEFAULT_TOLERANCE;
+    b->orbit_step = BENCH_DEFAULT_ORBIT_STEP;
     const char *algorithms_text = "blend,dp,ddp,ll,ib,wboit";
     const char *sizes_text = "600x600";
     oit_error err = {{0}};
@@ -713,9 +996,24 @@ static int parse_bench_arguments(int argc, char **argv, bench_settings *b)
         } else if (strcmp(flag, "--tolerance") == 0 && has_value) {
             if (!parse_int(argv[++i], 0, 255, &b->tolerance))
                 return usage_error("--tolerance must be a whole number in [0, 255], got '%s'", argv[i]);
+        } else if (strcmp(flag, "--orbit-sequence") == 0 && has_value) {
+            if (!parse_int(argv[++i], BENCH_ORBIT_MIN, BENCH_ORBIT_MAX, &b->orbit_frames))
+                return usage_error(
+                    "--orbit-sequence must be a whole number of frames from 2 to 3600, got '%s'", argv[i]);
+        } else if (strcmp(flag, "--orbit-step") == 0 && has_value) {
+            if (!parse_double(argv[++i], &b->orbit_step) ||
+                !(fabs(b->orbit_step) > 0.0 && fabs(b->orbit_step) <= 360.0))
+                return usage_error(
+                    "--orbit-step must be a non-zero number of degrees, at most 360 either way, "
+                    "got '%s'",
+                    argv[i]);
+            b->orbit_step_given = true;
+        } else if (strcmp(flag, "--bundle") == 0 && has_value) {
+            b->bundle_path = argv[++i];
         } else if (strcmp(flag, "--out") == 0 || strcmp(flag, "--algorithm") == 0 ||
                    strcmp(flag, "--size") == 0) {
-            return usage_error("bench: %s is not a bench option: use --algorithms, --sizes or a scene list", flag);
+            return usage_error("bench: %s is not a bench option: use --algorithms, --sizes or a scene list",
+                               flag);
         } else {
             int parsed = parse_render_option(argc, argv, &i, &b->base, &err, &status);
             if (parsed < 0)
@@ -726,6 +1024,8 @@ static int parse_bench_arguments(int argc, char **argv, bench_settings *b)
     }
     if (!b->scene_list_path && !b->single_model)
         return usage_error("bench needs --scene-list FILE or --model PATH%s", "");
+    if (b->orbit_step_given && b->orbit_frames == 0)
+        return usage_error("--orbit-step needs --orbit-sequence N%s", "");
     status = parse_algorithms(algorithms_text, b->algorithms, &b->algorithm_count, &err);
     if (status == OIT_OK)
         status = parse_sizes(sizes_text, b->widths, b->heights, &b->size_count, &err);
@@ -816,7 +1116,7 @@ static oit_status bench_output_open(const bench_settings *b, bench_output *out, 
         status = oit_atomic_file_open(b->csv_path, "--csv", 0, &out->csv_file, err);
         if (status == OIT_OK)
             out->csv = oit_atomic_file_stream(out->csv_file);
-    } else if (b->csv_path || !b->json_path) {
+    } else if (b->csv_path || (!b->json_path && !b->bundle_path)) {
         out->csv = stdout;
     }
     if (status == OIT_OK && b->json_path && strcmp(b->json_path, "-") != 0) {
@@ -858,8 +1158,11 @@ static void bench_output_begin(bench_output *out, const bench_settings *b, bool 
     for (int i = 0; i < argc && used < sizeof command; ++i)
         used += (size_t)snprintf(command + used, sizeof command - used, " %s", argv[i]);
     json_string(f, command);
-    fprintf(f, ", \"warmup\": %ld, \"frames\": %ld, \"time_budget_s\": %g, \"results\": [", b->warmup, b->frames,
+    fprintf(f, ", \"warmup\": %ld, \"frames\": %ld, \"time_budget_s\": %g", b->warmup, b->frames,
             b->budget_ms / 1000.0);
+    if (b->orbit_frames > 0)
+        fprintf(f, ", \"orbit_sequence\": %ld, \"orbit_step_degrees\": %.9g", b->orbit_frames, b->orbit_step);
+    fprintf(f, ", \"results\": [");
     fflush(f);
 }
 
@@ -872,16 +1175,498 @@ static void bench_output_end(bench_output *out, int failures)
     fprintf(out->json, "\n  ], \"failures\": %d, \"max_rss_kb\": %ld}\n", failures, max_rss_kb);
 }
 
+/* ------------------------------------------------------------- bundle */
+
+/* --bundle DIR: the images of every run and bundle.json, written into
+ * DIR.tmp.XXXXXX beside DIR and renamed to DIR when the run ends, so that a
+ * run that stops half-way leaves a previous bundle at DIR whole. DIR may be
+ * new, an empty directory or a previous bundle (a directory with bundle.json
+ * and regular files only); anything else is refused before any work. */
+typedef struct bench_bundle {
+    char path[4096];     /* DIR, without trailing slashes */
+    char temp[4200];     /* DIR.tmp.XXXXXX: where it is written */
+    FILE *rows, *scenes; /* open_memstream: the rows and scenes of bundle.json */
+    char *rows_text, *scenes_text;
+    size_t rows_size, scenes_size;
+    int row_count, scene_count, camera_count;
+    char renderer[256], gl_version[256], gl_vendor[256];
+    oit_status status; /* a file that could not be written stops the run */
+    oit_error err;
+} bench_bundle;
+
+/* The bundle's name of a scene or algorithm: letters, digits and '-' (the
+ * rest become '-'), so that '_' and '.' separate the parts of a file name. */
+static void bundle_part(char *out, size_t size, const char *text)
+{
+    size_t n = 0;
+    for (const char *c = text; *c && n + 1 < size; ++c)
+        out[n++] = (isalnum((unsigned char)*c) || *c == '-') ? *c : '-';
+    out[n] = '\0';
+}
+
+static oit_status bundle_check(const bench_settings *b, const scene_list *scenes, char *path, size_t size,
+                               oit_error *err)
+{
+    const char *given = b->bundle_path;
+    if (!*given)
+        return oit_fail(err, OIT_E_INPUT, "--bundle: empty directory name");
+    if (strlen(given) >= size - 32)
+        return oit_fail(err, OIT_E_INPUT, "--bundle: the path is too long");
+    snprintf(path, size, "%s", given);
+    for (size_t n = strlen(path); n > 1 && path[n - 1] == '/'; --n)
+        path[n - 1] = '\0';
+    if (strcmp(path, "/") == 0)
+        return oit_fail(err, OIT_E_INPUT, "--bundle /: not a bundle directory");
+    /* file names must be unique: scene_algorithm_WxH.png */
+    char first[256], second[256];
+    for (int i = 0; i < scenes->count; ++i)
+        for (int j = 0; j < i; ++j) {
+            if (!scene_selected(b->scene_patterns, scenes->items[i].name) ||
+                !scene_selected(b->scene_patterns, scenes->items[j].name))
+                continue;
+            bundle_part(first, sizeof first, scenes->items[i].name);
+            bundle_part(second, sizeof second, scenes->items[j].name);
+            if (strcmp(first, second) == 0)
+                return oit_fail(err, OIT_E_INPUT,
+                                "--bundle: scenes '%s' and '%s' would share the file name '%s' in the bundle",
+                                scenes->items[j].name, scenes->items[i].name, first);
+        }
+    for (int i = 0; i < b->algorithm_count; ++i)
+        for (int j = 0; j < i; ++j) {
+            bundle_part(first, sizeof first, b->algorithms[i].label);
+            bundle_part(second, sizeof second, b->algorithms[j].label);
+            if (strcmp(first, second) == 0)
+                return oit_fail(
+                    err, OIT_E_INPUT,
+                    "--bundle: algorithms '%s' and '%s' would share the file name '%s' in the bundle",
+                    b->algorithms[j].label, b->algorithms[i].label, first);
+        }
+    for (int i = 0; i < b->size_count; ++i)
+        for (int j = 0; j < i; ++j)
+            if (b->widths[i] == b->widths[j] && b->heights[i] == b->heights[j])
+                return oit_fail(err, OIT_E_INPUT, "--bundle: size %dx%d is listed twice", b->widths[i],
+                                b->heights[i]);
+    struct stat info;
+    if (stat(path, &info) != 0) {
+        if (errno != ENOENT)
+            return oit_fail(err, OIT_E_INPUT, "--bundle %s: %s", path, strerror(errno));
+        return check_output_path("--bundle", path, err); /* its parent exists and is writable */
+    }
+    if (!S_ISDIR(info.st_mode))
+        return oit_fail(err, OIT_E_INPUT, "--bundle %s: not a directory", path);
+    DIR *directory = opendir(path);
+    if (!directory)
+        return oit_fail(err, OIT_E_INPUT, "--bundle %s: cannot read: %s", path, strerror(errno));
+    int entries = 0;
+    bool has_json = false;
+    char odd[256] = "";
+    struct dirent *entry;
+    while ((entry = readdir(directory)) != NULL) {
+        if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
+            continue;
+        ++entries;
+        has_json |= strcmp(entry->d_name, "bundle.json") == 0;
+        char full[4400];
+        snprintf(full, sizeof full, "%s/%s", path, entry->d_name);
+        struct stat item;
+        if (!odd[0] && (lstat(full, &item) != 0 || !S_ISREG(item.st_mode)))
+            snprintf(odd, sizeof odd, "%s", entry->d_name);
+    }
+    closedir(directory);
+    if (entries > 0 && !has_json)
+        return oit_fail(err, OIT_E_INPUT,
+                        "--bundle %s: the directory is not empty and not a bundle (no bundle.json)", path);
+    if (odd[0])
+        return oit_fail(err, OIT_E_INPUT,
+                        "--bundle %s: holds '%s', which is not a regular file: not a bundle", path, odd);
+    /* it is renamed: its parent must be writable */
+    char parent[4096];
+    snprintf(parent, sizeof parent, "%s", path);
+    char *slash = strrchr(parent, '/');
+    if (!slash)
+        snprintf(parent, sizeof parent, ".");
+    else if (slash == parent)
+        parent[1] = '\0';
+    else
+        *slash = '\0';
+    if (access(parent, W_OK) != 0)
+        return oit_fail(err, OIT_E_INPUT, "--bundle %s: cannot write in %s: %s", path, parent,
+                        strerror(errno));
+    return OIT_OK;
+}
+
+/* Removes the regular files of a directory (a bundle has no others), then the directory. */
+static void remove_bundle_directory(const char *path)
+{
+    DIR *directory = opendir(path);
+    if (directory) {
+        struct dirent *entry;
+        while ((entry = readdir(directory)) != NULL) {
+            if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
+                continue;
+            char full[4400];
+            snprintf(full, sizeof full, "%s/%s", path, entry->d_name);
+            unlink(full);
+        }
+        closedir(directory);
+    }
+    rmdir(path);
+}
+
+static oit_status bundle_open(const bench_settings *b, const scene_list *scenes, bench_bundle *bundle,
+                              oit_error *err)
+{
+    memset(bundle, 0, sizeof *bundle);
+    oit_status status = bundle_check(b, scenes, bundle->path, sizeof bundle->path, err);
+    if (status != OIT_OK)
+        return status;
+    snprintf(bundle->temp, sizeof bundle->temp, "%s.tmp.XXXXXX", bundle->path);
+    if (!mkdtemp(bundle->temp))
+        return oit_fail(err, OIT_E_INPUT, "--bundle %s: cannot create %s: %s", bundle->path, bundle->temp,
+                        strerror(errno));
+    bundle->rows = open_memstream(&bundle->rows_text, &bundle->rows_size);
+    bundle->scenes = open_memstream(&bundle->scenes_text, &bundle->scenes_size);
+    if (!bundle->rows || !bundle->scenes)
+        return oit_fail(err, OIT_E_RUNTIME, "--bundle: out of memory");
+    return OIT_OK;
+}
+
+/* The driver, while the context is current. */
+static void bundle_driver(bench_bundle *bundle, bool has_gl)
+{
+    const char *strings[3] = {"", "", ""};
+    if (has_gl) {
+        strings[0] = oit_gl_renderer_string();
+        strings[1] = (const char *)glGetString(GL_VERSION);
+        strings[2] = (const char *)glGetString(GL_VENDOR);
+    }
+    snprintf(bundle->renderer, sizeof bundle->renderer, "%s", strings[0] ? strings[0] : "");
+    snprintf(bundle->gl_version, sizeof bundle->gl_version, "%s", strings[1] ? strings[1] : "");
+    snprintf(bundle->gl_vendor, sizeof bundle->gl_vendor, "%s", strings[2] ? strings[2] : "");
+}
+
+/* Writes an image into the bundle as NAME; a failure stops the run. */
+static void bundle_png(bench_bundle *bundle, const char *name, const oit_image *image)
+{
+    if (bundle->status != OIT_OK)
+        return;
+    char path[4600];
+    snprintf(path, sizeof path, "%s/%s", bundle->temp, name);
+    oit_error err;
+    if (oit_png_write(path, image, &err) != OIT_OK) {
+        bundle->status = OIT_E_RUNTIME;
+        oit_fail(&bundle->err, OIT_E_RUNTIME, "--bundle: %s", err.message);
+    }
+}
+
+/* FNV-1a 64 of a file and its size; false if it cannot be read. */
+static bool file_checksum(const char *path, uint64_t *hash, long long *bytes)
+{
+    FILE *file;
+    if (oit_open_regular_file(path, NULL, &file, NULL) != OIT_OK)
+        return false;
+    uint64_t h = 0xcbf29ce484222325ull;
+    long long total = 0;
+    unsigned char buffer[65536];
+    size_t n;
+    while ((n = fread(buffer, 1, sizeof buffer, file)) > 0) {
+        for (size_t k = 0; k < n; ++k) {
+            h ^= buffer[k];
+            h *= 0x100000001b3ull;
+        }
+        total += (long long)n;
+    }
+    bool ok = !ferror(file);
+    fclose(file);
+    *hash = h;
+    *bytes = total;
+    return ok;
+}
+
+static void json_matrix_rows(FILE *f, const float m[16])
+{
+    fputc('[', f);
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            fprintf(f, "%s%.9g", row || col ? ", " : "", m[col * 4 + row]);
+    fputc(']', f);
+}
+
+/* A scene's entry: its model (path, bytes, checksum) and render options;
+ * the cameras follow, one per size (bundle_camera), then bundle_scene_end. */
+static void bundle_scene_begin(bench_bundle *bundle, const bench_scene *scene)
+{
+    FILE *f = bundle->scenes;
+    const render_options *o = &scene->options;
+    fprintf(f, "%s\n    {\"name\": ", bundle->scene_count++ ? "," : "");
+    json_string(f, scene->name);
+    fprintf(f, ", \"model\": ");
+    json_string(f, o->model_path);
+    uint64_t hash;
+    long long bytes;
+    if (file_checksum(o->model_path, &hash, &bytes))
+        fprintf(f, ", \"model_bytes\": %lld, \"model_fnv1a64\": \"%016llx\"", bytes,
+                (unsigned long long)hash);
+    else
+        fprintf(f, ", \"model_bytes\": null, \"model_fnv1a64\": null");
+    fprintf(f, ", \"view\": ");
+    json_string(f, scene->view);
+    fprintf(
+        f,
+        ", \"render_options\": {\"alpha\": %.9g, \"shading\": \"%s\", \"background\": [%.9g, %.9g, %.9g], "
+        "\"backend\": \"%s\", \"max_memory_bytes\": %llu, \"sort\": \"%s\", \"max_layers\": %d, "
+        "\"layers\": %d, \"moments\": \"%s\", \"modulation\": \"%s\", \"orbit\": [%.9g, %.9g], "
+        "\"matrices_given\": %s}",
+        o->alpha, o->shading == OIT_SHADE_FLAT ? "flat" : "headlight", o->background[0], o->background[1],
+        o->background[2], o->backend == OIT_BACKEND_EGL ? "egl" : "osmesa",
+        (unsigned long long)o->config.max_memory_bytes,
+        o->config.ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "array" : "insertion", o->config.max_layers,
+        o->config.layers, oit_moments_name(o->config.moments), oit_modulation_mode_name(o->modulation.mode),
+        o->orbit[0], o->orbit[1], o->has_modelview && o->has_projection ? "true" : "false");
+    fprintf(f, ", \"cameras\": [");
+    bundle->camera_count = 0;
+}
+
+static void bundle_camera(bench_bundle *bundle, const oit_frame_settings *frame)
+{
+    FILE *f = bundle->scenes;
+    fprintf(f, "%s{\"width\": %d, \"height\": %d, \"modelview\": ", bundle->camera_count++ ? ", " : "",
+            frame->width, frame->height);
+    json_matrix_rows(f, frame->modelview);
+    fprintf(f, ", \"projection\": ");
+    json_matrix_rows(f, frame->projection);
+    fputc('}', f);
+}
+
+static void bundle_scene_end(bench_bundle *bundle, oit_status load, const oit_error *load_err)
+{
+    fputc(']', bundle->scenes);
+    if (load != OIT_OK) {
+        fprintf(bundle->scenes, ", \"error\": ");
+        json_string(bundle->scenes, load_err->message);
+    }
+    fputc('}', bundle->scenes);
+}
+
+static void bundle_row(bench_bundle *bundle, const bench_scene *scene, const session *s,
+                       const bench_algorithm *algorithm, int width, int height, const run_result *r,
+                       int tolerance, const row_files *files)
+{
+    fprintf(bundle->rows, "%s\n    ", bundle->row_count++ ? "," : "");
+    write_json_row(bundle->rows, scene, s, algorithm, width, height, r, tolerance, files);
+}
+
+/* The commit of the source tree: $OIT_COMMIT when set (a script that knows
+ * it), else `git describe --always --dirty` in the tree oit was built from
+ * (OIT_SOURCE_DIR), else "unknown". */
+static void source_commit(char *out, size_t size, const char **how)
+{
+    const char *given = getenv("OIT_COMMIT");
+    if (given && *given) {
+        snprintf(out, size, "%s", given);
+        *how = "OIT_COMMIT";
+        return;
+    }
+    snprintf(out, size, "unknown");
+    *how = "unknown";
+#ifdef OIT_SOURCE_DIR
+    char quoted[4200];
+    size_t n = 0;
+    for (const char *c = OIT_SOURCE_DIR; *c && n + 5 < sizeof quoted; ++c) {
+        if (*c == '\'') {
+            memcpy(quoted + n, "'\\''", 4);
+            n += 4;
+        } else {
+            quoted[n++] = *c;
+        }
+    }
+    quoted[n] = '\0';
+    char command[4400];
+    snprintf(command, sizeof command,
+             "git --no-optional-locks -C '%s' describe --always --dirty 2>/dev/null </dev/null", quoted);
+    fflush(NULL);
+    FILE *pipe = popen(command, "r");
+    if (!pipe)
+        return;
+    char line[256] = "";
+    bool got = fgets(line, sizeof line, pipe) != NULL;
+    int exit_status = pclose(pipe);
+    line[strcspn(line, "\r\n")] = '\0';
+    if (got && exit_status == 0 && line[0]) {
+        snprintf(out, size, "%s", line);
+        *how = "git describe";
+    }
+#endif
+}
+
+/* The machine: uname, CPU model, logical CPUs, memory. */
+static void json_machine(FILE *f)
+{
+    struct utsname machine;
+    if (uname(&machine) != 0)
+        memset(&machine, 0, sizeof machine);
+    fprintf(f, "{\"sysname\": ");
+    json_string(f, machine.sysname);
+    fprintf(f, ", \"release\": ");
+    json_string(f, machine.release);
+    fprintf(f, ", \"version\": ");
+    json_string(f, machine.version);
+    fprintf(f, ", \"machine\": ");
+    json_string(f, machine.machine);
+    char cpu[256] = "unknown";
+    FILE *cpuinfo = fopen("/proc/cpuinfo", "r");
+    if (cpuinfo) {
+        char line[1024];
+        while (fgets(line, sizeof line, cpuinfo))
+            if (strncmp(line, "model name", 10) == 0 && strchr(line, ':')) {
+                const char *value = strchr(line, ':') + 1;
+                value += strspn(value, " \t");
+                snprintf(cpu, sizeof cpu, "%.*s", (int)strcspn(value, "\r\n"), value);
+                break;
+            }
+        fclose(cpuinfo);
+    }
+    fprintf(f, ", \"cpu\": ");
+    json_string(f, cpu);
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN), pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    fprintf(f, ", \"logical_cpus\": %ld, \"memory_bytes\": %lld}", cpus,
+            pages > 0 && page > 0 ? (long long)pages * page : -1LL);
+}
+
+/* bundle.json, then DIR.tmp.XXXXXX renamed to DIR (a previous bundle at DIR
+ * is moved aside first and removed after). */
+static oit_status bundle_commit(bench_bundle *bundle, const bench_settings *b, bool has_gl, int argc,
+                                char **argv, int failures, oit_error *err)
+{
+    if (bundle->status != OIT_OK) {
+        *err = bundle->err;
+        return bundle->status;
+    }
+    fclose(bundle->rows);
+    fclose(bundle->scenes);
+    bundle->rows = bundle->scenes = NULL;
+    char path[4600];
+    snprintf(path, sizeof path, "%s/bundle.json", bundle->temp);
+    oit_atomic_file *file = NULL;
+    oit_status status = oit_atomic_file_open(path, "--bundle", 0, &file, err);
+    if (status != OIT_OK)
+        return status;
+    FILE *f = oit_atomic_file_stream(file);
+    char date[64], commit[256];
+    const char *how;
+    iso_time(date, sizeof date);
+    source_commit(commit, sizeof commit, &how);
+    fprintf(f,
+            "{\"format\": \"oit-bench-bundle\", \"version\": 1, \"date\": \"%s\", \"command\": [\"oit\", "
+            "\"bench\"",
+            date);
+    for (int i = 0; i < argc; ++i) {
+        fputs(", ", f);
+        json_string(f, argv[i]);
+    }
+    fprintf(f, "],\n  \"commit\": ");
+    json_string(f, commit);
+    fprintf(f, ", \"commit_from\": \"%s\",\n  \"machine\": ", how);
+    json_machine(f);
+    fprintf(f, ",\n  \"driver\": {\"backend\": \"%s\", \"renderer\": ",
+            b->base.backend == OIT_BACKEND_EGL ? "egl" : "osmesa");
+    if (has_gl) {
+        json_string(f, bundle->renderer);
+        fprintf(f, ", \"gl_version\": ");
+        json_string(f, bundle->gl_version);
+        fprintf(f, ", \"gl_vendor\": ");
+        json_string(f, bundle->gl_vendor);
+    } else {
+        fprintf(f, "null, \"gl_version\": null, \"gl_vendor\": null");
+    }
+    fprintf(f, "},\n  \"parameters\": {\"sizes\": [");
+    for (int z = 0; z < b->size_count; ++z)
+        fprintf(f, "%s[%d, %d]", z ? ", " : "", b->widths[z], b->heights[z]);
+    fprintf(f,
+            "], \"frames\": %ld, \"warmup\": %ld, \"time_budget_s\": %g, \"reference_max_pixels\": %ld, "
+            "\"tolerance\": %ld, \"orbit_sequence\": %ld, \"orbit_step_degrees\": %.9g, \"scenes\": ",
+            b->frames, b->warmup, b->budget_ms / 1000.0, b->reference_pixels, b->tolerance, b->orbit_frames,
+            b->orbit_frames ? b->orbit_step : 0.0);
+    if (b->scene_patterns)
+        json_string(f, b->scene_patterns);
+    else
+        fputs("null", f);
+    fprintf(f, ", \"algorithms\": [");
+    for (int a = 0; a < b->algorithm_count; ++a) {
+        const bench_algorithm *algorithm = &b->algorithms[a];
+        fprintf(f, "%s{\"label\": ", a ? ", " : "");
+        json_string(f, algorithm->label);
+        fprintf(
+            f, ", \"algorithm\": \"%s\", \"exact\": %s, \"sort\": %s, \"layers\": %d, \"moments\": %s%s%s}",
+            algorithm->ops->name, algorithm->ops->exact ? "true" : "false",
+            algorithm->sort_array ? "\"array\"" : "null", algorithm->layers, algorithm->moments ? "\"" : "",
+            algorithm->moments ? oit_moments_name(algorithm->moments) : "null",
+            algorithm->moments ? "\"" : "");
+    }
+    fprintf(f, "]},\n  \"scenes\": [");
+    fwrite(bundle->scenes_text, 1, bundle->scenes_size, f);
+    fprintf(f, "\n  ],\n  \"results\": [");
+    fwrite(bundle->rows_text, 1, bundle->rows_size, f);
+    fprintf(f, "\n  ],\n  \"failures\": %d}\n", failures);
+    status = oit_atomic_file_commit(file, err);
+    if (status != OIT_OK)
+        return status;
+    /* DIR: a previous bundle or an empty directory is moved aside, then replaced */
+    char old[4200] = "";
+    struct stat info;
+    if (stat(bundle->path, &info) == 0) {
+        snprintf(old, sizeof old, "%s.old.XXXXXX", bundle->path);
+        if (!mkdtemp(old) || rename(bundle->path, old) != 0) /* a directory onto an empty one */
+            return oit_fail(err, OIT_E_RUNTIME, "--bundle %s: cannot move the previous bundle aside: %s",
+                            bundle->path, strerror(errno));
+    }
+    if (rename(bundle->temp, bundle->path) != 0) {
+        int saved = errno;
+        if (old[0])
+            rename(old, bundle->path);
+        return oit_fail(err, OIT_E_RUNTIME, "--bundle %s: cannot rename %s to it: %s", bundle->path,
+                        bundle->temp, strerror(saved));
+    }
+    bundle->temp[0] = '\0';
+    if (old[0])
+        remove_bundle_directory(old);
+    return OIT_OK;
+}
+
+/* Drops what bundle_commit did not rename (a run that failed). */
+static void bundle_close(bench_bundle *bundle)
+{
+    if (bundle->rows)
+        fclose(bundle->rows);
+    if (bundle->scenes)
+        fclose(bundle->scenes);
+    free(bundle->rows_text);
+    free(bundle->scenes_text);
+    if (bundle->temp[0])
+        remove_bundle_directory(bundle->temp);
+    memset(bundle, 0, sizeof *bundle);
+}
+
 /* Every algorithm on one scene at one size, after the reference image where
  * the size allows; one row each. Returns the number of failed runs, or -1
  * when out of memory. */
 static int bench_scene_size(const bench_settings *b, session *s, const bench_scene *scene, oit_status load,
                             const oit_error *load_err, int width, int height, bench_output *out,
-                            progress_state *progress)
+                            bench_bundle *bundle, progress_state *progress)
 {
     render_options o = scene->options;
     o.width = width;
     o.height = height;
+    char scene_part[256];
+    bundle_part(scene_part, sizeof scene_part, scene->name);
+    row_files files;
+    memset(&files, 0, sizeof files);
+    if (bundle && load == OIT_OK) {
+        oit_frame_settings frame;
+        oit_error ignored;
+        if (render_frame_settings(s, &o, &frame, &ignored) == OIT_OK)
+            bundle_camera(bundle, &frame);
+    }
     oit_image reference_image = {0};
     bool has_reference = false;
     if (load == OIT_OK && b->reference_pixels > 0 && (long)width * height <= b->reference_pixels) {
@@ -890,17 +1675,31 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
         run_result *rr = calloc(1, sizeof *rr);
         oit_error ref_err = {{0}};
         if (rr)
-            has_reference = run_algorithm(s, &ro, 0, 1, 0.0, rr, &reference_image, NULL, NULL, &ref_err) == OIT_OK;
+            has_reference =
+                run_algorithm(s, &ro, 0, 1, 0.0, rr, &reference_image, NULL, NULL, &ref_err) == OIT_OK;
         free(rr);
         if (!has_reference && !b->quiet)
             fprintf(stderr, "bench: %s %dx%d: no reference image: %s\n", scene->name, width, height,
                     rr ? ref_err.message : "out of memory");
+        if (has_reference && bundle) {
+            snprintf(files.reference, sizeof files.reference, "%s_%dx%d.reference.png", scene_part, width,
+                     height);
+            bundle_png(bundle, files.reference, &reference_image);
+        }
     }
+    /* --orbit-sequence: the reference's frames, kept for every algorithm when they fit */
+    oit_image *orbit_references = NULL;
+    if (load == OIT_OK && b->orbit_frames > 0 &&
+        (unsigned long long)b->orbit_frames * (unsigned long long)width * (unsigned long long)height * 4ull <=
+            BENCH_ORBIT_CACHE_BYTES)
+        orbit_references = calloc((size_t)b->orbit_frames, sizeof *orbit_references);
     int failures = 0;
     for (int a = 0; a < b->algorithm_count; ++a) {
         const bench_algorithm *algorithm = &b->algorithms[a];
         o.algorithm = algorithm->ops;
         o.config.ll_sort = algorithm->sort_array ? OIT_LL_SORT_LOCAL_ARRAY : scene->options.config.ll_sort;
+        o.config.layers = algorithm->layers ? algorithm->layers : scene->options.config.layers;
+        o.config.moments = algorithm->moments ? algorithm->moments : scene->options.config.moments;
         run_result *r = calloc(1, sizeof *r);
         if (!r) {
             failures = -1;
@@ -913,29 +1712,59 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
         progress->height = height;
         oit_error run_err = *load_err;
         oit_status run = load;
+        row_files *row = NULL;
         if (load == OIT_OK) {
             /* the CPU reference is measured on one frame: it is the oracle, not a contender */
             bool cpu = !o.algorithm->uses_gl;
             oit_image image = {0};
             run = run_algorithm(s, &o, cpu ? 0 : (int)b->warmup, cpu ? 1 : (int)b->frames, b->budget_ms, r,
-                                has_reference ? &image : NULL, b->quiet ? NULL : progress_frame, progress, &run_err);
+                                has_reference || bundle ? &image : NULL, b->quiet ? NULL : progress_frame,
+                                progress, &run_err);
             if (run == OIT_OK && has_reference) {
                 oit_error compare_err;
-                r->has_reference_diff = oit_image_compare(&image, &reference_image, (int)b->tolerance, &r->diff,
-                                                          &compare_err) == OIT_OK;
+                r->has_reference_diff = oit_image_compare(&image, &reference_image, (int)b->tolerance,
+                                                          &r->diff, &compare_err) == OIT_OK;
+                r->has_error = oit_image_error_compute(&image, &reference_image, &r->error_figures,
+                                                       &compare_err) == OIT_OK;
+            }
+            if (run == OIT_OK && bundle) {
+                char algorithm_part[64];
+                bundle_part(algorithm_part, sizeof algorithm_part, algorithm->label);
+                row = &files;
+                snprintf(files.image, sizeof files.image, "%s_%s_%dx%d.png", scene_part, algorithm_part,
+                         width, height);
+                bundle_png(bundle, files.image, &image);
+                files.error_map[0] = '\0';
+                oit_image map = {0};
+                oit_error map_err;
+                if (has_reference &&
+                    oit_image_error_map(&image, &reference_image, true, &map, &map_err) == OIT_OK) {
+                    snprintf(files.error_map, sizeof files.error_map, "%s_%s_%dx%d.error.png", scene_part,
+                             algorithm_part, width, height);
+                    bundle_png(bundle, files.error_map, &map);
+                }
+                oit_image_free(&map);
             }
             oit_image_free(&image);
+            if (run == OIT_OK && b->orbit_frames > 0)
+                run = run_orbit(s, &o, (int)b->orbit_frames, b->orbit_step, orbit_references, r, &run_err);
         }
         if (run != OIT_OK) {
             r->ok = false;
             snprintf(r->error, sizeof r->error, "%s", run_err.message);
             ++failures;
         }
-        write_row(out, scene, s, algorithm->label, width, height, r);
+        write_row(out, scene, s, algorithm, width, height, r);
+        if (bundle)
+            bundle_row(bundle, scene, s, algorithm, width, height, r, (int)b->tolerance, row);
         if (!b->quiet)
             progress_done(progress, r);
         free(r);
     }
+    if (orbit_references)
+        for (long k = 0; k < b->orbit_frames; ++k)
+            oit_image_free(&orbit_references[k]);
+    free(orbit_references);
     oit_image_free(&reference_image);
     return failures;
 }
@@ -943,13 +1772,17 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
 int command_bench(int argc, char **argv)
 {
     bench_settings *b = calloc(1, sizeof *b);
-    if (!b) {
+    bench_bundle *bundle = calloc(1, sizeof *bundle);
+    if (!b || !bundle) {
+        free(b);
+        free(bundle);
         fprintf(stderr, "oit: error: out of memory\n");
         return EXIT_RUNTIME;
     }
     int parsed = parse_bench_arguments(argc, argv, b);
     if (parsed >= 0) {
         free(b);
+        free(bundle);
         return parsed;
     }
     oit_error err = {{0}};
@@ -965,6 +1798,9 @@ int command_bench(int argc, char **argv)
         needs_gl |= b->algorithms[a].ops->uses_gl;
 
     oit_status status = bench_scenes(b, &scenes, &selected, &err);
+    bench_bundle *use_bundle = b->bundle_path ? bundle : NULL;
+    if (status == OIT_OK && use_bundle)
+        status = bundle_open(b, &scenes, bundle, &err);
     if (status == OIT_OK)
         status = bench_output_open(b, &out, &err);
     /* the context before the first row: its renderer string goes into the header */
@@ -972,11 +1808,13 @@ int command_bench(int argc, char **argv)
         status = oit_find_shader_dir(program_path, s.shader_dir, sizeof s.shader_dir, &err);
     if (status == OIT_OK && needs_gl)
         status = oit_gl_context_create(s.backend, s.debug, &s.gl, &err);
+    if (status == OIT_OK && use_bundle)
+        bundle_driver(bundle, needs_gl);
     int failures = 0;
     if (status == OIT_OK) {
         bench_output_begin(&out, b, needs_gl, argc, argv);
-        progress_state progress = {isatty(fileno(stderr)) != 0, 0,
-                                   selected * b->size_count * b->algorithm_count, NULL, NULL, 0, 0};
+        progress_state progress = {
+            isatty(fileno(stderr)) != 0, 0, selected * b->size_count * b->algorithm_count, NULL, NULL, 0, 0};
         for (int k = 0; status == OIT_OK && !bench_output_failed(&out) && k < scenes.count; ++k) {
             const bench_scene *scene = &scenes.items[k];
             if (!scene_selected(b->scene_patterns, scene->name))
@@ -984,26 +1822,38 @@ int command_bench(int argc, char **argv)
             /* a model that does not load fails its rows; the other scenes go on */
             oit_error load_err = {{0}};
             oit_status load = session_set_model(&s, scene->options.model_path, &load_err);
+            if (use_bundle)
+                bundle_scene_begin(bundle, scene);
             for (int z = 0; status == OIT_OK && !bench_output_failed(&out) && z < b->size_count; ++z) {
-                int failed = bench_scene_size(b, &s, scene, load, &load_err, b->widths[z], b->heights[z], &out,
-                                              &progress);
+                int failed = bench_scene_size(b, &s, scene, load, &load_err, b->widths[z], b->heights[z],
+                                              &out, use_bundle, &progress);
                 if (failed < 0)
                     status = oit_fail(&err, OIT_E_RUNTIME, "out of memory");
                 else
                     failures += failed;
+                if (status == OIT_OK && use_bundle && bundle->status != OIT_OK) {
+                    status = bundle->status;
+                    err = bundle->err;
+                }
             }
+            if (use_bundle)
+                bundle_scene_end(bundle, load, &load_err);
         }
         bench_output_end(&out, failures);
     }
+    if (status == OIT_OK && use_bundle)
+        status = bundle_commit(bundle, b, needs_gl, argc, argv, failures, &err);
     oit_error close_err;
     oit_status close_status = bench_output_close(&out, status == OIT_OK, &close_err);
     if (status == OIT_OK && close_status != OIT_OK) {
         status = close_status;
         err = close_err;
     }
+    bundle_close(bundle);
     session_close(&s);
     scene_list_free(&scenes);
     free(b);
+    free(bundle);
     if (status != OIT_OK)
         return report(status, &err);
     if (failures) {

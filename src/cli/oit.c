@@ -438,7 +438,8 @@ static int command_algorithms(int argc, char **argv)
         if (strcmp(argv[i], "--json") == 0)
             json = true;
         else if (strcmp(argv[i], "--help") == 0) {
-            fputs("usage: oit algorithms [--json]   (--json: [{\"name\", \"exact\", \"summary\"}])\n", stdout);
+            fputs("usage: oit algorithms [--json]   (--json: [{\"name\", \"exact\", \"uses_layers\", "
+                  "\"uses_moments\", \"summary\"}])\n", stdout);
             return EXIT_OK;
         } else
             return usage_error("algorithms: unknown option '%s'", argv[i]);
@@ -454,7 +455,9 @@ static int command_algorithms(int argc, char **argv)
         }
         printf("%s{\"name\": ", i ? ", " : "");
         json_string(stdout, list[i]->name);
-        printf(", \"exact\": %s, \"summary\": ", list[i]->exact ? "true" : "false");
+        printf(", \"exact\": %s, \"uses_layers\": %s, \"uses_moments\": %s, \"summary\": ",
+               list[i]->exact ? "true" : "false", list[i]->uses_layers ? "true" : "false",
+               list[i]->uses_moments ? "true" : "false");
         json_string(stdout, list[i]->summary);
         printf("}");
     }
