@@ -798,6 +798,18 @@ class Report:
                   "(table 5.5 over table 5.1):", "",
                   *table(["pass / construction", "ours", "thesis"], ratio_rows, ["---", "---:", "---:"]), "")
 
+    def quality_map(self):
+        """The approximations' cost/quality map (bat/quality_map.py): Pareto plots per scene class,
+        the error table, temporal stability, the depth sweep, the papers' ratios beside ours."""
+        import quality_map
+
+        q = quality_map.QualityMap(self, self.args.results, os.path.join(ROOT, "config", "bench-scenes.json"))
+        q.emit()
+        if q.quality:
+            rows = [x for x in q.rows(q.quality) if q.time_ms(x)]
+            quality_map.published_section(self, rows, quality_map.read_published(
+                os.path.join(ROOT, "docs", "data", "published_approximations.csv")), q.time_ms)
+
     def accuracy(self):
         rows_in = [r for r in read_csv(os.path.join(self.args.results, "accuracy.csv")) if not r["error"]]
         if not rows_in:
@@ -956,6 +968,7 @@ class Report:
         self.resolutions()
         self.modulation_passes()
         self.accuracy()
+        self.quality_map()
         self.why_missed()
         self.footer()
         path = os.path.join(self.args.docs, "benchmarks.md")

@@ -5,6 +5,9 @@
 #   3. oit bench: every scene x blend, dp, ddp, ll, ll-array, ib, wboit at 600x600
 #      -> BUILD/bench/results/bench.csv (+ .json); then every scene at 128x128, one frame,
 #      against the CPU reference -> accuracy.csv
+#   3b. the cost/quality map: every algorithm and parameter (kbuffer/hybrid k = 4/8/16, mboit
+#      power4/power6/trig3) against the reference -> quality.json and quality-bundle/; the flicker
+#      of a slow orbit -> stability.json; nested spheres of growing depth -> depth_sweep.json
 #   4. the source's six measurements (bat/measure_*.sh) -> BUILD/bench/results/*.txt
 #   5. a perf profile of ll and ib on one scene (bat/profile.sh; skipped without perf)
 #   6. bat/report.py -> docs/benchmarks.md and docs/images/bench-*.png (with the machine of step 3,
@@ -88,6 +91,39 @@ step "accuracy against the reference at ${accuracy_size}x${accuracy_size}"
     --csv "$RESULTS/accuracy.csv"
 accuracy_status=$?
 set -e
+
+# The cost/quality map of the approximations (issue 12; bat/quality_map.py draws it): every
+# algorithm and parameter on every scene against the reference, with a bundle of the images;
+# the flicker of a slow orbit on a few scenes; and a depth sweep over nested spheres.
+quality_algorithms=blend,wboit,kbuffer:4,kbuffer:8,kbuffer:16,hybrid:4,hybrid:8,hybrid:16,mboit:power4,mboit:power6,mboit:trig3,ll,dp
+quality_size=$accuracy_size
+stability_frames=24
+sweep_complexities="1 2 4 8 16 32"
+if [ "$QUICK" = 1 ]; then
+    stability_frames=6
+    sweep_complexities="1 4 16"
+fi
+set +e
+step "cost and quality: every algorithm and parameter at ${quality_size}x${quality_size} -> quality.json"
+"$OIT" bench --scene-list "$SCENES" --algorithms "$quality_algorithms" --sizes "$quality_size" --frames 3 --warmup 1 \
+    --reference-max-pixels $((quality_size * quality_size)) --quiet --json "$RESULTS/quality.json" \
+    --bundle "$RESULTS/quality-bundle"
+step "temporal stability: $stability_frames frames of a slow orbit -> stability.json"
+"$OIT" bench --scene-list "$SCENES" --scenes 'gearbox*,engine*,spheres-*,onion*' --algorithms "$quality_algorithms" \
+    --sizes 128 --frames 1 --warmup 0 --orbit-sequence "$stability_frames" --quiet --json "$RESULTS/stability.json"
+step "depth sweep: nested spheres, complexity $sweep_complexities -> depth_sweep.json"
+sweep_dir=$BUILD/bench/depth_sweep
+mkdir -p "$sweep_dir"
+: >"$sweep_dir/scenes.txt"
+for complexity in $sweep_complexities; do
+    "$OIT" gen onion --complexity "$complexity" --out "$sweep_dir/onion$complexity.obj"
+    echo "onion$complexity $sweep_dir/onion$complexity.obj" >>"$sweep_dir/scenes.txt"
+done
+"$OIT" bench --scene-list "$sweep_dir/scenes.txt" --algorithms ll,dp,kbuffer:8,hybrid:8,mboit:power4,wboit \
+    --sizes "$quality_size" --frames 3 --warmup 1 --reference-max-pixels $((quality_size * quality_size)) --quiet \
+    --json "$RESULTS/depth_sweep.json"
+set -e
+
 [ $bench_status -eq 0 ] || echo "run_comparison.sh: some bench runs failed (rows with an error in bench.csv)" >&2
 [ $accuracy_status -eq 0 ] || echo "run_comparison.sh: some accuracy runs failed (accuracy.csv)" >&2
 

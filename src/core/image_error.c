@@ -243,7 +243,10 @@ oit_status oit_image_error_map(const oit_image *image, const oit_image *referenc
             memcpy(out->rgba + ((size_t)y * width + x) * 4, rgb, 3);
     }
     static const int ticks[] = {1, 2, 8, 32, OIT_ERROR_MAP_SATURATION};
-    for (size_t k = 0; k < sizeof ticks / sizeof ticks[0]; ++k) {
+    /* right to left, so that 64+ always shows; a label that would touch the one to its right is
+     * left out (narrow maps) */
+    int labelled_from = width + 2;
+    for (size_t k = sizeof ticks / sizeof ticks[0]; k-- > 0;) {
         int x = (int)lround(oit_error_map_position(ticks[k]) * (width - 1));
         char label[8];
         snprintf(label, sizeof label, "%d%s", ticks[k], ticks[k] == OIT_ERROR_MAP_SATURATION ? "+" : "");
@@ -257,7 +260,10 @@ oit_status oit_image_error_map(const oit_image *image, const oit_image *referenc
             uint8_t *p = out->rgba + ((size_t)y * width + x) * 4;
             p[0] = p[1] = p[2] = 255;
         }
-        put_text(out, left, bar_top + bar_rows + 3, label);
+        if (left + text_width < labelled_from - 1) {
+            put_text(out, left, bar_top + bar_rows + 3, label);
+            labelled_from = left;
+        }
     }
     return OIT_OK;
 }

@@ -1,0 +1,272 @@
+"""quality_map.py: the cost/quality map of docs/benchmarks.md (issue 12), used by bat/report.py.
+
+Reads three oit bench JSON files that bat/run_comparison.sh writes into the results directory:
+  quality.json      every scene x every algorithm and parameter (kbuffer:4/8/16, mboit:power4/...),
+                    one size, each run compared with the CPU reference (error_* figures)
+  stability.json    oit bench --orbit-sequence N on some scenes: flicker per algorithm
+  depth_sweep.json  onion scenes of growing depth (layers per pixel): time, memory, error
+and emits the sections through the report (emit / save): a Pareto plot per scene class (error
+against frame time, marker area = memory), the table of each algorithm's median error and cost,
+the stability table, the depth sweep, and each algorithm's worst image beside the reference with
+its error map (the images come from the bundle the quality run writes with --bundle).
+Every figure is read from those files; nothing is typed in.
+"""
+import json
+import math
+import os
+import statistics
+
+# scene classes, from config/bench-scenes.json ("class" of each model)
+CLASS_TITLES = {"cad": "CAD assemblies", "scanned": "scanned and modelled meshes", "synthetic": "synthetic deep scenes"}
+
+
+def read_bench_json(path):
+    if not os.path.exists(path):
+        return None
+    try:
+        data = json.load(open(path))
+    except json.JSONDecodeError:
+        return None
+    return data
+
+
+def family(label):
+    """'kbuffer:8' -> 'kbuffer'."""
+    return label.split(":")[0]
+
+
+def median_or_none(values):
+    values = [v for v in values if v is not None and not (isinstance(v, float) and math.isnan(v))]
+    return statistics.median(values) if values else None
+
+
+class QualityMap:
+    def __init__(self, report, results, config_path):
+        self.report = report
+        self.results = results
+        self.quality = read_bench_json(os.path.join(results, "quality.json"))
+        self.stability = read_bench_json(os.path.join(results, "stability.json"))
+        self.sweep = read_bench_json(os.path.join(results, "depth_sweep.json"))
+        self.classes = {}
+        if os.path.exists(config_path):
+            for model in json.load(open(config_path)).get("models", []):
+                self.classes[model["name"]] = model.get("class", "other")
+
+    def rows(self, data):
+        if not data:
+            return []
+        return [r for r in data.get("results", []) if not r.get("error") or isinstance(r.get("error"), dict)]
+
+    @staticmethod
+    def time_ms(row):
+        value = row.get("gpu_ms")
+        if isinstance(value, dict):
+            value = value.get("median")
+        return value
+
+    @staticmethod
+    def rmse(row):
+        value = row.get("error_rmse")
+        if value is None and isinstance(row.get("error"), dict):
+            value = row["error"].get("rmse")
+        return value
+
+    def emit(self):
+        r = self.report
+        r.emit("## The cost/quality map of the approximations", "")
+        if not self.quality:
+            r.emit(f"Not measured: {os.path.join(self.results, 'quality.json')} is missing "
+                   "(bat/run_comparison.sh writes it).", "")
+            return
+        rows = [x for x in self.rows(self.quality) if self.rmse(x) is not None and self.time_ms(x)]
+        command = self.quality.get("command", "?")
+        size = f"{rows[0]['width']}x{rows[0]['height']}" if rows else "?"
+        r.emit(f"Every scene with every algorithm and parameter at {size}, each frame compared with the CPU "
+               f"reference of the same frame (`{command}`). Error is the RMSE over the RGB channels on the "
+               "0..255 scale (docs/cli.md, --error-vs-reference); time is the median frame time; memory "
+               "what the algorithm holds after the frame.", "")
+        self.pareto(rows)
+        self.table(rows)
+        self.worst_images(rows)
+        self.stability_table()
+        self.depth_sweep()
+
+    def pareto(self, rows):
+        import matplotlib.pyplot as plt
+
+        r = self.report
+        by_class = {}
+        for row in rows:
+            by_class.setdefault(self.classes.get(row["scene"].split("-")[0], "other"), []).append(row)
+        for name, members in sorted(by_class.items()):
+            labels = sorted({x["algorithm"] for x in members})
+            fig, ax = plt.subplots(figsize=(7.5, 4.8))
+            largest = max(x.get("memory_bytes", 0) for x in members) or 1
+            for label in labels:
+                mine = [x for x in members if x["algorithm"] == label]
+                t = median_or_none([self.time_ms(x) for x in mine])
+                e = median_or_none([self.rmse(x) for x in mine])
+                m = median_or_none([x.get("memory_bytes", 0) for x in mine]) or 0
+                if t is None or e is None:
+                    continue
+                ax.scatter([t], [max(e, 1e-3)], s=30 + 600 * m / largest, alpha=0.6)
+                ax.annotate(label, (t, max(e, 1e-3)), fontsize=7, xytext=(3, 3), textcoords="offset points")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("median frame time over the class's scenes (ms, log)")
+            ax.set_ylabel("median RMSE vs reference (0..255, log; exact at 1e-3)")
+            ax.set_title(f"{CLASS_TITLES.get(name, name)}: error against time (marker area: memory)")
+            ax.grid(True, which="both", alpha=0.3)
+            r.emit(f"### {CLASS_TITLES.get(name, name)} ({len({x['scene'] for x in members})} scenes)", "",
+                   r.save(fig, f"pareto-{name}"), "")
+
+    def table(self, rows):
+        r = self.report
+        labels = sorted({x["algorithm"] for x in rows}, key=lambda a: (family(a), a))
+        lines = ["| algorithm | median RMSE | worst RMSE (scene) | median SSIM | median time (ms) | median memory (MB) |",
+                 "|---|---:|---|---:|---:|---:|"]
+        for label in labels:
+            mine = [x for x in rows if x["algorithm"] == label]
+            worst = max(mine, key=self.rmse)
+            ssim = median_or_none([x.get("error_ssim") for x in mine])
+            lines.append(f"| {label} | {median_or_none([self.rmse(x) for x in mine]):.3g} | "
+                         f"{self.rmse(worst):.3g} ({worst['scene']}) | "
+                         f"{'' if ssim is None else f'{ssim:.4f}'} | "
+                         f"{median_or_none([self.time_ms(x) for x in mine]):.1f} | "
+                         f"{median_or_none([x.get('memory_bytes', 0) for x in mine]) / 2**20:.2f} |")
+        r.emit(*lines, "")
+
+    def worst_images(self, rows):
+        """Each algorithm's worst image (largest RMSE) beside the reference and its error map, from the
+        quality run's bundle (oit bench --bundle)."""
+        import matplotlib.image as mpimg
+        import matplotlib.pyplot as plt
+
+        r = self.report
+        bundle = os.path.join(self.results, "quality-bundle")
+        if not os.path.isdir(bundle):
+            r.emit("(No image bundle: the worst images are left out.)", "")
+            return
+        r.emit("### The worst image of each algorithm", "",
+               "Reference, the algorithm's image and its error map (black: exact; blue to red: 1 to 64+ of "
+               "255 on a logarithmic scale; docs/cli.md, --error-map), on the scene where its RMSE is largest.", "")
+        for label in sorted({x["algorithm"] for x in rows}, key=lambda a: (family(a), a)):
+            mine = [x for x in rows if x["algorithm"] == label]
+            worst = max(mine, key=self.rmse)
+            if self.rmse(worst) <= 0:
+                continue
+            size = f"{worst['width']}x{worst['height']}"
+            stem = f"{worst['scene']}_{label.replace(':', '-')}_{size}"
+            paths = [os.path.join(bundle, f"{worst['scene']}_{size}.reference.png"),
+                     os.path.join(bundle, f"{stem}.png"), os.path.join(bundle, f"{stem}.error.png")]
+            if not all(os.path.exists(p) for p in paths):
+                continue
+            fig, axes = plt.subplots(1, 3, figsize=(9, 3.4))
+            for ax, path, title in zip(axes, paths, ["reference", label, "error map"]):
+                ax.imshow(mpimg.imread(path))
+                ax.set_title(title, fontsize=9)
+                ax.axis("off")
+            fig.suptitle(f"{label} on {worst['scene']}: RMSE {self.rmse(worst):.2f}", fontsize=10)
+            r.emit(r.save(fig, f"worst-{label.replace(':', '-')}"), "")
+
+    def stability_table(self):
+        r = self.report
+        r.emit("### Temporal stability", "")
+        if not self.stability:
+            r.emit("Not measured (stability.json is missing).", "")
+            return
+        rows = [x for x in self.rows(self.stability) if x.get("flicker") is not None]
+        r.emit(f"`{self.stability.get('command', '?')}`: the mean absolute change of the error image between "
+               "consecutive frames of a slow orbit (0..255 scale), what users see as popping; an exact "
+               "algorithm's error is rounding, so its flicker is near 0.", "")
+        scenes = sorted({x["scene"] for x in rows})
+        labels = sorted({x["algorithm"] for x in rows}, key=lambda a: (family(a), a))
+        lines = ["| algorithm | " + " | ".join(scenes) + " |", "|---|" + "---:|" * len(scenes)]
+        for label in labels:
+            cells = []
+            for scene in scenes:
+                hit = [x for x in rows if x["algorithm"] == label and x["scene"] == scene]
+                cells.append(f"{hit[0]['flicker']:.3f}" if hit else "")
+            lines.append(f"| {label} | " + " | ".join(cells) + " |")
+        r.emit(*lines, "")
+
+    def depth_sweep(self):
+        import matplotlib.pyplot as plt
+
+        r = self.report
+        r.emit("### Depth sweep", "")
+        if not self.sweep:
+            r.emit("Not measured (depth_sweep.json is missing).", "")
+            return
+        rows = [x for x in self.rows(self.sweep) if x.get("max_list_reference") or x.get("layers_per_pixel")]
+        if not rows:
+            rows = self.rows(self.sweep)
+        # the depth of each scene: the longest list ll measured there
+        depth = {x["scene"]: x.get("max_list") for x in rows if x["algorithm"] == "ll" and x.get("max_list")}
+        labels = sorted({x["algorithm"] for x in rows}, key=lambda a: (family(a), a))
+        fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+        for label in labels:
+            points = sorted((depth[x["scene"]], self.time_ms(x), x.get("memory_bytes", 0), self.rmse(x))
+                            for x in rows if x["algorithm"] == label and x["scene"] in depth)
+            if not points:
+                continue
+            xs = [p[0] for p in points]
+            axes[0].plot(xs, [p[1] for p in points], marker="o", label=label)
+            axes[1].plot(xs, [p[2] / 2**20 for p in points], marker="o", label=label)
+            if all(p[3] is not None for p in points):
+                axes[2].plot(xs, [max(p[3], 1e-3) for p in points], marker="o", label=label)
+        for ax, title in zip(axes, ["frame time (ms)", "memory (MB)", "RMSE vs reference (log)"]):
+            ax.set_xlabel("layers per pixel (longest list)")
+            ax.set_title(title)
+            ax.grid(True, alpha=0.3)
+        axes[2].set_yscale("log")
+        axes[0].legend(fontsize=7)
+        r.emit(f"`{self.sweep.get('command', '?')}`: nested spheres of growing depth. A k-layer budget breaks "
+               "where the layers pass k (its error leaves zero); ll's memory grows with the fragments; the "
+               "moment and weighted methods cost the same at every depth.", "", r.save(fig, "depth-sweep"), "")
+
+
+def read_published(path):
+    """docs/data/published_approximations.csv: frame times the papers published (with their source)."""
+    import csv
+
+    if not os.path.exists(path):
+        return []
+    return list(csv.DictReader(open(path, encoding="utf-8")))
+
+
+def published_section(report, quality_rows, published, time_ms):
+    """The papers' time ratios to depth peeling beside ours, where both measured the same algorithm."""
+    if not published:
+        return
+    ours = {}
+    for label in {x["algorithm"] for x in quality_rows}:
+        ratios = []
+        for row in quality_rows:
+            if row["algorithm"] != label:
+                continue
+            dp = [x for x in quality_rows if x["algorithm"] == "dp" and x["scene"] == row["scene"]]
+            if dp and time_ms(dp[0]) and time_ms(row):
+                ratios.append(time_ms(row) / time_ms(dp[0]))
+        if ratios:
+            ours[label] = statistics.median(ratios)
+    lines = ["| source (setting) | algorithm | their time / depth peeling | ours (median over scenes) |",
+             "|---|---|---:|---:|"]
+    by_source = {}
+    for row in published:
+        by_source.setdefault((row["source"], row["setting"]), []).append(row)
+    for (source, setting), rows in by_source.items():
+        dp = [r for r in rows if r["label"] == "dp"]
+        if not dp:
+            continue
+        for row in rows:
+            if row["label"] == "dp":
+                continue
+            theirs = float(row["frame_ms"]) / float(dp[0]["frame_ms"])
+            mine = ours.get(row["label"])
+            lines.append(f"| [{source}]({rows[0]['url']}) ({setting}) | {row['label']} | {theirs:.3f} | "
+                         f"{'not measured' if mine is None else f'{mine:.3f}'} |")
+    report.emit("### Beside the papers", "",
+                "Frame time relative to depth peeling on the same scene, as the papers published it "
+                "(docs/data/published_approximations.csv) and as measured here (a GPU against llvmpipe: "
+                "only the ratios compare).", "", *lines, "")
