@@ -92,7 +92,8 @@ else:
                 ("ll", "--sort", "array"), ("dp", "--modulation", "distance"),
                 ("dp", "--modulation", "dist-curv"), ("ddp", "--modulation", "distance"),
                 ("ll", "--modulation", "distance"), ("ib", "--modulation", "fields"),
-                ("ll", "--frames", "3"), ("ib", "--frames", "3")]
+                ("ll", "--frames", "3"), ("ib", "--frames", "3"), ("mlab",), ("mlab", "--layers", "4"),
+                ("mlab", "--frames", "3")]
     figures = {}
     for algorithm, *args in variants:
         d = render(algorithm, SIZE, *args)
@@ -107,7 +108,7 @@ else:
 
     # per pixel: two image sizes, the pool (ll, ib) fixed and big enough for both
     pool = ("--fragment-pool", str(2 * fragments))
-    for algorithm in ("blend", "dp", "ddp", "ll", "ib", "wboit"):
+    for algorithm in ("blend", "dp", "ddp", "ll", "ib", "wboit", "mlab"):
         args = pool if algorithm in ("ll", "ib") else ()
         big, small = render(algorithm, SIZE, *args), render(algorithm, SMALL, *args)
         if args:
@@ -122,7 +123,13 @@ else:
             check(d["bytes_per_pixel"] == per_pixel,
                   f"{algorithm} {d['width']}x{d['height']}: bytes_per_pixel "
                   f"{d['bytes_per_pixel']} == {per_pixel:g} (GL bytes per pixel between two sizes)")
-        if algorithm not in ("ll", "ib"):
+        if algorithm == "mlab":
+            # per pixel k = 8 layers of 16 bytes, count, lock and output (4 each), and a
+            # fixed block of counters (the same at both sizes, by the subtraction above)
+            check(per_pixel == 8 * 16 + 12, f"mlab: {per_pixel:g} GL bytes per pixel == 8 x 16 + 12")
+            fixed = big["gl_allocated_bytes"] - pixels(SIZE) * per_pixel
+            check(0 < fixed <= 64, f"mlab: {fixed:g} bytes beside the per-pixel ones (its counters)")
+        elif algorithm not in ("ll", "ib"):
             check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel,
                   f"{algorithm}: everything it holds is per pixel (output included)")
 
