@@ -94,7 +94,8 @@ else:
                 ("ll", "--modulation", "distance"), ("ib", "--modulation", "fields"),
                 ("ll", "--frames", "3"), ("ib", "--frames", "3"), ("kbuffer",), ("hybrid",),
                 ("kbuffer", "--layers", "3"), ("hybrid", "--layers", "64"),
-                ("mboit",), ("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3")]
+                ("mboit",), ("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3"),
+                ("mlab",), ("mlab", "--layers", "4"), ("mlab", "--frames", "3")]
     figures = {}
     for algorithm, *args in variants:
         d = render(algorithm, SIZE, *args)
@@ -110,7 +111,7 @@ else:
     # per pixel: two image sizes, the pool (ll, ib) fixed and big enough for both
     pool = ("--fragment-pool", str(2 * fragments))
     for algorithm, *variant in (("blend",), ("dp",), ("ddp",), ("ll",), ("ib",), ("wboit",), ("kbuffer",),
-                                ("hybrid",), ("mboit",), ("mboit", "--moments", "power6"),
+                                ("hybrid",), ("mlab",), ("mboit",), ("mboit", "--moments", "power6"),
                                 ("mboit", "--moments", "trig3")):
         args = pool if algorithm in ("ll", "ib") else tuple(variant)
         big, small = render(algorithm, SIZE, *args), render(algorithm, SMALL, *args)
@@ -132,6 +133,12 @@ else:
         if algorithm in ("kbuffer", "hybrid"):  # per pixel, and 69 counters
             check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel + 69 * 4,
                   f"{algorithm}: everything it holds is per pixel (output included) but its counters")
+        elif algorithm == "mlab":
+            # per pixel k = 8 layers of 16 bytes, count, lock and output (4 each), and a
+            # fixed block of counters (the same at both sizes, by the subtraction above)
+            check(per_pixel == 8 * 16 + 12, f"mlab: {per_pixel:g} GL bytes per pixel == 8 x 16 + 12")
+            fixed = big["gl_allocated_bytes"] - pixels(SIZE) * per_pixel
+            check(0 < fixed <= 64, f"mlab: {fixed:g} bytes beside the per-pixel ones (its counters)")
         elif algorithm not in ("ll", "ib"):
             check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel,
                   f"{algorithm}: everything it holds is per pixel (output included)")

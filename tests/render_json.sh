@@ -30,6 +30,9 @@ for algorithm in blend ddp wboit reference; do
     "$oit" render --model "$scenes/onion.obj" --algorithm $algorithm --size 64x64 --json >"$work/$algorithm.json" || fail "$algorithm render"
     check_json "$work/$algorithm.json" $common
 done
+"$oit" render --model "$scenes/onion.obj" --algorithm mlab --size 64x64 --frames 3 --json \
+    >"$work/mlab.json" || fail "mlab render"
+check_json "$work/mlab.json" $common fragments max_list mean_list bytes_per_pixel
 
 # Overflow: a tiny initial pool makes ll grow the pool and render the frame
 # again; the image must be the same and the retries must be counted.

@@ -333,4 +333,37 @@
 #define OIT_IB_DISTANCE_SKIP 1
 #define OIT_IB_DISTANCE_FAR_END 2
 
+/* ---- multi-layer alpha blending (alg_mlab.c, shaders/mlab/mlab_layers.glsl) ----
+ * Per pixel (x, y) of a W x H image, k = oit_algorithm_config.layers layers, front to
+ * back, layer i at index (y * W + x) * k + i of OIT_SSBO_MLAB_LAYERS, one uvec4 each:
+ *   x = packUnorm2x16(r, g), y = packUnorm2x16(b, t)   premultiplied colour and
+ *                                                       transmittance t, 16 bit each
+ *   z = floatBitsToUint(oit_canonical_depth())         depth key (a merged layer keeps
+ *   w = gl_PrimitiveID                                 its nearer part's depth and triangle)
+ * OIT_IMAGE_MLAB_COUNT (r32ui): the fragments the pixel received (its layers are the
+ * first min(count, k)); OIT_IMAGE_MLAB_LOCK (r32ui): the pixel's spin lock, 0 free, 1
+ * taken. Only the layers the count names are ever read, so the layers need no clear. */
+#define OIT_MLAB_LAYER_BYTES 16
+#define OIT_MLAB_COUNT_BYTES 4
+#define OIT_MLAB_LOCK_BYTES 4
+#define OIT_SSBO_MLAB_LAYERS 1
+#define OIT_SSBO_MLAB_COUNTERS 4
+#define OIT_IMAGE_MLAB_COUNT 2
+#define OIT_IMAGE_MLAB_LOCK 3
+/* resolve: the layers read through a buffer texture (usamplerBuffer rgba32ui) */
+#define OIT_TEXUNIT_MLAB_LAYERS 24
+/* mlab counters (uint, OIT_SSBO_MLAB_COUNTERS) */
+#define OIT_MLAB_COUNTER_FRAGMENTS 0       /* insert: fragments with alpha > 0 */
+#define OIT_MLAB_COUNTER_FRAGMENTS_WRAPS 1 /* insert: times that counter wrapped (high word) */
+#define OIT_MLAB_COUNTER_GAVE_UP 2         /* insert: fragments that never took their lock */
+#define OIT_MLAB_COUNTER_MAX_LIST 3        /* resolve: the largest per-pixel count */
+#define OIT_MLAB_COUNTER_NONEMPTY_PIXELS 4 /* resolve: pixels with a count > 0 */
+#define OIT_MLAB_COUNTER_RESOLVED 5        /* resolve: sum of the counts (mod 2^32) */
+#define OIT_MLAB_COUNTER_COUNT 6
+/* tries at a pixel's lock before a fragment gives up (counted, and the frame fails):
+ * far below the 65535 iterations after which llvmpipe silently ends a shader loop */
+#define OIT_MLAB_LOCK_TRIES 4096
+/* insert and resolve: k, the layers per pixel (uint) */
+#define OIT_UNIFORM_MLAB_LAYERS 16
+
 #endif

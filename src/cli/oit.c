@@ -126,7 +126,8 @@ static void print_render_json(FILE *out, const render_options *o, const session 
 
 static const char render_help[] =
     "usage: oit render --model PATH [--out FILE.png] [options]\n"
-    "  --algorithm NAME       blend, dp, ddp, ll, ib, wboit, reference (default ll; oit algorithms)\n"
+    "  --algorithm NAME       blend, dp, ddp, ll, ib, wboit, mlab, reference (default ll;\n"
+    "                         oit algorithms)\n"
     "  --size WxH             image size, 1..16384 per side (default 256x256)\n"
     "  --modelview M          16 comma-separated numbers, row by row (default: frame the model)\n"
     "  --projection P         16 comma-separated numbers, row by row; clip = P * MV * v\n"
@@ -151,6 +152,8 @@ static const char render_help[] =
     "                         \"error\": {...}\n"
     "  --error-map FILE.png   write the per-pixel error against the reference as a heat map with a\n"
     "                         legend (black: exact; blue to red: 1 to 64+ of 255, logarithmic)\n"
+    "  --locks-held           mlab (tests): every pixel's lock starts taken, so every fragment\n"
+    "                         gives up after its tries and the frame fails naming them\n"
     "  --frames N             render N frames; figures are medians over frames 2..N (default 1)\n"
     "  --json                 print one JSON object with timings and statistics on stdout\n"
     "  --debug                debug GL context: every stage is checked for GL errors\n";

@@ -326,6 +326,8 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
             return -1;
         }
         o->config.fragment_counter_start = (uint32_t)start;
+    } else if (strcmp(flag, "--locks-held") == 0) {
+        o->config.locks_held = true;
     } else if (strcmp(flag, "--frames") == 0) {
         NEED_VALUE();
         long frames;

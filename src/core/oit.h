@@ -506,6 +506,10 @@ typedef struct oit_algorithm_config {
        0: OIT_APPROX_LAYERS_DEFAULT. Others ignore it. */
     int layers;
     oit_moments moments; /* mboit; others ignore it */
+    /* tests only (false normally): mlab's clear leaves every pixel's lock taken,
+     * as if a fragment outside the frame held it, so every fragment spins to its
+     * cap (OIT_MLAB_LOCK_TRIES) and gives up, and the frame must fail naming them */
+    bool locks_held;
 } oit_algorithm_config;
 
 void oit_algorithm_config_defaults(oit_algorithm_config *config);
@@ -572,6 +576,7 @@ extern const oit_algorithm_ops oit_algorithm_wboit;
 extern const oit_algorithm_ops oit_algorithm_kbuffer;
 extern const oit_algorithm_ops oit_algorithm_hybrid;
 extern const oit_algorithm_ops oit_algorithm_mboit;
+extern const oit_algorithm_ops oit_algorithm_mlab;
 extern const oit_algorithm_ops oit_algorithm_reference;
 
 /* ------------------------------------------------------------- GL context */
