@@ -36,6 +36,14 @@ JSON
 cat > "$presets/gearbox-ib.json" <<'JSON'
 {"alpha": 0.8, "modulation": "curvature", "curvature-effect": 6}
 JSON
+# the split view (the workbench's own keys): ll left of the wipe line, blend right
+cat > "$presets/gearbox-split.json" <<'JSON'
+{"alpha": 0.6, "split": "wipe", "split-algorithm": "blend", "wipe": 0.5}
+JSON
+# the error view (`oit render --error-vs-reference`): blend's error map against the reference
+cat > "$presets/gearbox-error.json" <<'JSON'
+{"alpha": 0.6, "error-vs-reference": true}
+JSON
 
 # a deep model (343 spheres, 28 layers) whose dp frame takes seconds on llvmpipe
 "$build/src/cli/oit" gen spheres --complexity 7 --out "$presets/spheres.obj" > /dev/null
@@ -54,6 +62,8 @@ run gearbox-ll-stats "$gearbox" --algorithm ll --tab stats
 run gearbox-blend-opacity "$gearbox" --algorithm blend --preset "$presets/gearbox-blend.json" --tab opacity
 run gearbox-ib-curvature "$gearbox" --algorithm ib --preset "$presets/gearbox-ib.json" --tab opacity
 run spider-dp-parts "$spider" --algorithm dp --preset "$presets/spider-parts.json" --tab parts
+run gearbox-split-wipe "$gearbox" --algorithm ll --preset "$presets/gearbox-split.json" --tab compare
+run gearbox-blend-error "$gearbox" --algorithm blend --preset "$presets/gearbox-error.json" --tab compare
 run engine-ll-heatmap "$engine" --algorithm ll --preset "$presets/engine-heatmap.json" --tab views
 run engine-wboit-focus "$engine" --algorithm wboit --preset "$presets/engine-focus.json" --tab opacity
 # a long frame in progress: the coarse frame, the stage and peel count, and Cancel

@@ -61,7 +61,9 @@ int main(int argc, char **argv)
                                         "whatever the frame's state (a coarse frame, a frame's progress)",
                                         "MS");
     QCommandLineOption fresh("fresh", "ignore the saved settings and last model (implied by --screenshot)");
-    QCommandLineOption tab("tab", "show this tab of the settings panel: algorithm, opacity, parts, camera, views, stats",
+    QCommandLineOption tab("tab",
+                           "show this tab of the settings panel: algorithm, opacity, parts, camera, views, "
+                           "stats, compare",
                            "NAME");
     parser.addOptions({algorithm, preset, size, screenshot, screenshot_after, fresh, tab});
     if (!parser.parse(app.arguments()))
@@ -114,7 +116,8 @@ int main(int argc, char **argv)
     if (parser.isSet(algorithm))
         window.set_algorithm(parser.value(algorithm));
     if (parser.isSet(tab) && !window.show_tab(parser.value(tab)))
-        return fail("--tab must be algorithm, opacity, parts, camera, views or stats, got '" + parser.value(tab) + "'");
+        return fail("--tab must be algorithm, opacity, parts, camera, views, stats or compare, got '" +
+                    parser.value(tab) + "'");
     window.show();
     if (view_size.isValid()) {
         // the window grows around the view; interactively the view is then

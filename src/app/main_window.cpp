@@ -1,5 +1,7 @@
 // main_window.cpp: see main_window.h.
 #include "main_window.h"
+#include "compare_panel.h"
+#include "error_legend.h"
 #include "parts_panel.h"
 #include "pick.h"
 
@@ -136,6 +138,7 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
     tabs_->addTab(build_camera_tab(), "Camera");
     tabs_->addTab(build_views_tab(), "Views");
     tabs_->addTab(build_stats_tab(), "Stats");
+    tabs_->addTab(build_compare_tab(), "Compare");
     auto *dock = new QDockWidget("Settings", this);
     dock->setObjectName("settings");
     dock->setWidget(tabs_);
@@ -276,7 +279,10 @@ void MainWindow::render_now()
 // the same placeholder camera goes into both).
 std::string MainWindow::settings_key(const RenderSettings &settings) const
 {
-    return preset_to_json(settings, Camera(), model_.get());
+    // the wipe line is where one looks, like the camera: not a step of its own
+    RenderSettings s = settings;
+    s.wipe = 0.5f;
+    return preset_to_json(s, Camera(), model_.get());
 }
 
 // Changes within kUndoCoalesceMs of each other (a slider drag, typing a
@@ -317,7 +323,9 @@ void MainWindow::reset_settings_history()
 void MainWindow::restore_settings(const RenderSettings &settings)
 {
     restoring_settings_ = true;
+    float wipe = view_->settings.wipe; // not a setting (settings_key)
     view_->settings = settings;
+    view_->settings.wipe = wipe;
     committed_settings_ = settings;
     committed_key_ = settings_key(settings);
     coalesce_timer_->stop();
@@ -479,6 +487,48 @@ void MainWindow::build_menus()
         settings_changed();
     });
     sync_actions_.push_back([this, heatmap] { heatmap->setChecked(view_->settings.modulation.view == OIT_VIEW_HEATMAP); });
+    QAction *error_view = view->addAction("&Error against reference");
+    error_view->setShortcut(QKeySequence("R"));
+    error_view->setCheckable(true);
+    error_view->setToolTip("the error map of the frame against the CPU reference, with rmse, psnr, ssim, max "
+                           "and the share over 2 (--error-vs-reference)");
+    connect(error_view, &QAction::triggered, this, [this](bool on) { set_error_view(on); });
+    sync_actions_.push_back([this, error_view] { error_view->setChecked(view_->settings.error_view); });
+    QAction *split = view->addAction("&Split view (wipe line)");
+    split->setShortcut(QKeySequence("X"));
+    split->setCheckable(true);
+    split->setToolTip("two algorithms of the same camera either side of a wipe line you drag");
+    connect(split, &QAction::triggered, this,
+            [this](bool on) { set_split(on ? SplitMode::Wipe : SplitMode::Off); });
+    QAction *side_by_side = view->addAction("Side &by side");
+    side_by_side->setCheckable(true);
+    side_by_side->setToolTip("two algorithms of the same camera, each at half the view's width");
+    connect(side_by_side, &QAction::triggered, this,
+            [this](bool on) { set_split(on ? SplitMode::SideBySide : SplitMode::Off); });
+    sync_actions_.push_back([this, split, side_by_side] {
+        split->setChecked(view_->settings.split == SplitMode::Wipe);
+        side_by_side->setChecked(view_->settings.split == SplitMode::SideBySide);
+    });
+    QMenu *algorithm_b_menu = view->addMenu("Split view's algorithm &B");
+    auto *algorithm_b_group = new QActionGroup(this);
+    {
+        size_t count = 0;
+        const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+        for (size_t i = 0; i < count; ++i) {
+            QString name = list[i]->name;
+            QAction *action = algorithm_b_menu->addAction(name, this, [this, name] {
+                SplitMode mode = view_->settings.split;
+                set_split(mode == SplitMode::Off ? SplitMode::Wipe : mode, name);
+            });
+            action->setCheckable(true);
+            action->setToolTip(list[i]->summary);
+            algorithm_b_group->addAction(action);
+            sync_actions_.push_back([this, action, name] {
+                action->setChecked(QString::fromStdString(view_->settings.split_algorithm) == name);
+            });
+        }
+        algorithm_b_menu->setToolTipsVisible(true);
+    }
     QAction *continuous = view->addAction("&Continuous rendering (measure FPS)");
     continuous->setShortcut(QKeySequence("F"));
     continuous->setCheckable(true);
@@ -1189,7 +1239,7 @@ void MainWindow::frame_parts(const std::vector<int> &parts)
     }
     if (!(lo[0] <= hi[0]))
         return; // parts without triangles
-    QSize size = view_->pixel_size();
+    QSize size = view_->side_pixel_size();
     view_->camera.frame_box(lo, hi, size.width(), size.height());
     emit view_->camera_changed();
     render_now();
@@ -1201,7 +1251,10 @@ void MainWindow::pick_at(const QPoint &pixel)
         return;
     std::vector<float> storage;
     oit_frame_settings frame = view_->current_frame(storage);
-    PickResult hit = pick(*model_, frame.modelview, frame.projection, frame.width, frame.height, pixel.x() + 0.5,
+    // side by side, both halves have the same camera: the pixel within its half
+    bool right_half = view_->settings.split == SplitMode::SideBySide && pixel.x() >= frame.width;
+    int x = right_half ? pixel.x() - frame.width : pixel.x();
+    PickResult hit = pick(*model_, frame.modelview, frame.projection, frame.width, frame.height, x + 0.5,
                           pixel.y() + 0.5, view_->settings.part_alpha, view_->settings.part_visible);
     if (hit.component < 0) {
         status_label_->setText("nothing under the pointer");
@@ -1327,6 +1380,30 @@ QWidget *MainWindow::build_stats_tab()
     return stats_text_;
 }
 
+QWidget *MainWindow::build_compare_tab()
+{
+    compare_panel_ = new ComparePanel(view_->settings);
+    connect(compare_panel_, &ComparePanel::changed, this, [this] { settings_changed(); });
+    connect(compare_panel_, &ComparePanel::wipe_changed, view_, QOverload<>::of(&QWidget::update));
+    connect(view_, &RenderView::wipe_moved, compare_panel_, [this] { compare_panel_->sync(); });
+    sync_actions_.push_back([this] { compare_panel_->sync(); });
+    return scrolled(compare_panel_);
+}
+
+void MainWindow::set_error_view(bool on)
+{
+    view_->settings.error_view = on;
+    settings_changed();
+}
+
+void MainWindow::set_split(SplitMode mode, const QString &algorithm_b)
+{
+    view_->settings.split = mode;
+    if (!algorithm_b.isEmpty() && oit_algorithm_find(algorithm_b.toUtf8().constData()))
+        view_->settings.split_algorithm = algorithm_b.toStdString();
+    settings_changed();
+}
+
 void MainWindow::update_stats()
 {
     const oit_stats &st = view_->last_stats();
@@ -1371,6 +1448,41 @@ void MainWindow::update_stats()
     if (model_)
         out << QString("model               %1 triangles, %2 parts\n").arg(model_->triangle_count).arg(model_->component_count);
     out << QString("renderer            %1\n").arg(QString::fromStdString(view_->renderer()));
+    // the comparisons: side B and the error against the reference
+    FrameResultPointer last = view_->last_result();
+    QString compared, figures;
+    if (last && last->coarse_scale == 1 && view_->settings.error_view) {
+        auto describe = [](const std::string &name, const ErrorResult &e) {
+            if (!e.present)
+                return QString("%1 vs reference: %2").arg(QString::fromStdString(name), e.problem);
+            return QString("%1 vs reference: %2 (reference %3, error %4 ms)")
+                .arg(QString::fromStdString(name), error_figures_text(e.figures),
+                     e.reference_cached ? QString("cached") : QString("%1 ms").arg(e.reference_ms, 0, 'f', 1))
+                .arg(e.error_ms, 0, 'f', 1);
+        };
+        figures = describe(last->algorithm, last->error_map);
+        if (last->split && last->b.status == OIT_OK)
+            figures += "\n" + describe(last->b.algorithm, last->b.error_map);
+        out << figures << "\n";
+        if (last->error_map.present)
+            compared += " — vs reference: " + error_figures_text(last->error_map.figures);
+    }
+    if (last && last->split) {
+        const SideResult &b = last->b;
+        if (b.status == OIT_OK)
+            out << QString("split side B        %1: %2 ms CPU, %3 MB\n")
+                       .arg(QString::fromStdString(b.algorithm))
+                       .arg(b.stats.cpu_ms, 0, 'f', 2)
+                       .arg(double(b.stats.memory_bytes) / (1024.0 * 1024.0), 0, 'f', 2);
+        else
+            out << QString("split side B        %1 failed: %2\n")
+                       .arg(QString::fromStdString(b.algorithm), b.error);
+        compared +=
+            QString(" | B %1: %2 ms").arg(QString::fromStdString(b.algorithm)).arg(b.stats.cpu_ms, 0, 'f', 1);
+        if (view_->settings.error_view && b.error_map.present)
+            compared += QString(", rmse %1").arg(b.error_map.figures.rmse, 0, 'f', 3);
+    }
+    compare_panel_->set_figures(figures);
     stats_text_->setPlainText(text);
     QString truncated;
     if (st.truncated)
@@ -1381,12 +1493,12 @@ void MainWindow::update_stats()
                                    .arg(view_->settings.config.max_layers));
     last_truncated_ = st.truncated;
     frame_progress(QString(), 0, 0.0);
-    status_label_->setText(QString("%1: %2 ms CPU, %3 ms GPU stages, %4 MB%5")
+    status_label_->setText(QString("%1: %2 ms CPU, %3 ms GPU stages, %4 MB%5%6")
                                .arg(QString::fromStdString(view_->settings.algorithm))
                                .arg(st.cpu_ms, 0, 'f', 1)
                                .arg(gpu_total, 0, 'f', 1)
                                .arg(double(st.memory_bytes) / (1024.0 * 1024.0), 0, 'f', 1)
-                               .arg(truncated));
+                               .arg(truncated, compared));
 }
 
 QString MainWindow::status_text() const
@@ -1659,6 +1771,14 @@ void MainWindow::copy_command()
     dialog->open();
     status_label_->setText("copied the oit render command to the clipboard");
     log_message("copied", command);
+    if (view_->settings.split != SplitMode::Off)
+        log_message("split view", QString("the command line has no split view: the command renders side A "
+                                          "(%1)%2, not side B (%3)")
+                                      .arg(QString::fromStdString(view_->settings.algorithm),
+                                           view_->settings.split == SplitMode::SideBySide
+                                               ? " at half the view's width, as it is shown"
+                                               : "",
+                                           QString::fromStdString(view_->settings.split_algorithm)));
 }
 
 void MainWindow::export_dialog()
@@ -1669,7 +1789,7 @@ void MainWindow::export_dialog()
     dialog.setWindowTitle("Export PNG");
     auto *form = new QFormLayout(&dialog);
     form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
-    QSize size = view_->pixel_size();
+    QSize size = view_->side_pixel_size(); // side A's, side by side
     auto *view_size = new QRadioButton(QString("view size (%1x%2)").arg(size.width()).arg(size.height()));
     auto *custom = new QRadioButton("chosen size");
     view_size->setChecked(true);

@@ -35,6 +35,7 @@ class PartsPanel;
 class QListWidget;
 class QPushButton;
 class QRadioButton;
+class ComparePanel;
 
 struct LoadResult; // the worker thread's answer
 
@@ -92,6 +93,10 @@ public:
     // Select the part under a view pixel (a click in the view).
     void pick_at(const QPoint &pixel);
     QSlider *alpha_slider() const { return alpha_slider_; }
+    ComparePanel *compare_panel() const { return compare_panel_; }
+    // View ▸ Error against reference, Split view, Side by side (and the Compare tab)
+    void set_error_view(bool on);
+    void set_split(SplitMode mode, const QString &algorithm_b = QString());
     void set_camera_mode(Camera::Mode mode, bool orthographic);
     // Undo / redo of settings changes (Edit menu); false when there is none.
     bool undo_settings();
@@ -123,6 +128,7 @@ private:
     QWidget *build_camera_tab();
     QWidget *build_views_tab();
     QWidget *build_stats_tab();
+    QWidget *build_compare_tab();
     void rebuild_parts();
     void update_stats();
     void load_finished();
@@ -166,6 +172,7 @@ private:
     QComboBox *algorithm_combo_ = nullptr;
     QComboBox *modulation_combo_ = nullptr, *view_combo_ = nullptr, *distance_combo_ = nullptr;
     QAction *heatmap_action_ = nullptr;
+    ComparePanel *compare_panel_ = nullptr;
     CapabilityTable capabilities_;
     QSlider *alpha_slider_ = nullptr;
     PartsPanel *parts_panel_ = nullptr;

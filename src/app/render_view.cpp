@@ -1,5 +1,7 @@
 // render_view.cpp: see render_view.h.
 #include "render_view.h"
+#include "error_legend.h"
+#include "split_view.h"
 
 #include <QCoreApplication>
 #include <QEventLoop>
@@ -32,6 +34,9 @@ RenderView::RenderView(QWidget *parent) : QWidget(parent)
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(64, 64);
     setAttribute(Qt::WA_OpaquePaintEvent);
+    setMouseTracking(true); // the cursor shows where the wipe line can be grabbed
+    legend_ = new ErrorLegend(this);
+    legend_->hide();
     oit_stats_reset(&last_stats_);
     walk_timer_ = new QTimer(this);
     walk_timer_->setInterval(33);
@@ -131,9 +136,42 @@ QSize RenderView::pixel_size() const
     return QSize(std::max(1, int(width() * ratio)), std::max(1, int(height() * ratio)));
 }
 
+QSize RenderView::side_pixel_size() const
+{
+    return split_view::side_size(settings.split, pixel_size());
+}
+
 QSize RenderView::render_size() const
 {
-    return shown_.isNull() ? pixel_size() : shown_.size();
+    return shown_.isNull() ? side_pixel_size() : shown_.size();
+}
+
+QImage RenderView::shown_a() const
+{
+    const FrameResult *r = shown_result_.get();
+    if (r && settings.error_view && r->error_map.present)
+        return r->error_map.map;
+    return shown_;
+}
+
+QImage RenderView::shown_b() const
+{
+    const FrameResult *r = shown_result_.get();
+    if (!r || !r->split || settings.split == SplitMode::Off)
+        return QImage();
+    if (settings.error_view && r->b.error_map.present)
+        return r->b.error_map.map;
+    return r->b.image;
+}
+
+void RenderView::update_overlays()
+{
+    const FrameResult *r = shown_result_.get();
+    bool map = settings.error_view && r && (r->error_map.present || (r->split && r->b.error_map.present));
+    legend_->set_bar_width(std::min(150, width() / 2 - 40)); // a small corner of a small view
+    legend_->move(6, height() - legend_->height() - 6);
+    legend_->setVisible(map);
+    update();
 }
 
 bool RenderView::interacting() const
@@ -154,7 +192,7 @@ bool RenderView::settled() const
 
 oit_frame_settings RenderView::current_frame(std::vector<float> &storage) const
 {
-    QSize size = pixel_size();
+    QSize size = side_pixel_size();
     return make_frame(settings, *model_, camera, size.width(), size.height(), storage);
 }
 
@@ -167,11 +205,15 @@ FrameJob RenderView::make_job(int width, int height, int coarse_scale) const
     job.frame = make_frame(settings, *model_, camera, width, height, job.component_alpha);
     job.frame.local.component_alpha = nullptr; // the worker points it at its copy
     job.coarse_scale = coarse_scale;
+    if (settings.split != SplitMode::Off)
+        job.algorithm_b = settings.split_algorithm;
+    job.error_view = settings.error_view;
     return job;
 }
 
 void RenderView::request_frame(bool interactive)
 {
+    update_overlays(); // the error view or the split may have changed
     if (!model_ || !worker_) {
         update();
         return;
@@ -188,7 +230,7 @@ void RenderView::request_frame(bool interactive)
 
 void RenderView::submit(int coarse_scale, bool refinement)
 {
-    QSize full = pixel_size();
+    QSize full = side_pixel_size();
     int width = std::max(1, full.width() / coarse_scale), height = std::max(1, full.height() / coarse_scale);
     if (!rendering())
         running_clock_.restart();
@@ -226,16 +268,26 @@ void RenderView::frame_done(FrameResultPointer result)
         if (result->id == latest_id_) {
             last_result_ = result;
             shown_ = QImage();
-            update();
+            shown_result_.reset();
+            update_overlays();
             emit render_failed(result->error);
         }
         return;
     }
     last_result_ = result;
     shown_ = result->image;
+    shown_result_ = result;
+    update_overlays();
     QStringList left_out;
     for (const QString &message : result->left_out)
         left_out << message;
+    if (result->split) { // side B's, said as its own
+        QString b = QString::fromStdString(result->b.algorithm);
+        if (result->b.status != OIT_OK)
+            left_out << QString("split side B (%1) failed: %2").arg(b, result->b.error);
+        for (const QString &message : result->b.left_out)
+            left_out << QString("split side B (%1): %2").arg(b, message);
+    }
     if (result->coarse_scale == 1) {
         last_image_ = result->image;
         last_stats_ = result->stats;
@@ -284,7 +336,9 @@ bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_f
         return false;
     }
     FrameJob job = make_job(width, height, 1);
-    job.kind = FrameJob::Kind::Export;
+    job.kind = FrameJob::Kind::Export; // side A's colour image, as `oit render`
+    job.algorithm_b.clear();
+    job.error_view = false;
     frame = job.frame;
     export_result_.reset();
     QEventLoop loop;
@@ -337,16 +391,31 @@ void RenderView::set_progressive(bool on)
 void RenderView::paintEvent(QPaintEvent *)
 {
     QPainter painter(this);
-    if (shown_.isNull()) {
+    const FrameResult *r = shown_result_.get();
+    if (settings.split != SplitMode::Off && r && r->split) {
+        auto label = [this](const std::string &name, const oit_stats &stats, const ErrorResult &error) {
+            QString text = QString("%1 %2 ms").arg(QString::fromStdString(name)).arg(stats.cpu_ms, 0, 'f', 1);
+            if (settings.error_view && error.present)
+                text += QString(", rmse %1").arg(error.figures.rmse, 0, 'f', 2);
+            return text;
+        };
+        split_view::Side a{shown_a(), label(r->algorithm, r->stats, r->error_map)};
+        split_view::Side b{shown_b(), r->b.status == OIT_OK
+                                          ? label(r->b.algorithm, r->b.stats, r->b.error_map)
+                                          : QString::fromStdString(r->b.algorithm) + " failed"};
+        split_view::paint(painter, size(), devicePixelRatioF(), settings.split, settings.wipe, a, b);
+    } else if (shown_.isNull()) {
         painter.fillRect(rect(), QColor(89, 89, 97));
-    } else if (shown_.size() == pixel_size()) {
-        QImage image = shown_;
-        image.setDevicePixelRatio(devicePixelRatioF());
-        painter.drawImage(QPoint(0, 0), image);
     } else {
-        // a coarse frame (or one from before a resize), scaled up
-        painter.setRenderHint(QPainter::SmoothPixmapTransform);
-        painter.drawImage(rect(), shown_);
+        QImage shown = shown_a();
+        if (shown.size() == pixel_size()) {
+            shown.setDevicePixelRatio(devicePixelRatioF());
+            painter.drawImage(QPoint(0, 0), shown);
+        } else {
+            // a coarse frame (or one from before a resize), scaled up
+            painter.setRenderHint(QPainter::SmoothPixmapTransform);
+            painter.drawImage(rect(), shown);
+        }
     }
     QString text;
     if (!gl_error_.empty() && !gl_ready_)
@@ -356,6 +425,8 @@ void RenderView::paintEvent(QPaintEvent *)
     else if (rendering() && running_clock_.isValid() && running_clock_.elapsed() > kProgressAfterMs &&
              !progress_text_.isEmpty())
         text = progress_text_;
+    else if (settings.error_view && r && !r->error_map.problem.isEmpty())
+        text = "error view: " + r->error_map.problem;
     if (!text.isEmpty()) {
         QFontMetrics metrics(font());
         QRect box = metrics.boundingRect(QRect(8, 0, width() - 16, height()), Qt::TextWordWrap, text);
@@ -369,13 +440,19 @@ void RenderView::paintEvent(QPaintEvent *)
 void RenderView::resizeEvent(QResizeEvent *event)
 {
     QWidget::resizeEvent(event);
-    request_frame(true);
+    request_frame(true); // and moves the legend
 }
 
 // ------------------------------------------------------------------ input
 
 void RenderView::mousePressEvent(QMouseEvent *event)
 {
+    if (settings.split == SplitMode::Wipe && event->button() == Qt::LeftButton &&
+        split_view::grabs_wipe_line(event->pos(), settings.wipe, size())) {
+        dragging_wipe_ = true; // the line, not the camera
+        setFocus();
+        return;
+    }
     last_mouse_ = press_position_ = event->pos();
     dragged_ = false;
     buttons_ = event->buttons();
@@ -384,6 +461,21 @@ void RenderView::mousePressEvent(QMouseEvent *event)
 
 void RenderView::mouseMoveEvent(QMouseEvent *event)
 {
+    if (dragging_wipe_) {
+        // the images are there already: only the boundary moves, nothing renders
+        settings.wipe = split_view::wipe_at(event->pos().x(), width());
+        update();
+        emit wipe_moved(settings.wipe);
+        return;
+    }
+    if (buttons_ == Qt::NoButton) {
+        bool near = settings.split == SplitMode::Wipe &&
+                    split_view::grabs_wipe_line(event->pos(), settings.wipe, size());
+        if (near)
+            setCursor(Qt::SplitHCursor);
+        else
+            unsetCursor();
+    }
     if (!model_ || buttons_ == Qt::NoButton)
         return;
     if (!dragged_ && (event->pos() - press_position_).manhattanLength() < 3)
@@ -408,6 +500,10 @@ void RenderView::mouseMoveEvent(QMouseEvent *event)
 
 void RenderView::mouseReleaseEvent(QMouseEvent *event)
 {
+    if (dragging_wipe_) {
+        dragging_wipe_ = event->buttons() & Qt::LeftButton;
+        return;
+    }
     bool click = !dragged_ && (buttons_ & Qt::LeftButton) && !(event->buttons() & Qt::LeftButton);
     buttons_ = event->buttons();
     if (click) {

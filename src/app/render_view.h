@@ -7,6 +7,12 @@
 // frame (1/coarse_scale of the pixels per side, adapted to its cost) and,
 // once the input has rested for kRestMs, for the full frame. A frame running
 // longer than kProgressAfterMs shows its stage and peel count over the image.
+//
+// Comparisons (settings.error_view, settings.split): the error view shows the
+// full frame's error map against the reference with a legend (error_legend.h;
+// coarse frames show the plain image); the split view shows two algorithms of
+// the same camera either side of a wipe line dragged with the mouse, or side
+// by side (split_view.h). Both together: each side's error map.
 #pragma once
 
 #include <QElapsedTimer>
@@ -25,6 +31,7 @@
 #include "settings.h"
 
 class QTimer;
+class ErrorLegend;
 
 class RenderView : public QWidget {
     Q_OBJECT
@@ -54,9 +61,12 @@ public:
     // returns the matrices. Waits in a local event loop (the GUI stays live).
     bool render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,
                           std::string &error);
-    // The frame the view shows now (its size in pixels and its matrices).
+    // The frame the view shows now (its size in pixels and its matrices); side
+    // by side, the frame of each half (side A's, which Copy as command copies).
     oit_frame_settings current_frame(std::vector<float> &storage) const;
     QSize pixel_size() const;
+    // The size each side renders at: the view's, or half its width side by side.
+    QSize side_pixel_size() const;
     QSize render_size() const; // the size of the last frame shown
 
     // The last full frame (and what the widget shows when no coarse frame is up).
@@ -76,6 +86,12 @@ public:
     // A frame is running or waiting.
     bool rendering() const;
     int coarse_scale() const { return coarse_scale_; }
+    // What the view shows of the last result (before the overlays): side A's
+    // image, or its error map; side B's in a split view (null otherwise).
+    QImage shown_a() const;
+    QImage shown_b() const;
+    // The error view's legend (hidden when the view shows no error map).
+    ErrorLegend *legend() const { return legend_; }
     // Full frames slower than this go coarse first while interacting (tests set 0).
     void set_slow_frame_ms(double ms) { slow_frame_ms_ = ms; }
 
@@ -94,6 +110,7 @@ signals:
     void options_left_out(const QStringList &messages); // empty: everything applied
     void camera_changed();
     void clicked(const QPoint &pixel); // a click without a drag (pixel coordinates)
+    void wipe_moved(float wipe);       // the user dragged the wipe line
 
 protected:
     void paintEvent(QPaintEvent *event) override;
@@ -112,6 +129,7 @@ private:
     void frame_done(FrameResultPointer result);
     void walk_tick();
     bool interacting() const;
+    void update_overlays();
 
     std::shared_ptr<const oit_model> model_;
     std::unique_ptr<RenderWorker> worker_;
@@ -126,6 +144,9 @@ private:
     uint64_t export_id_ = 0;
     FrameResultPointer export_result_;
     QImage shown_;                // what paintEvent draws (coarse or full)
+    FrameResultPointer shown_result_; // the result shown_ came from
+    ErrorLegend *legend_ = nullptr;
+    bool dragging_wipe_ = false;
     QImage last_image_;
     FrameResultPointer last_result_;
     oit_stats last_stats_{};

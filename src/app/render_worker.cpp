@@ -8,6 +8,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 #include <cstring>
+#include <type_traits>
 
 namespace {
 
@@ -20,10 +21,10 @@ double now_ms()
 // What makes an algorithm instance reusable: its name, its configuration and
 // whether it serves coarse or full frames (two sizes that would otherwise
 // reallocate every buffer on each switch).
-std::string algorithm_key(const FrameJob &job)
+std::string algorithm_key(const std::string &name, const FrameJob &job)
 {
     const oit_algorithm_config &c = job.config;
-    return job.algorithm + "/" + std::to_string(int(c.ll_sort)) + "/" + std::to_string(c.max_memory_bytes) + "/" +
+    return name + "/" + std::to_string(int(c.ll_sort)) + "/" + std::to_string(c.max_memory_bytes) + "/" +
            std::to_string(c.max_layers) + "/" + std::to_string(c.initial_fragment_capacity) + "/" +
            std::to_string(c.debug) + "/" + std::to_string(c.neighbour_quality) + "/" +
            (job.coarse_scale > 1 ? "coarse" : "full");
@@ -78,6 +79,59 @@ bool drop_one_option(oit_frame_settings &frame)
     return false;
 }
 
+// Everything that decides the reference's image of a frame, as bytes: the
+// size, the camera's matrices, every setting and the configuration.
+class KeyWriter {
+public:
+    template <class T>
+    KeyWriter &operator<<(const T &value)
+    {
+        static_assert(std::is_arithmetic<T>::value || std::is_enum<T>::value, "scalars only (no padding)");
+        bytes_.append(reinterpret_cast<const char *>(&value), sizeof value);
+        return *this;
+    }
+    template <class T, size_t N>
+    KeyWriter &operator<<(const T (&values)[N])
+    {
+        for (const T &value : values)
+            *this << value;
+        return *this;
+    }
+    std::string str() const { return bytes_; }
+
+private:
+    std::string bytes_;
+};
+
+std::string reference_key(const oit_algorithm_config &c, const oit_frame_settings &f)
+{
+    KeyWriter k;
+    k << c.ll_sort << c.max_memory_bytes << c.max_layers << c.initial_fragment_capacity
+      << c.neighbour_quality;
+    k << f.width << f.height << f.modelview << f.projection << f.alpha << f.shading << f.background;
+    const oit_modulation &m = f.modulation;
+    k << m.view << m.view_parameter << m.mode << m.neighbours << m.curvature_neighbours << m.curvature_effect
+      << m.focus_region << m.distance << m.distance_skip << m.fields << m.diffusion_iterations
+      << m.blur_iterations << m.lambda_alpha << m.lambda_beta << m.lambda_gamma << m.has_halo_colour << m.halo_colour
+      << m.last_layer_opaque << m.epsilon_max;
+    const oit_local_modulation &l = f.local;
+    k << l.component_count;
+    for (uint32_t i = 0; l.component_alpha && i < l.component_count; ++i)
+        k << l.component_alpha[i];
+    k << l.focus_shape << l.focus << l.contrast << l.focus_default_region;
+    return k.str();
+}
+
+// A QImage (RGBA8888: rows are packed) seen as the core's image, without a copy.
+oit_image core_image(const QImage &image)
+{
+    oit_image out{};
+    out.width = image.width();
+    out.height = image.height();
+    out.rgba = const_cast<uint8_t *>(image.constBits());
+    return out;
+}
+
 } // namespace
 
 const std::vector<CapabilityFeature> &capability_features()
@@ -118,6 +172,7 @@ struct RenderWorker::Running {
     const FrameJob *job;
     double start_ms;
     double last_progress_ms;
+    QString phase; // said before the stage: "", "blend: ", "reference: "
 };
 
 RenderWorker::RenderWorker(oit_backend backend, const std::string &shader_dir, QObject *parent)
@@ -269,23 +324,22 @@ bool RenderWorker::keep_going(Running &running, const char *stage, int stages_do
     }
     if (now - running.last_progress_ms >= kProgressIntervalMs) {
         running.last_progress_ms = now;
-        emit progress(running.job->id, QString::fromUtf8(stage), stages_done, elapsed);
+        emit progress(running.job->id, running.phase + QString::fromUtf8(stage), stages_done, elapsed);
     }
     return true;
 }
 
-RenderWorker::CachedAlgorithm *RenderWorker::algorithm_for(const FrameJob &job, const oit_algorithm_ops *ops,
-                                                           oit_error *err)
+RenderWorker::CachedAlgorithm *RenderWorker::algorithm_for(const std::string &name, const FrameJob &job,
+                                                           const oit_algorithm_ops *ops, oit_error *err)
 {
-    std::string key = algorithm_key(job);
+    std::string key = algorithm_key(name, job);
     for (CachedAlgorithm &cached : cache_)
         if (cached.key == key) {
             cached.last_used = ++use_counter_;
             return &cached;
         }
     // at most a few instances: each holds buffers the size of its frames
-    const size_t limit = 4;
-    while (cache_.size() >= limit) {
+    while (cache_.size() >= kAlgorithmCacheSize) {
         auto oldest = cache_.begin();
         for (auto it = cache_.begin(); it != cache_.end(); ++it)
             if (it->last_used < oldest->last_used)
@@ -307,6 +361,7 @@ void RenderWorker::release_gl()
     for (CachedAlgorithm &cached : cache_)
         cached.ops->destroy(cached.algorithm);
     cache_.clear();
+    references_.clear();
     if (scene_uploaded_)
         oit_scene_release(&gpu_scene_);
     scene_uploaded_ = false;
@@ -389,11 +444,13 @@ void RenderWorker::render_job(FrameJob &job)
     result->coarse_scale = job.coarse_scale;
     result->algorithm = job.algorithm;
     oit_stats_reset(&result->stats);
-    Running running{this, &job, now_ms(), 0.0};
+    Running running{this, &job, now_ms(), 0.0, QString()};
+    running_job_ = &running;
     auto finish = [&](oit_status status, const QString &error) {
         result->status = status;
         result->error = error;
         result->wall_ms = now_ms() - running.start_ms;
+        running_job_ = nullptr;
         emit frame_done(result);
     };
     if (!context_)
@@ -416,9 +473,64 @@ void RenderWorker::render_job(FrameJob &job)
         result->uploaded = true;
     }
 
-    const oit_algorithm_ops *ops = oit_algorithm_find(job.algorithm.c_str());
+    oit_frame_settings frame = job.frame;
+    frame.local.component_alpha = job.component_alpha.empty() ? nullptr : job.component_alpha.data();
+    frame.local.component_count = uint32_t(job.component_alpha.size());
+    frame.progress.report = &RenderWorker::progress_callback;
+    frame.progress.user = &running;
+    const oit_frame_settings requested = frame;
+
+    double side_start = now_ms();
+    oit_status status =
+        render_side(job, job.algorithm, frame, result->image, result->stats, result->left_out, err);
+    result->render_ms = now_ms() - side_start;
+    result->modulation = frame.modulation;
+    result->focus_shape = frame.local.focus_shape;
+    if (status != OIT_OK) {
+        result->left_out.clear();
+        return finish(status, QString::fromUtf8(err.message));
+    }
+    bool compare = job.kind == FrameJob::Kind::View && job.error_view && job.coarse_scale == 1;
+
+    // split view: the second algorithm, the same frame as requested
+    oit_frame_settings frame_b = requested;
+    if (job.kind == FrameJob::Kind::View && !job.algorithm_b.empty()) {
+        SideResult &b = result->b;
+        result->split = true;
+        b.algorithm = job.algorithm_b;
+        oit_stats_reset(&b.stats);
+        running.phase = QString::fromStdString(job.algorithm_b) + ": ";
+        oit_error err_b{};
+        side_start = now_ms();
+        b.status = render_side(job, job.algorithm_b, frame_b, b.image, b.stats, b.left_out, err_b);
+        b.render_ms = now_ms() - side_start;
+        if (b.status == OIT_CANCELLED)
+            return finish(OIT_CANCELLED, QString::fromUtf8(err_b.message));
+        if (b.status != OIT_OK) {
+            b.error = QString::fromUtf8(err_b.message);
+            b.left_out.clear();
+        }
+    }
+
+    // error view: each side against the reference's image of the frame it rendered
+    if (compare) {
+        running.phase.clear();
+        compare_with_reference(job, frame, result->image, result->error_map, result->left_out);
+        if (result->split && result->b.status == OIT_OK)
+            compare_with_reference(job, frame_b, result->b.image, result->b.error_map, result->b.left_out);
+        if (!keep_going(running, "error map", 0))
+            return finish(OIT_CANCELLED, "the frame was superseded");
+    }
+    finish(OIT_OK, QString());
+}
+
+oit_status RenderWorker::render_side(const FrameJob &job, const std::string &name, oit_frame_settings &frame,
+                                     QImage &image, oit_stats &stats, std::vector<QString> &left_out,
+                                     oit_error &err)
+{
+    const oit_algorithm_ops *ops = oit_algorithm_find(name.c_str());
     if (!ops)
-        return finish(OIT_E_INPUT, QString::fromStdString("unknown algorithm '" + job.algorithm + "'"));
+        return oit_fail(&err, OIT_E_INPUT, "unknown algorithm '%s'", name.c_str());
     bool fresh = job.kind == FrameJob::Kind::Export; // an export starts as `oit render` does
     oit_algorithm *algorithm = nullptr;
     bool needs_resize = true;
@@ -427,20 +539,15 @@ void RenderWorker::render_job(FrameJob &job)
         config.shader_dir = shader_dir_.c_str();
         if (ops->create(&config, &algorithm, &err) != OIT_OK)
             algorithm = nullptr;
-    } else if (CachedAlgorithm *cached = algorithm_for(job, ops, &err)) {
+    } else if (CachedAlgorithm *cached = algorithm_for(name, job, ops, &err)) {
         algorithm = cached->algorithm;
-        needs_resize = cached->width != job.frame.width || cached->height != job.frame.height;
-        cached->width = job.frame.width;
-        cached->height = job.frame.height;
+        needs_resize = cached->width != frame.width || cached->height != frame.height;
+        cached->width = frame.width;
+        cached->height = frame.height;
     }
     if (!algorithm)
-        return finish(OIT_E_RUNTIME, QString::fromUtf8(err.message));
-
-    oit_frame_settings frame = job.frame;
-    frame.local.component_alpha = job.component_alpha.empty() ? nullptr : job.component_alpha.data();
-    frame.local.component_count = uint32_t(job.component_alpha.size());
-    frame.progress.report = &RenderWorker::progress_callback;
-    frame.progress.user = &running;
+        return err.message[0] ? OIT_E_RUNTIME
+                              : oit_fail(&err, OIT_E_RUNTIME, "%s: cannot be created", name.c_str());
     const oit_scene *scene = ops->uses_gl ? &gpu_scene_ : &cpu_scene_;
 
     oit_status status = needs_resize ? ops->resize(algorithm, frame.width, frame.height, &err) : OIT_OK;
@@ -456,23 +563,21 @@ void RenderWorker::render_job(FrameJob &job)
             break;
         if (first_refusal.isEmpty())
             first_refusal = QString::fromUtf8(err.message);
-        result->left_out.push_back(QString::fromUtf8(err.message));
+        left_out.push_back(QString::fromUtf8(err.message));
         frame = reduced;
         status = OIT_OK;
     }
     if (status == OIT_E_INPUT && !first_refusal.isEmpty())
         std::snprintf(err.message, sizeof err.message, "%s", first_refusal.toUtf8().constData());
     if (status == OIT_OK) {
-        oit_image image{};
-        status = ops->read_image(algorithm, &image, &err);
+        oit_image out{};
+        status = ops->read_image(algorithm, &out, &err);
         if (status == OIT_OK) {
-            result->image = QImage(image.rgba, image.width, image.height, QImage::Format_RGBA8888).copy();
-            oit_image_free(&image);
-            ops->stats(algorithm, &result->stats);
+            image = QImage(out.rgba, out.width, out.height, QImage::Format_RGBA8888).copy();
+            oit_image_free(&out);
+            ops->stats(algorithm, &stats);
         }
     }
-    result->modulation = frame.modulation;
-    result->focus_shape = frame.local.focus_shape;
     if (fresh) {
         ops->destroy(algorithm);
     } else if (status != OIT_OK && status != OIT_CANCELLED && status != OIT_E_INPUT) {
@@ -484,7 +589,75 @@ void RenderWorker::render_job(FrameJob &job)
                 break;
             }
     }
-    if (status != OIT_OK)
-        result->left_out.clear();
-    finish(status, status == OIT_OK ? QString() : QString::fromUtf8(err.message));
+    // the reference's own frames serve the error view too
+    if (status == OIT_OK && !fresh && job.coarse_scale == 1 && ops == &oit_algorithm_reference) {
+        references_.push_front({reference_key(job.config, frame), image});
+        while (references_.size() > kReferenceCacheSize)
+            references_.pop_back();
+    }
+    return status;
+}
+
+void RenderWorker::compare_with_reference(const FrameJob &job, const oit_frame_settings &frame,
+                                          const QImage &side, ErrorResult &out, std::vector<QString> &left_out)
+{
+    std::string key = reference_key(job.config, frame);
+    QImage reference;
+    for (auto it = references_.begin(); it != references_.end(); ++it)
+        if (it->key == key) {
+            reference = it->image;
+            out.reference_cached = true;
+            CachedReference used = *it; // the most recent first
+            references_.erase(it);
+            references_.push_front(std::move(used));
+            break;
+        }
+    if (reference.isNull()) {
+        QString phase = running_job_ ? running_job_->phase : QString();
+        if (running_job_) {
+            running_job_->phase = "reference: ";
+            // said at once (not held back by kProgressIntervalMs): the slow part starts
+            emit progress(job.id, "reference: start", 0, now_ms() - running_job_->start_ms);
+        }
+        oit_frame_settings reference_frame = frame;
+        oit_stats stats;
+        oit_stats_reset(&stats);
+        std::vector<QString> reference_left_out;
+        oit_error err{};
+        double start = now_ms();
+        // cached by render_side under the key of the frame it rendered, which
+        // is this one unless the reference left an option out
+        oit_status status = render_side(job, oit_algorithm_reference.name, reference_frame, reference, stats,
+                                        reference_left_out, err);
+        out.reference_ms = now_ms() - start;
+        if (running_job_)
+            running_job_->phase = phase;
+        if (status != OIT_OK) {
+            out.problem = status == OIT_CANCELLED ? QString("the reference was superseded")
+                                                  : "the reference could not render the frame: " +
+                                                        QString::fromUtf8(err.message);
+            return;
+        }
+        for (const QString &message : reference_left_out)
+            left_out.push_back("the reference left out (the error map compares different settings): " +
+                               message);
+        if (references_.empty() || references_.front().key != key) {
+            references_.push_front({key, reference});
+            while (references_.size() > kReferenceCacheSize)
+                references_.pop_back();
+        }
+    }
+    double start = now_ms();
+    oit_image image = core_image(side), ref = core_image(reference);
+    oit_image map{};
+    oit_error err{};
+    if (oit_image_error_compute(&image, &ref, &out.figures, &err) != OIT_OK ||
+        oit_image_error_map(&image, &ref, false, &map, &err) != OIT_OK) {
+        out.problem = QString::fromUtf8(err.message);
+        return;
+    }
+    out.map = QImage(map.rgba, map.width, map.height, QImage::Format_RGBA8888).copy();
+    oit_image_free(&map);
+    out.error_ms = now_ms() - start;
+    out.present = true;
 }

@@ -16,6 +16,15 @@
 // Options an algorithm cannot express (the core refuses them with
 // OIT_E_INPUT before doing any work) are dropped one by one and named in
 // FrameResult::left_out instead of failing the frame.
+//
+// Comparisons, in the same job and with the same frame (camera, size, settings):
+// - split view: a second algorithm (FrameJob::algorithm_b) renders the frame
+//   after the first, from its own cached instance;
+// - error view: full frames also take the CPU reference's image of the frame
+//   each side rendered (rendered here, on this thread, cancellable between its
+//   passes like any frame, or taken from a small cache keyed by the frame's
+//   camera, size and settings) and the error map and figures against it.
+//   Coarse frames skip the reference (docs/workbench.md says why).
 #pragma once
 
 #include <QImage>
@@ -47,6 +56,31 @@ struct FrameJob {
     std::vector<float> component_alpha; // frame.local.component_alpha points here
     int coarse_scale = 1;           // 1: full resolution; N: 1/N of the view per side
     bool refinement = false;        // the full frame of the coarse one before it: waits for it
+    std::string algorithm_b;        // split view: the second algorithm, same frame (empty: none)
+    bool error_view = false;        // full frames: the error map against the reference too
+};
+
+// One side's image against the CPU reference's image of the same frame.
+struct ErrorResult {
+    bool present = false;     // figures and map were computed
+    oit_image_error figures{};
+    QImage map;               // oit_image_error_map without legend, RGBA8888
+    bool reference_cached = false; // the reference image came from the cache
+    double reference_ms = 0.0;     // rendering the reference (0 when cached)
+    double error_ms = 0.0;         // the figures and the map
+    QString problem;               // why there is no error map (the reference failed)
+};
+
+// The second algorithm of a split view.
+struct SideResult {
+    std::string algorithm;
+    oit_status status = OIT_OK;
+    QString error;
+    QImage image;
+    oit_stats stats{};
+    double render_ms = 0.0;
+    std::vector<QString> left_out;
+    ErrorResult error_map;
 };
 
 struct FrameResult {
@@ -64,6 +98,10 @@ struct FrameResult {
     std::vector<QString> left_out;
     oit_modulation modulation{};        // the settings actually rendered
     oit_focus_shape focus_shape = OIT_FOCUS_NONE;
+    double render_ms = 0.0;  // the algorithm's frame alone (wall_ms adds upload, side B, reference)
+    ErrorResult error_map;   // the error view (job.error_view, full frames)
+    bool split = false;      // job.algorithm_b was set: b is the second side
+    SideResult b;
 };
 using FrameResultPointer = std::shared_ptr<const FrameResult>;
 Q_DECLARE_METATYPE(FrameResultPointer)
@@ -92,6 +130,12 @@ public:
     static constexpr int kNiceIncrement = 5;
     // Progress signals at most this often.
     static constexpr double kProgressIntervalMs = 40.0;
+    // Algorithm instances kept (each holds buffers the size of its frames):
+    // full and coarse of two split sides and the reference, and one spare.
+    static constexpr size_t kAlgorithmCacheSize = 6;
+    // Reference images kept: the last few frames' (a split view whose sides
+    // left out different options needs two).
+    static constexpr size_t kReferenceCacheSize = 4;
 
     // Returns once the context exists or failed (renderer(), context_error()):
     // the core folds what the driver prints during creation into its message
@@ -123,10 +167,17 @@ private:
     struct Running;
     void run();
     void render_job(FrameJob &job);
+    // One algorithm's image of frame (reduced in place to what it rendered).
+    oit_status render_side(const FrameJob &job, const std::string &name, oit_frame_settings &frame,
+                           QImage &image, oit_stats &stats, std::vector<QString> &left_out, oit_error &err);
+    // side's image against the reference's image of frame (rendered or cached).
+    void compare_with_reference(const FrameJob &job, const oit_frame_settings &frame, const QImage &side,
+                                ErrorResult &out, std::vector<QString> &left_out);
     bool keep_going(Running &running, const char *stage, int stages_done);
     static bool progress_callback(void *user, const char *stage, int stages_done);
     struct CachedAlgorithm;
-    CachedAlgorithm *algorithm_for(const FrameJob &job, const oit_algorithm_ops *ops, oit_error *err);
+    CachedAlgorithm *algorithm_for(const std::string &name, const FrameJob &job, const oit_algorithm_ops *ops,
+                                   oit_error *err);
     void release_gl();
     bool probe_step(); // one algorithm of the capability probe; false when done
 
@@ -161,6 +212,14 @@ private:
     };
     std::vector<CachedAlgorithm> cache_;
     uint64_t use_counter_ = 0;
+    // the reference's images by frame (camera, size, settings): switching the
+    // algorithm, or the split view's second side, does not render it again
+    struct CachedReference {
+        std::string key;
+        QImage image;
+    };
+    std::deque<CachedReference> references_;
+    Running *running_job_ = nullptr; // the job render_job is working on
     // the capability probe's own tiny scene and progress
     oit_model probe_model_{};
     oit_scene probe_scene_{};

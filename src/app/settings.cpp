@@ -117,6 +117,21 @@ std::string fields_name(int mask)
 
 } // namespace
 
+const char *split_mode_name(SplitMode mode)
+{
+    return mode == SplitMode::Wipe ? "wipe" : mode == SplitMode::SideBySide ? "side-by-side" : "off";
+}
+
+bool parse_split_mode(const std::string &text, SplitMode &mode)
+{
+    for (SplitMode m : {SplitMode::Off, SplitMode::Wipe, SplitMode::SideBySide})
+        if (text == split_mode_name(m)) {
+            mode = m;
+            return true;
+        }
+    return false;
+}
+
 std::string view_name(const oit_modulation &m)
 {
     for (const ViewName &v : view_names)
@@ -225,6 +240,15 @@ std::string render_command(const std::string &oit_program, const std::string &mo
           << number(f[3]) << "," << number(f[4]) << "," << number(f[5]);
     if (s.contrast != 0.0f && s.contrast != 1.0f)
         c << " --contrast " << number(s.contrast);
+    if (s.error_view) {
+        // the same frame with the CPU reference: the figures, and the map beside the image
+        std::string map = out_path.empty() ? "error.png" : out_path;
+        size_t dot = map.rfind('.'), slash = map.rfind('/');
+        if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+            dot = map.size();
+        map = map.substr(0, dot) + "-error" + (dot < map.size() ? map.substr(dot) : std::string(".png"));
+        c << " --error-vs-reference --error-map " << shell_quote(map);
+    }
     if (!out_path.empty())
         c << " --out " << shell_quote(out_path);
     return c.str();
@@ -393,6 +417,10 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     else if (s.focus_shape == OIT_FOCUS_BOX)
         add(d, "focus-box", array_value(s.focus, 6, a), a);
     add(d, "contrast", Value(double(s.contrast == 0.0f ? 1.0f : s.contrast)), a);
+    add(d, "error-vs-reference", Value(s.error_view), a);
+    add(d, "split", Value(rapidjson::StringRef(split_mode_name(s.split))), a);
+    add(d, "split-algorithm", string_value(s.split_algorithm, a), a);
+    add(d, "wipe", Value(double(s.wipe)), a);
     if (model && s.part_alpha.size() == model->component_count) {
         Value alphas(rapidjson::kObjectType), hidden(rapidjson::kArrayType);
         for (uint32_t i = 0; i < model->component_count; ++i) {
@@ -439,7 +467,9 @@ bool preset_from_json(const std::string &file, const std::string &text, RenderSe
         "neighbours", "curvature-neighbours", "curvature-effect", "epsilon-max", "distance", "focus-region",
         "fields", "diffusion-iterations", "blur-iterations", "lambda-alpha", "lambda-beta", "lambda-gamma",
         "halo-colour", "last-layer-opaque", "focus-point", "focus-plane", "focus-box", "contrast",
-        "component-alpha", "hide", "camera"};
+        "component-alpha", "hide", "camera",
+        // the workbench's comparisons (the first is `oit render`'s flag too)
+        "error-vs-reference", "split", "split-algorithm", "wipe"};
     for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
         std::string key = it->name.GetString();
         if (std::find(std::begin(known), std::end(known), key) == std::end(known))
@@ -544,6 +574,21 @@ bool preset_from_json(const std::string &file, const std::string &text, RenderSe
         }
     }
     if (!r.number(d, "contrast", 0.1, 10.0, s.contrast))
+        return false;
+    if (d.HasMember("error-vs-reference")) {
+        if (!d["error-vs-reference"].IsBool())
+            return r.fail("error-vs-reference", "must be true or false");
+        s.error_view = d["error-vs-reference"].GetBool();
+    }
+    if (d.HasMember("split") &&
+        (!d["split"].IsString() || !parse_split_mode(d["split"].GetString(), s.split)))
+        return r.fail("split", "must be off, wipe or side-by-side");
+    if (d.HasMember("split-algorithm")) {
+        if (!d["split-algorithm"].IsString() || !oit_algorithm_find(d["split-algorithm"].GetString()))
+            return r.fail("split-algorithm", "unknown algorithm (oit algorithms lists them)");
+        s.split_algorithm = d["split-algorithm"].GetString();
+    }
+    if (!r.number(d, "wipe", 0.0, 1.0, s.wipe))
         return false;
     if (model) {
         s.reset_parts(*model);

@@ -10,6 +10,12 @@
 #include "camera.h"
 #include "oit.h"
 
+// The split view (split_view.h): off, two algorithms either side of a wipe
+// line over the whole view, or side by side at half the view's width each.
+enum class SplitMode { Off = 0, Wipe = 1, SideBySide = 2 };
+const char *split_mode_name(SplitMode mode); // "off", "wipe", "side-by-side"
+bool parse_split_mode(const std::string &text, SplitMode &mode);
+
 struct RenderSettings {
     std::string algorithm = "ll";
     oit_algorithm_config config{}; // shader_dir is set by the view
@@ -23,6 +29,12 @@ struct RenderSettings {
     // per component of the loaded model; opacity used = visible ? part_alpha : 0
     std::vector<float> part_alpha;
     std::vector<char> part_visible;
+    // the workbench's comparisons (preset keys "error-vs-reference", "split",
+    // "split-algorithm", "wipe"; the command line has the first only)
+    bool error_view = false;           // show the error map against the CPU reference
+    SplitMode split = SplitMode::Off;
+    std::string split_algorithm = "blend"; // side B; side A is `algorithm`
+    float wipe = 0.5f;                 // the wipe line, 0..1 of the view's width
 
     RenderSettings();
     void reset_parts(const oit_model &model);
@@ -40,7 +52,9 @@ bool parse_view(const std::string &text, oit_modulation &modulation);
 const char *modulation_mode_name(oit_modulation_mode mode);
 
 // The `oit render` command that reproduces a frame (matrices row by row, with
-// enough digits that every float survives the round trip).
+// enough digits that every float survives the round trip). With the error
+// view, --error-vs-reference and --error-map (out_path's name with "-error").
+// The command line has no split view: the command is side A's.
 std::string render_command(const std::string &oit_program, const std::string &model_path,
                            const RenderSettings &settings, const oit_frame_settings &frame,
                            const std::string &out_path);

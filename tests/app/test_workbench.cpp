@@ -10,6 +10,9 @@
 #include <QAction>
 #include <QAbstractItemView>
 #include <QComboBox>
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QLabel>
 #include <QLineEdit>
 #include <QProgressBar>
 #include <QScrollBar>
@@ -31,8 +34,11 @@
 
 #include <cmath>
 
+#include "compare_panel.h"
+#include "error_legend.h"
 #include "main_window.h"
 #include "parts_panel.h"
+#include "split_view.h"
 #include "pick.h"
 
 namespace {
@@ -80,6 +86,32 @@ double ink(const QImage &image)
             total += (765 - p[col * 4] - p[col * 4 + 1] - p[col * 4 + 2]) / 765.0;
     }
     return total / (x.width() * x.height());
+}
+
+// The largest channel difference between a and b inside rect (both the same size).
+int max_difference_in(const QImage &a, const QImage &b, const QRect &rect)
+{
+    QImage x = a.convertToFormat(QImage::Format_RGBA8888), y = b.convertToFormat(QImage::Format_RGBA8888);
+    int worst = 0;
+    for (int row = rect.top(); row <= rect.bottom(); ++row)
+        for (int col = rect.left(); col <= rect.right(); ++col)
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(int(x.constScanLine(row)[col * 4 + c]) -
+                                                 int(y.constScanLine(row)[col * 4 + c])));
+    return worst;
+}
+
+// Pixels of an error map in the hot half of its scale: yellow to red (a difference of about 13 and more).
+int hot_pixels(const QImage &map)
+{
+    QImage x = map.convertToFormat(QImage::Format_RGBA8888);
+    int hot = 0;
+    for (int row = 0; row < x.height(); ++row)
+        for (int col = 0; col < x.width(); ++col) {
+            const uchar *p = x.constScanLine(row) + col * 4;
+            hot += p[0] >= 200 && p[2] <= 40;
+        }
+    return hot;
 }
 
 // Posted events record how long they waited for the GUI thread's event loop.
@@ -609,6 +641,76 @@ private slots:
         QVERIFY(loaded.wait(60000));
     }
 
+    // The reference renders on the worker after the frame: the window stays
+    // live, and a newer request abandons it between its passes.
+    void a_slow_reference_is_superseded_without_freezing()
+    {
+        QString oit = qEnvironmentVariable("OIT_CLI");
+        if (oit.isEmpty())
+            QSKIP("OIT_CLI is not set");
+        QString deep = work + "/deep.obj";
+        if (!QFile::exists(deep))
+            QCOMPARE(QProcess::execute(oit, {"gen", "spheres", "--complexity", "7", "--out", deep}), 0);
+        QSignalSpy loaded(window, &MainWindow::model_loaded);
+        window->load_model(deep);
+        QVERIFY(loaded.wait(60000));
+        RenderView *view = window->view();
+        view->setFixedSize(500, 500);
+        window->set_algorithm("blend");
+        frame();
+        QSignalSpy done(view->worker(), &RenderWorker::frame_done);
+        QSignalSpy progress(view->worker(), &RenderWorker::progress);
+        // blend's frame and then the reference's of the same frame (about 0.6 s here)
+        view->settings.error_view = true;
+        window->sync_panel_from_settings();
+        view->request_frame(false);
+        quint64 job = 0;
+        auto reference_started = [&] {
+            for (const QList<QVariant> &arguments : progress)
+                if (arguments.at(1).toString() == "reference: start")
+                    job = arguments.at(0).toULongLong();
+            return job != 0;
+        };
+        QTRY_VERIFY_WITH_TIMEOUT(reference_started(), 30000);
+        LatencyProbe probe;
+        QElapsedTimer clock;
+        clock.start();
+        while (clock.elapsed() < 150) {
+            probe.post();
+            QVERIFY(ms_until([&probe] { return !probe.pending(); }, 5000) >= 0.0);
+            QTest::qWait(10);
+        }
+        QVERIFY2(view->rendering(), "the reference should still be running (else this case proves nothing)");
+        // a newer request (the error view off again) supersedes it
+        window->set_error_view(false);
+        clock.restart();
+        while (!view->settled() && clock.elapsed() < 60000) {
+            probe.post();
+            QVERIFY(ms_until([&probe] { return !probe.pending(); }, 5000) >= 0.0);
+            QTest::qWait(10);
+        }
+        double settled_ms = double(clock.elapsed());
+        qInfo("reference superseded: the newer frame shown %.0f ms later; %d posted events, "
+              "the longest wait %.1f ms",
+              settled_ms, probe.handled, probe.worst_ms);
+        QVERIFY(view->settled());
+        QVERIFY2(probe.worst_ms < 100.0, qPrintable(QString("an event waited %1 ms").arg(probe.worst_ms)));
+        bool cancelled = false, shown_with_map = false;
+        for (const QList<QVariant> &arguments : done) {
+            auto result = arguments.at(0).value<FrameResultPointer>();
+            if (result->id == job) {
+                cancelled = result->status == OIT_CANCELLED;
+                shown_with_map = result->error_map.present;
+            }
+        }
+        QVERIFY2(cancelled && !shown_with_map,
+                 "the superseded reference's frame ends cancelled, without a map");
+        QVERIFY(!view->last_result()->error_map.present && !view->legend()->isVisible());
+        view->setFixedSize(view_size);
+        window->load_model(MainWindow::default_model_path());
+        QVERIFY(loaded.wait(60000));
+    }
+
     // Start-up replays the last model and settings, but a first full frame
     // over the budget is cancelled: the coarse frame stays, the user decides.
     void startup_does_not_replay_a_slow_state_blindly()
@@ -748,6 +850,228 @@ private slots:
             if (action->text() == "&Orthographic")
                 QVERIFY(action->isChecked());
         window->set_camera_mode(Camera::Mode::Orbit, false);
+    }
+
+    // The error view: the map against the CPU reference, its legend and figures.
+    void error_view_maps_the_difference_against_the_reference()
+    {
+        RenderView *view = window->view();
+        window->set_algorithm("dp");
+        QImage plain = frame();
+        // on: dp is exact here: every pixel of the map is black
+        window->set_error_view(true);
+        QImage shown = frame();
+        FrameResultPointer dp = view->last_result();
+        QVERIFY2(dp->error_map.present, qPrintable(dp->error_map.problem));
+        QCOMPARE(dp->error_map.map.size(), view_size);
+        QCOMPARE(dp->error_map.figures.max, 0);
+        QVERIFY(!dp->error_map.reference_cached); // the first time: rendered
+        QRect legend = view->legend()->geometry();
+        QVERIFY2(view->legend()->isVisible(), "the legend shows with the map");
+        QVERIFY(legend.width() < view_size.width() && legend.height() < view_size.height() / 2);
+        QImage black(view_size, QImage::Format_RGBA8888);
+        black.fill(Qt::black);
+        QCOMPARE(compare(dp->error_map.map, black, 0).max, 0);
+        // what the widget shows is the map (outside the legend's corner)
+        QRect above_legend(0, 0, view_size.width(), legend.top());
+        QCOMPARE(max_difference_in(shown, black, above_legend), 0);
+        QVERIFY2(window->status_text().contains("vs reference: rmse 0.000, psnr inf, ssim 1.00000, max 0"),
+                 qPrintable(window->status_text()));
+        auto *figures = window->compare_panel()->findChild<QLabel *>("error_figures");
+        QVERIFY(figures && figures->text().contains("dp vs reference"));
+        // ll: the same camera, so the reference comes from the cache; exact within 1/255
+        // (ll composites in float: a few channels round the other way)
+        window->set_algorithm("ll");
+        frame();
+        FrameResultPointer ll = view->last_result();
+        QVERIFY(ll->error_map.present);
+        QVERIFY2(ll->error_map.reference_cached,
+                 "switching algorithm with the same camera reuses the reference");
+        qInfo("ll vs reference: %s", qPrintable(error_figures_text(ll->error_map.figures)));
+        QVERIFY(ll->error_map.figures.max <= 1);
+        QCOMPARE(hot_pixels(ll->error_map.map), 0);
+        // blend: submission order, far from the reference: yellow and red pixels
+        window->set_algorithm("blend");
+        QImage blend_map = frame();
+        FrameResultPointer blend = view->last_result();
+        QVERIFY(blend->error_map.present && blend->error_map.reference_cached);
+        qInfo("blend vs reference: %s, %d hot pixels",
+              qPrintable(error_figures_text(blend->error_map.figures)), hot_pixels(blend->error_map.map));
+        QVERIFY(blend->error_map.figures.max > 32);
+        QVERIFY(hot_pixels(blend->error_map.map) > 20);
+        QVERIFY(hot_pixels(blend_map.copy(above_legend)) > 0);
+        // the legend's bar follows the core's scale: 1 at its left end, 64+ at its right
+        QCOMPARE(ErrorLegend::difference_at(0, 100), 1);
+        QCOMPARE(ErrorLegend::difference_at(99, 100), OIT_ERROR_MAP_SATURATION);
+        // a turned camera needs its own reference; coarse frames skip it and show the plain image
+        view->set_slow_frame_ms(0.0);
+        FrameResultPointer coarse;
+        QImage coarse_shown;
+        bool legend_with_coarse = true;
+        QMetaObject::Connection on_coarse = connect(view, &RenderView::coarse_frame_rendered, this, [&] {
+            coarse = view->last_result();
+            coarse_shown = view->shown_a();
+            legend_with_coarse = view->legend()->isVisible();
+        });
+        view->camera.trackball(glm::vec2(80, 60), glm::vec2(95, 55), view_size.width(), view_size.height());
+        view->request_frame(true);
+        QTRY_VERIFY_WITH_TIMEOUT(coarse != nullptr, 60000);
+        disconnect(on_coarse);
+        QVERIFY(!coarse->error_map.present && coarse->error_map.reference_ms == 0.0);
+        QCOMPARE(compare(coarse_shown, coarse->image, 0).max, 0);
+        QVERIFY(!legend_with_coarse);
+        frame(); // refined once the input rests: with its map, from a new reference
+        QVERIFY(view->last_result()->error_map.present && !view->last_result()->error_map.reference_cached);
+        view->set_slow_frame_ms(RenderView::kSlowFrameMs);
+        // Copy as command adds the command line's error flags
+        QString command = window->render_command_for_view("view.png");
+        QVERIFY2(command.contains("--error-vs-reference --error-map view-error.png --out view.png"),
+                 qPrintable(command));
+        // off again: the plain image, no legend
+        view->reset_camera();
+        window->set_algorithm("dp");
+        window->set_error_view(false);
+        QCOMPARE(compare(frame(), plain, 0).max, 0);
+        QVERIFY(!view->legend()->isVisible());
+        QVERIFY(!window->render_command_for_view("view.png").contains("--error"));
+    }
+
+    // The split view: A left of the wipe line, B right, the same camera.
+    void split_view_shows_two_algorithms()
+    {
+        RenderView *view = window->view();
+        const int w = view_size.width(), h = view_size.height();
+        window->set_algorithm("ll");
+        QImage ll = frame();
+        window->set_algorithm("blend");
+        QImage blend = frame();
+        window->set_algorithm("ll");
+        window->set_split(SplitMode::Wipe, "blend");
+        QCOMPARE(window->compare_panel()->split_combo()->currentIndex(), int(SplitMode::Wipe));
+        QCOMPARE(window->compare_panel()->algorithm_b_combo()->currentText(), QString("blend"));
+        QImage split = frame();
+        FrameResultPointer result = view->last_result();
+        QVERIFY(result->split && result->b.status == OIT_OK);
+        QCOMPARE(QString::fromStdString(result->b.algorithm), QString("blend"));
+        // left of the line (less its band and the labels) is ll's image, right of it blend's
+        int line = split_view::wipe_x(0.5f, w);
+        QCOMPARE(line, w / 2);
+        const int band = split_view::kHandleRadius + 3, top = 30;
+        QRect left(0, top, line - band, h - top), right(line + band, top, w - line - band, h - top);
+        QCOMPARE(max_difference_in(split, ll, left), 0);
+        QCOMPARE(max_difference_in(split, blend, right), 0);
+        QVERIFY2(max_difference_in(ll, blend, left) > 8 && max_difference_in(ll, blend, right) > 8,
+                 "ll and blend differ on both sides (else this case proves nothing)");
+        // drag the line to a quarter of the view: what was ll between there and the middle is blend now
+        QSignalSpy done(view->worker(), &RenderWorker::frame_done);
+        QPoint grab(line + 2, h - 20);
+        QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, grab);
+        QMouseEvent move(QEvent::MouseMove, QPoint(w / 4, h - 20), Qt::LeftButton, Qt::LeftButton,
+                         Qt::NoModifier);
+        QApplication::sendEvent(view, &move);
+        QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, QPoint(w / 4, h - 20));
+        QCOMPARE(view->settings.wipe, 0.25f);
+        QCOMPARE(window->compare_panel()->findChild<QDoubleSpinBox *>("wipe")->value(), 0.25);
+        QTest::qWait(50);
+        QCOMPARE(done.count(), 0); // only the boundary moved: nothing rendered
+        QVERIFY(!view->rendering());
+        QImage dragged = view->grab().toImage().convertToFormat(QImage::Format_RGBA8888);
+        int moved = split_view::wipe_x(0.25f, w);
+        QRect now_b(moved + band, top, line - moved - band, h - top);
+        QCOMPARE(max_difference_in(dragged, blend, now_b), 0);
+        QVERIFY(max_difference_in(dragged, ll, now_b) > 8);
+        QCOMPARE(max_difference_in(dragged, ll, QRect(0, top, moved - band, h - top)), 0);
+        // the camera still turns with a drag away from the line
+        view->settings.wipe = 0.5f;
+        window->sync_panel_from_settings();
+
+        // error view and split view together: each side's map, one reference
+        window->set_error_view(true);
+        QImage maps = frame();
+        result = view->last_result();
+        QVERIFY(result->error_map.present && result->b.error_map.present);
+        QVERIFY(result->error_map.figures.max <= 1);   // ll
+        QVERIFY(result->b.error_map.figures.max > 32); // blend
+        QVERIFY2(result->b.error_map.reference_cached, "side B reuses side A's reference (the same frame)");
+        int legend_top = view->legend()->geometry().top(); // the legend's bar is hot on its right
+        QCOMPARE(hot_pixels(maps.copy(left.intersected(QRect(0, 0, w, legend_top)))), 0);
+        QVERIFY(hot_pixels(maps.copy(right.intersected(QRect(0, 0, w, legend_top)))) > 0);
+        window->set_error_view(false);
+
+        // side by side: each side at half the width, the same camera for that aspect
+        window->set_split(SplitMode::SideBySide);
+        QImage pair = frame();
+        result = view->last_result();
+        QCOMPARE(result->image.size(), QSize(w / 2, h));
+        QCOMPARE(result->b.image.size(), QSize(w / 2, h));
+        QCOMPARE(view->side_pixel_size(), QSize(w / 2, h));
+        QRect half_left(0, top, w / 2, h - top), half_right(w / 2 + 1, top, w / 2 - 1, h - top);
+        QCOMPARE(max_difference_in(pair.copy(0, 0, w / 2, h), result->image, half_left), 0);
+        QCOMPARE(max_difference_in(pair.copy(w / 2, 0, w / 2, h), result->b.image,
+                                   half_right.translated(-w / 2, 0)),
+                 0);
+        // each half is what that algorithm renders alone at that size (Export PNG: `oit render`'s frame)
+        QString error;
+        QVERIFY2(window->export_png(work + "/side-a.png", w / 2, h, error), qPrintable(error));
+        QCOMPARE(compare(QImage(work + "/side-a.png"), result->image, 0).max, 0);
+        QImage b_half = result->b.image;
+        // Copy as command: side A at the half's size, and the Messages say so
+        window->copy_command();
+        if (auto *dialog = window->findChild<QDialog *>("copied_command"))
+            dialog->close();
+        QString command = window->render_command_for_view("view.png");
+        QVERIFY2(command.contains("--algorithm ll --size 80x120"), qPrintable(command));
+        QVERIFY2(window->messages().last().contains("split view: the command line has no split view: the "
+                                                    "command renders side A (ll) at half the view's width"),
+                 qPrintable(window->messages().last()));
+        window->set_split(SplitMode::Off);
+        window->set_algorithm("blend");
+        QVERIFY2(window->export_png(work + "/side-b.png", w / 2, h, error), qPrintable(error));
+        QCOMPARE(compare(QImage(work + "/side-b.png"), b_half, 0).max, 0);
+        QCOMPARE(compare(frame(), blend, 0).max, 0); // back to one algorithm over the whole view
+    }
+
+    // The split and error views are settings: presets, undo and the menu follow them.
+    void comparisons_are_settings()
+    {
+        window->set_error_view(true);
+        window->set_split(SplitMode::SideBySide, "wboit");
+        QString path = work + "/compare.json";
+        QString error;
+        QVERIFY2(window->save_preset(path, error), qPrintable(error));
+        window->set_error_view(false);
+        window->set_split(SplitMode::Off);
+        QVERIFY2(window->load_preset(path, error), qPrintable(error));
+        const RenderSettings &s = window->view()->settings;
+        QVERIFY(s.error_view);
+        QCOMPARE(int(s.split), int(SplitMode::SideBySide));
+        QCOMPARE(QString::fromStdString(s.split_algorithm), QString("wboit"));
+        bool checked = false;
+        for (QAction *action : window->findChildren<QAction *>())
+            if (action->text() == "Side &by side")
+                checked = action->isChecked();
+        QVERIFY(checked);
+        QVERIFY(window->compare_panel()->error_check()->isChecked());
+        frame();
+        // undo steps back through the load, and redo returns
+        window->reset_settings_history();
+        window->set_split(SplitMode::Wipe, "ddp");
+        QVERIFY(window->undo_settings());
+        QCOMPARE(int(s.split), int(SplitMode::SideBySide));
+        QCOMPARE(QString::fromStdString(s.split_algorithm), QString("wboit"));
+        QVERIFY(window->redo_settings());
+        QCOMPARE(QString::fromStdString(s.split_algorithm), QString("ddp"));
+        // bad values name the key
+        QFile bad(work + "/bad-split.json");
+        QVERIFY(bad.open(QIODevice::WriteOnly));
+        bad.write("{\n\"split\": \"diagonal\"\n}\n");
+        bad.close();
+        QVERIFY(!window->load_preset(work + "/bad-split.json", error));
+        QVERIFY2(error.endsWith("bad-split.json:2: \"split\": must be off, wipe or side-by-side"),
+                 qPrintable(error));
+        window->set_error_view(false);
+        window->set_split(SplitMode::Off);
+        frame();
     }
 
     void every_control_has_a_tooltip()
