@@ -31,6 +31,15 @@ CANDIDATES = [
     ("ll --sort array", ["--algorithm", "ll", "--sort", "array"]),
     ("ib", ["--algorithm", "ib"]),
     ("wboit", ["--algorithm", "wboit"]),
+    ("kbuffer", ["--algorithm", "kbuffer"]),
+    ("kbuffer --layers 4", ["--algorithm", "kbuffer", "--layers", "4"]),
+    ("hybrid", ["--algorithm", "hybrid"]),
+    ("hybrid --layers 4", ["--algorithm", "hybrid", "--layers", "4"]),
+    ("mlab", ["--algorithm", "mlab"]),
+    ("mlab --layers 4", ["--algorithm", "mlab", "--layers", "4"]),
+    ("mboit", ["--algorithm", "mboit"]),
+    ("mboit --moments power6", ["--algorithm", "mboit", "--moments", "power6"]),
+    ("mboit --moments trig3", ["--algorithm", "mboit", "--moments", "trig3"]),
 ]
 TOLERANCE = 2  # the exact algorithms' tolerance in tests/CMakeLists.txt
 

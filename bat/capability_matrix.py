@@ -35,7 +35,7 @@ import tempfile
 import threading
 from pages import commits, machine, machine_line
 
-ALGORITHMS = ["blend", "wboit", "dp", "ddp", "ll", "ib", "reference"]
+ALGORITHMS = ["blend", "wboit", "kbuffer", "hybrid", "mlab", "mboit", "dp", "ddp", "ll", "ib", "reference"]
 EXACT = {"dp", "ddp", "ll", "ib", "reference"}
 TOLERANCE = 2          # the exact algorithms' tolerance (tests/CMakeLists.txt)
 MISMATCH_PERCENT = 1.0  # share of pixels allowed over it

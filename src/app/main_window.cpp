@@ -1,5 +1,6 @@
 // main_window.cpp: see main_window.h.
 #include "main_window.h"
+#include "oit_shared.h" // OIT_APPROX_LAYERS_DEFAULT, _MAX
 #include "compare_panel.h"
 #include "error_legend.h"
 #include "parts_panel.h"
@@ -965,6 +966,26 @@ QWidget *MainWindow::build_algorithm_tab()
                                sync_actions_, syncing_);
     layer_cap->setSpecialValueText("none");
     form->addRow("layer cap (--max-layers, dp/ddp)", layer_cap);
+    // the approximations' parameters (oit_algorithm_ops.uses_layers / uses_moments)
+    auto *approx_layers = spin_box(1, OIT_APPROX_LAYERS_MAX,
+                                   [&s] { return s.config.layers == 0 ? OIT_APPROX_LAYERS_DEFAULT : s.config.layers; },
+                                   [this, &s](int n) {
+                                       s.config.layers = n;
+                                       render_now();
+                                   },
+                                   sync_actions_, syncing_);
+    approx_layers->setToolTip("Layers kept per pixel by kbuffer, hybrid and mlab (k): exact where no pixel has "
+                              "more fragments; memory grows with k");
+    form->addRow("layers (--layers, kbuffer/hybrid/mlab)", approx_layers);
+    auto *moments = combo({"power4", "power6", "trig3"},
+                          [&s] { return s.config.moments == OIT_MOMENTS_DEFAULT ? 0 : int(s.config.moments) - 1; },
+                          [this, &s](int i) {
+                              s.config.moments = oit_moments(i + 1);
+                              render_now();
+                          },
+                          sync_actions_, syncing_);
+    moments->setToolTip("The moments mboit keeps per pixel: 4 or 6 power moments, or 3 trigonometric ones");
+    form->addRow("moments (--moments, mboit)", moments);
     form->addRow("shading (--shading)", combo({"flat", "headlight"}, [&s] { return int(s.shading); },
                                               [this, &s](int i) {
                                                   s.shading = oit_shading_mode(i);

@@ -26,7 +26,7 @@ std::string algorithm_key(const std::string &name, const FrameJob &job)
     const oit_algorithm_config &c = job.config;
     return name + "/" + std::to_string(int(c.ll_sort)) + "/" + std::to_string(c.max_memory_bytes) + "/" +
            std::to_string(c.max_layers) + "/" + std::to_string(c.initial_fragment_capacity) + "/" +
-           std::to_string(c.debug) + "/" + std::to_string(c.neighbour_quality) + "/" +
+           std::to_string(c.layers) + "/" + std::to_string(int(c.moments)) + "/" + std::to_string(c.debug) + "/" + std::to_string(c.neighbour_quality) + "/" +
            (job.coarse_scale > 1 ? "coarse" : "full");
 }
 
@@ -107,7 +107,7 @@ std::string reference_key(const oit_algorithm_config &c, const oit_frame_setting
 {
     KeyWriter k;
     k << c.ll_sort << c.max_memory_bytes << c.max_layers << c.initial_fragment_capacity
-      << c.neighbour_quality;
+      << c.neighbour_quality << c.layers << int(c.moments);
     k << f.width << f.height << f.modelview << f.projection << f.alpha << f.shading << f.background;
     const oit_modulation &m = f.modulation;
     k << m.view << m.view_parameter << m.mode << m.neighbours << m.curvature_neighbours << m.curvature_effect

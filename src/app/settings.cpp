@@ -1,5 +1,6 @@
 // settings.cpp: see settings.h.
 #include "settings.h"
+#include "oit_shared.h" // OIT_APPROX_LAYERS_DEFAULT, _MAX
 
 #include <algorithm>
 #include <cmath>
@@ -190,6 +191,12 @@ std::string render_command(const std::string &oit_program, const std::string &mo
         c << " --sort " << (s.config.ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "array" : "insertion");
     if (s.config.max_layers != defaults.max_layers)
         c << " --max-layers " << s.config.max_layers;
+    // the approximations' parameters, only for the algorithms that read them (as oit render takes them)
+    const oit_algorithm_ops *ops = oit_algorithm_find(s.algorithm.c_str());
+    if (ops && ops->uses_layers && s.config.layers != 0)
+        c << " --layers " << s.config.layers;
+    if (ops && ops->uses_moments && s.config.moments != OIT_MOMENTS_DEFAULT)
+        c << " --moments " << oit_moments_name(s.config.moments);
     const oit_modulation &m = s.modulation;
     if (m.view != OIT_VIEW_COLOUR)
         c << " --view " << view_name(m);
@@ -389,6 +396,8 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     add(d, "sort", Value(rapidjson::StringRef(s.config.ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "array" : "insertion")), a);
     add(d, "max-memory", Value(uint64_t(s.config.max_memory_bytes / (1024 * 1024))), a);
     add(d, "max-layers", Value(s.config.max_layers), a);
+    add(d, "layers", Value(s.config.layers == 0 ? OIT_APPROX_LAYERS_DEFAULT : s.config.layers), a);
+    add(d, "moments", Value(rapidjson::StringRef(oit_moments_name(s.config.moments))), a);
     add(d, "alpha", Value(double(s.alpha)), a);
     add(d, "shading", Value(rapidjson::StringRef(s.shading == OIT_SHADE_FLAT ? "flat" : "headlight")), a);
     add(d, "background", array_value(s.background, 3, a), a);
@@ -463,7 +472,7 @@ bool preset_from_json(const std::string &file, const std::string &text, RenderSe
     PresetReader r{file, text, error};
     RenderSettings s = out; // applied only if the whole file is good
     static const char *const known[] = {
-        "algorithm", "sort", "max-memory", "max-layers", "alpha", "shading", "background", "view", "modulation",
+        "algorithm", "sort", "max-memory", "max-layers", "layers", "moments", "alpha", "shading", "background", "view", "modulation",
         "neighbours", "curvature-neighbours", "curvature-effect", "epsilon-max", "distance", "focus-region",
         "fields", "diffusion-iterations", "blur-iterations", "lambda-alpha", "lambda-beta", "lambda-gamma",
         "halo-colour", "last-layer-opaque", "focus-point", "focus-plane", "focus-box", "contrast",
@@ -489,6 +498,13 @@ bool preset_from_json(const std::string &file, const std::string &text, RenderSe
     if (!r.whole(d, "max-memory", 1, 1 << 22, megabytes) || !r.whole(d, "max-layers", 0, OIT_PEEL_LAYER_CAP_MAX, s.config.max_layers))
         return false;
     s.config.max_memory_bytes = uint64_t(megabytes) * 1024 * 1024;
+    if (d.HasMember("layers") && !r.whole(d, "layers", 1, OIT_APPROX_LAYERS_MAX, s.config.layers))
+        return false;
+    static const char *const moment_names[] = {"power4", "power6", "trig3"};
+    int moments = s.config.moments == OIT_MOMENTS_DEFAULT ? 0 : int(s.config.moments) - 1;
+    if (!r.choice(d, "moments", moment_names, 3, moments))
+        return false;
+    s.config.moments = oit_moments(moments + 1);
     if (!r.number(d, "alpha", 0.0, 1.0, s.alpha))
         return false;
     static const char *const shadings[] = {"flat", "headlight"};

@@ -267,6 +267,45 @@ private slots:
         QVERIFY2(!window->status_text().contains("TRUNCATED"), qPrintable(window->status_text()));
     }
 
+    // kbuffer's k and mboit's moments reach the worker (a new instance, not a cached one with the
+    // old configuration), survive a preset, and appear in Copy as command only where they apply
+    void approximation_parameters_are_settings()
+    {
+        window->set_algorithm("kbuffer");
+        window->view()->settings.config.layers = 8;
+        window->settings_changed();
+        QImage eight = frame();
+        window->view()->settings.config.layers = 1; // the gearbox has more layers: the tail shows
+        window->settings_changed();
+        QImage one = frame();
+        QVERIFY2(compare(eight, one, 2).share_over > 0.0, "--layers did not reach the algorithm");
+        QVERIFY2(window->render_command_for_view("v.png").contains(" --layers 1"),
+                 qPrintable(window->render_command_for_view("v.png")));
+        window->set_algorithm("mboit");
+        window->view()->settings.config.moments = OIT_MOMENTS_TRIG3;
+        window->settings_changed();
+        QImage trig = frame();
+        QString command = window->render_command_for_view("v.png");
+        QVERIFY2(command.contains(" --moments trig3") && !command.contains("--layers"), qPrintable(command));
+        window->view()->settings.config.moments = OIT_MOMENTS_POWER4;
+        window->settings_changed();
+        QVERIFY2(compare(trig, frame(), 2).share_over > 0.0, "--moments did not reach the algorithm");
+        window->view()->settings.config.moments = OIT_MOMENTS_TRIG3;
+        QString path = work + "/approximations.json", error;
+        QVERIFY2(window->save_preset(path, error), qPrintable(error));
+        window->view()->settings.config.layers = 0;
+        window->view()->settings.config.moments = OIT_MOMENTS_DEFAULT;
+        QVERIFY2(window->load_preset(path, error), qPrintable(error));
+        QCOMPARE(window->view()->settings.config.layers, 1);
+        QCOMPARE(int(window->view()->settings.config.moments), int(OIT_MOMENTS_TRIG3));
+        window->set_algorithm("ll");
+        QVERIFY(!window->render_command_for_view("v.png").contains("--layers"));
+        window->view()->settings.config.layers = 0;
+        window->view()->settings.config.moments = OIT_MOMENTS_DEFAULT;
+        window->settings_changed();
+        frame();
+    }
+
     void opacity_slider_changes_the_image()
     {
         QImage half = frame();
