@@ -204,9 +204,7 @@ class QualityMap:
         if not self.sweep:
             r.emit("Not measured (depth_sweep.json is missing).", "")
             return
-        rows = [x for x in self.rows(self.sweep) if x.get("max_list_reference") or x.get("layers_per_pixel")]
-        if not rows:
-            rows = self.rows(self.sweep)
+        rows = self.rows(self.sweep)
         # the depth of each scene: the longest list ll measured there
         depth = {x["scene"]: x.get("max_list") for x in rows if x["algorithm"] == "ll" and x.get("max_list")}
         labels = sorted({x["algorithm"] for x in rows}, key=label_order)

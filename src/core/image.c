@@ -218,6 +218,7 @@ oit_status oit_image_compare(const oit_image *a, const oit_image *b, int toleran
     double mse = (double)sum_squares / samples;
     out->max_channel_diff = max_diff;
     out->mean_diff = (double)sum / samples;
+    out->rmse = sqrt(mse);
     out->psnr_db = sum_squares == 0 ? INFINITY : 10.0 * log10(255.0 * 255.0 / mse);
     out->pixels_over_tolerance = over;
     out->share_over_tolerance = (double)over / (double)pixels;

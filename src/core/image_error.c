@@ -132,14 +132,7 @@ oit_status oit_image_error_compute(const oit_image *image, const oit_image *refe
     status = oit_image_compare(image, reference, 2, &diff, err);
     if (status != OIT_OK)
         return status;
-    size_t pixels = (size_t)image->width * (size_t)image->height;
-    uint64_t sum_squares = 0;
-    for (size_t i = 0; i < pixels; ++i)
-        for (int c = 0; c < 3; ++c) {
-            int d = (int)image->rgba[i * 4 + c] - (int)reference->rgba[i * 4 + c];
-            sum_squares += (uint64_t)(d * d);
-        }
-    out->rmse = sqrt((double)sum_squares / ((double)pixels * 3.0));
+    out->rmse = diff.rmse;
     out->psnr_db = diff.psnr_db;
     out->max = diff.max_channel_diff;
     out->share_over_2 = 100.0 * diff.share_over_tolerance;

@@ -162,6 +162,7 @@ oit_status oit_png_read(const char *path, oit_image *image, oit_error *err);
 typedef struct oit_image_diff {
     int max_channel_diff;        /* largest |a - b| over RGB channels, 0..255 */
     double mean_diff;            /* mean |a - b| over RGB channels */
+    double rmse;                 /* root mean square of a - b over RGB channels */
     double psnr_db;              /* INFINITY when identical */
     double share_over_tolerance; /* share of pixels with any channel diff > tolerance, 0..1 */
     long pixels_over_tolerance;
