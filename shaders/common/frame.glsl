@@ -1,6 +1,7 @@
 // frame.glsl: the per-frame uniforms every pass may use, at the locations of
 // oit_shared.h. oit_gl_set_frame_uniforms() (gl_util.c) sets them by these names.
 #include "common/oit_shared.h"
+#include "common/variants.glsl"
 
 layout(location = OIT_UNIFORM_MODELVIEW) uniform mat4 u_modelview;
 layout(location = OIT_UNIFORM_PROJECTION) uniform mat4 u_projection;

@@ -51,7 +51,11 @@
 #define OIT_TEXUNIT_LL_NEXT 17         /* usamplerBuffer r32ui over next */
 #define OIT_TEXUNIT_LL_SORTED_NEXT 18  /* usamplerBuffer r32ui over sorted next */
 /* ll counters (uint, OIT_SSBO_FRAME_COUNTERS): [0..3] as OIT_FRAME_COUNTER_*, then: */
-#define OIT_LL_COUNTER_PSI_PIXELS 4  /* non-empty pixels whose list is longer than 2/3 of the longest */
+/* (ll leaves [2] unused: its non-empty pixels are the histogram's sum) */
+/* non-empty pixels whose list is longer than 2/3 of the longest, counted by
+ * compose only when the longest list is in the histogram's open last bin;
+ * otherwise the C side sums the histogram's bins above 2/3 of the longest */
+#define OIT_LL_COUNTER_PSI_PIXELS 4
 #define OIT_LL_COUNTER_HISTOGRAM 5   /* OIT_LL_HISTOGRAM_BINS bins: pixels per list length (bin 0 unused) */
 #define OIT_LL_HISTOGRAM_BINS 65     /* == OIT_HISTOGRAM_BINS in oit.h: lengths 0..63, then 64 or more */
 /* distance modulation: floatBitsToUint of the frame's largest distance */
@@ -60,9 +64,11 @@
  * high word of the frame's 64-bit fragment count (a frame past
  * OIT_MAX_FRAME_FRAGMENTS is an error, never a wrapped index) */
 #define OIT_LL_COUNTER_FRAGMENTS_WRAPS 71
-/* fragments the sort walked, summed over pixels: fewer than were stored means
- * a shader loop was cut short (llvmpipe ends a loop after 65535 iterations),
- * and the frame is an error, not an image missing fragments */
+/* fragments the sort walked in lists of the histogram's open last bin (64 or
+ * more); with sum(length * pixels) over the other bins, the fragments sorted.
+ * Fewer than were stored means a shader loop was cut short (llvmpipe ends a
+ * loop after 65535 iterations), and the frame is an error, not an image
+ * missing fragments */
 #define OIT_LL_COUNTER_SORTED_FRAGMENTS 72
 #define OIT_LL_COUNTER_COUNT 73
 /* ll compose: what it shows (the numbers of oit_view) and its parameter (int) */

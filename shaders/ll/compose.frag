@@ -1,13 +1,16 @@
 // compose.frag: walk each pixel's sorted list and composite front to back in
 // float; the RGBA8 output is written once. Full-screen pass. Also counts the
-// pixels whose list is longer than 2/3 of the longest (psi), and shows the
+// pixels whose list is longer than 2/3 of the longest (psi) when the sort's
+// histogram cannot tell (ll_finish_sort in ll_nodes.glsl), and shows the
 // buffer views: list-length heat map, peel limit (first N fragments), layer
 // (fragment number L only). With the distance modulation (u_distance_mode >= 0)
 // a fragment's opacity is saturate(distance along the ray / norm) times its
 // local factor (stored in alpha by the fill): to fragment i+1 (adjacent), i+k
 // (skip, or the last) or the last (far end); the last fragment's is 0. With an
 // automatic region a first run of this pass (distance_pass 1) only finds the
-// frame's largest distance.
+// frame's largest distance. Empty pixels are discarded: the C side clears the
+// output to the background first. The views and the distance modulation are
+// compiled in only in the variant that uses them (common/variants.glsl).
 #extension GL_ARB_ES3_1_compatibility : enable
 #include "common/oit_shared.h"
 #include "common/frame.glsl"
@@ -54,10 +57,13 @@ void main()
         out_colour = vec4(0.0); // discarded anyway; skipping the walk also saves time
         return;
     }
+    uint head = imageLoad(ll_heads, ivec2(gl_FragCoord.xy)).x;
+    if (head == OIT_LIST_END)
+        discard; // LL_EMPTY_PIXEL_DISCARD (ll_nodes.glsl): the output holds the background
+#if OIT_VARIANT_DISTANCE
     if (distance_pass == 1) { // the frame's largest distance only
         float largest = 0.0;
-        for (uint node = imageLoad(ll_heads, ivec2(gl_FragCoord.xy)).x; node != OIT_LIST_END;
-             node = ll_sorted_next_fetch(node))
+        for (uint node = head; node != OIT_LIST_END; node = ll_sorted_next_fetch(node))
             largest = max(largest, ll_distance(node));
         if (largest > 0.0)
             atomicMax(ll_counters[OIT_LL_COUNTER_MAX_DISTANCE], floatBitsToUint(largest));
@@ -69,27 +75,37 @@ void main()
         float largest = uintBitsToFloat(ll_counters[OIT_LL_COUNTER_MAX_DISTANCE]);
         norm = largest > 0.0 ? largest : 1.0;
     }
+#endif
+#if OIT_VARIANT_VIEWS
     uint first = view == OIT_LL_VIEW_LAYER ? uint(max(view_parameter, 0)) : 0u;
     uint end = view == OIT_LL_VIEW_PEEL_LIMIT ? uint(max(view_parameter, 0))
              : view == OIT_LL_VIEW_LAYER ? first + 1u : OIT_LIST_END;
+#endif
     vec3 colour = vec3(0.0);
     float transmittance = 1.0;
     uint length = 0u;
-    for (uint node = imageLoad(ll_heads, ivec2(gl_FragCoord.xy)).x; node != OIT_LIST_END;
-         node = ll_sorted_next_fetch(node), ++length) {
+    for (uint node = head; node != OIT_LIST_END; node = ll_sorted_next_fetch(node), ++length) {
+#if OIT_VARIANT_VIEWS
         if (length < first || length >= end)
             continue; // still walked: psi needs the length
+#endif
         vec4 fragment = ll_node_colour(ll_node_fetch(node));
+#if OIT_VARIANT_DISTANCE
         if (u_distance_mode >= 0)
             fragment.a = clamp(ll_distance(node) / norm, 0.0, 1.0) * fragment.a;
+#endif
         colour += transmittance * fragment.a * fragment.rgb;
         transmittance *= 1.0 - fragment.a;
     }
     uint longest = ll_counters[OIT_FRAME_COUNTER_MAX_LIST];
-    if (length > 0u && 3u * length > 2u * longest)
+    // psi: the C side has it from the histogram unless the longest list is in its open last bin
+    if (longest >= uint(OIT_LL_HISTOGRAM_BINS - 1) && 3u * length > 2u * longest)
         atomicAdd(ll_counters[OIT_LL_COUNTER_PSI_PIXELS], 1u);
-    if (view == OIT_LL_VIEW_HEATMAP)
-        out_colour = vec4(length == 0u ? u_background : heat(float(length) / float(max(longest, 1u))), 1.0);
-    else
-        out_colour = vec4(colour + transmittance * u_background, 1.0);
+#if OIT_VARIANT_VIEWS
+    if (view == OIT_LL_VIEW_HEATMAP) {
+        out_colour = vec4(heat(float(length) / float(max(longest, 1u))), 1.0);
+        return;
+    }
+#endif
+    out_colour = vec4(colour + transmittance * u_background, 1.0);
 }

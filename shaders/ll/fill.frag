@@ -18,8 +18,10 @@ void main()
     vec4 colour = oit_shade_fragment();
     if (colour.a <= 0.0)
         return; // hidden parts (opacity 0) are not stored
+#if OIT_VARIANT_DISTANCE
     if (u_distance_mode >= 0) // distance modulation: compose sets alpha; keep the local factor
         colour.a = oit_local_alpha(1.0, v_component, v_eye_position);
+#endif
     uint node = atomicAdd(ll_counters[OIT_FRAME_COUNTER_FRAGMENTS], 1u);
     if (node == 0xFFFFFFFFu) // the counter wrapped to 0: its high word, so the C side sees
         atomicAdd(ll_counters[OIT_LL_COUNTER_FRAGMENTS_WRAPS], 1u); // the 64-bit count

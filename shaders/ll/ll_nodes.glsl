@@ -17,6 +17,13 @@
 #define LL_HELPER_INVOCATION false
 #endif
 
+// LL_EMPTY_PIXEL_DISCARD: the full-screen passes discard a pixel whose list is
+// empty, before any other work, rather than return. llvmpipe runs a shader on
+// 8 pixels at once and runs every statement for all of them with a mask: a
+// `return` skips nothing, but a discard that kills all 8 ends the shader
+// there. On a frame where most pixels are empty that is most of the pass
+// (docs/algorithms.md, "Where ll's time goes"); a GPU skips them as well.
+
 // Node i: x = packUnorm2x16(r, g), y = packUnorm2x16(b, a), z = depth bits, w = triangle.
 layout(std430, binding = OIT_SSBO_FRAGMENT_NODES) buffer ll_node_buffer {
     uvec4 ll_nodes[];
@@ -99,18 +106,24 @@ uint ll_sort_in_place(uint head, out uint length)
 }
 
 // What every sort variant does after sorting a pixel: store the sorted head
-// and count the figures reported in the statistics (empty pixels are not
-// counted: the C side knows them as pixels - non-empty).
+// and count the pixel into the statistics with as few atomics as the figures
+// allow: one histogram increment; the longest list only when this one is longer
+// than the longest so far (a stale read only costs an extra atomicMax: the
+// value never falls); the fragments only of lists in the open last bin. The C
+// side derives the non-empty pixels, the fragments sorted (checked against the
+// fill) and psi from the histogram. Every atomic on this one shared buffer was
+// what a short list's sort waited on: llvmpipe's two threads pass its cache
+// lines back and forth (docs/algorithms.md, "Where ll's time goes"). Empty
+// pixels never get here (LL_EMPTY_PIXEL_DISCARD).
 void ll_finish_sort(ivec2 pixel, uint sorted_head, uint length)
 {
     imageStore(ll_heads, pixel, uvec4(sorted_head, 0u, 0u, 0u));
-    if (length > 0u) {
-        atomicAdd(ll_counters[OIT_LL_COUNTER_SORTED_FRAGMENTS], length); // checked against the fill
+    uint bin = min(length, uint(OIT_LL_HISTOGRAM_BINS - 1));
+    atomicAdd(ll_counters[OIT_LL_COUNTER_HISTOGRAM + bin], 1u);
+    if (length > ll_counters[OIT_FRAME_COUNTER_MAX_LIST])
         atomicMax(ll_counters[OIT_FRAME_COUNTER_MAX_LIST], length);
-        atomicAdd(ll_counters[OIT_FRAME_COUNTER_NONEMPTY_PIXELS], 1u);
-        uint bin = min(length, uint(OIT_LL_HISTOGRAM_BINS - 1));
-        atomicAdd(ll_counters[OIT_LL_COUNTER_HISTOGRAM + bin], 1u);
-    }
+    if (bin == uint(OIT_LL_HISTOGRAM_BINS - 1))
+        atomicAdd(ll_counters[OIT_LL_COUNTER_SORTED_FRAGMENTS], length);
 }
 
 #endif

@@ -9,7 +9,10 @@ void main()
     if (LL_HELPER_INVOCATION)
         return;
     ivec2 pixel = ivec2(gl_FragCoord.xy);
+    uint head = imageLoad(ll_heads, pixel).x;
+    if (head == OIT_LIST_END)
+        discard; // LL_EMPTY_PIXEL_DISCARD (ll_nodes.glsl)
     uint length;
-    uint sorted_head = ll_sort_in_place(imageLoad(ll_heads, pixel).x, length);
+    uint sorted_head = ll_sort_in_place(head, length);
     ll_finish_sort(pixel, sorted_head, length);
 }

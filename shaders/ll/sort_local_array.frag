@@ -12,6 +12,8 @@ void main()
         return;
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint head = imageLoad(ll_heads, pixel).x;
+    if (head == OIT_LIST_END)
+        discard; // LL_EMPTY_PIXEL_DISCARD (ll_nodes.glsl)
 
     uint nodes[OIT_LOCAL_ARRAY_CAPACITY];
     float depths[OIT_LOCAL_ARRAY_CAPACITY];

@@ -32,12 +32,16 @@
  *            Two programs: in-place insertion sort over the lists (thesis
  *            algorithm 10), or insertion sort in a local array of
  *            OIT_LOCAL_ARRAY_CAPACITY that falls back to the in-place sort for
- *            longer lists, so every pixel stays exact. The fragments it walked
- *            are summed: fewer than stored (a shader loop cut short, as
- *            llvmpipe does after 65535 iterations) fails the frame.
+ *            longer lists, so every pixel stays exact. Each pixel is counted
+ *            into the list-length histogram (one atomic; the longest list
+ *            and the open last bin's fragments as needed): fewer fragments
+ *            sorted than stored (a shader loop cut short, as llvmpipe does
+ *            after 65535 iterations) fails the frame.
  *   compose  full-screen pass: walks the sorted lists, composites front to back
  *            in float and writes the RGBA8 output once (or shows a buffer view:
- *            heat map, peel limit, layer).
+ *            heat map, peel limit, layer). The output is cleared to the
+ *            background first: sort and compose discard the empty pixels, which
+ *            is what lets llvmpipe skip them (ll_nodes.glsl).
  *
  * Statistics: fragments = fragments stored; overflow_retries = fills repeated
  * in this frame; memory_bytes = output + heads + pool (at its capacity, headroom
@@ -61,6 +65,10 @@
 
 _Static_assert(OIT_LL_HISTOGRAM_BINS == OIT_HISTOGRAM_BINS, "oit_shared.h and oit.h disagree");
 
+enum { LL_PLAIN, LL_GENERAL, LL_VARIANT_COUNT };
+static const char *const ll_variant_defines[LL_VARIANT_COUNT] = {
+    "#define OIT_VARIANT_DISTANCE 0\n#define OIT_VARIANT_VIEWS 0\n", NULL};
+
 typedef struct ll_state {
     oit_algorithm_config config; /* config.shader_dir points at shader_dir below */
     char *shader_dir;
@@ -68,9 +76,12 @@ typedef struct ll_state {
     oit_gl_memory memory; /* every buffer and texture below and the output (gl_util.h) */
     oit_stage_timer timer;
 
-    GLuint fill_program;
+    /* fill and compose in two variants (common/variants.glsl): [LL_PLAIN] the
+     * colour image without the distance modulation, compiled at create;
+     * [LL_GENERAL] every view and the distance modulation, on first use */
+    GLuint fill_programs[LL_VARIANT_COUNT];
     GLuint sort_program; /* the variant config.ll_sort selects */
-    GLuint compose_program;
+    GLuint compose_programs[LL_VARIANT_COUNT];
 
     GLuint head_image;
     GLuint node_buffer, next_buffer, sorted_next_buffer;
@@ -176,9 +187,11 @@ static void ll_destroy(oit_algorithm *alg)
     ll_state *s = ll_from(alg);
     if (!s)
         return;
-    glDeleteProgram(s->fill_program);
+    for (int variant = 0; variant < LL_VARIANT_COUNT; ++variant) {
+        glDeleteProgram(s->fill_programs[variant]);
+        glDeleteProgram(s->compose_programs[variant]);
+    }
     glDeleteProgram(s->sort_program);
-    glDeleteProgram(s->compose_program);
     GLuint textures[] = {s->head_image, s->node_texture, s->next_texture, s->sorted_next_texture};
     oit_gl_memory_delete_textures(&s->memory, 4, textures);
     GLuint buffers[] = {s->node_buffer, s->next_buffer, s->sorted_next_buffer, s->counter_buffer};
@@ -187,6 +200,24 @@ static void ll_destroy(oit_algorithm *alg)
     oit_timer_destroy(&s->timer);
     free(s->shader_dir);
     free(s);
+}
+
+/* The fill and compose programs of `variant`, compiled on first use. */
+static oit_status ll_programs(ll_state *s, int variant, GLuint *fill, GLuint *compose,
+                              oit_error *err)
+{
+    oit_status status = OIT_OK;
+    if (!s->fill_programs[variant])
+        status = oit_gl_program_variant(s->shader_dir, "common/geometry.vert", "ll/fill.frag",
+                                        ll_variant_defines[variant], &s->fill_programs[variant],
+                                        err);
+    if (status == OIT_OK && !s->compose_programs[variant])
+        status = oit_gl_program_variant(s->shader_dir, "common/fullscreen.vert", "ll/compose.frag",
+                                        ll_variant_defines[variant],
+                                        &s->compose_programs[variant], err);
+    *fill = s->fill_programs[variant];
+    *compose = s->compose_programs[variant];
+    return status;
 }
 
 static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **out,
@@ -215,14 +246,11 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
     const char *sort_shader = config->ll_sort == OIT_LL_SORT_LOCAL_ARRAY
                                   ? "ll/sort_local_array.frag"
                                   : "ll/sort_insertion.frag";
-    oit_status status = oit_gl_program(s->shader_dir, "common/geometry.vert", "ll/fill.frag",
-                                       &s->fill_program, err);
+    GLuint unused;
+    oit_status status = ll_programs(s, LL_PLAIN, &unused, &unused, err);
     if (status == OIT_OK)
         status = oit_gl_program(s->shader_dir, "common/fullscreen.vert", sort_shader,
                                 &s->sort_program, err);
-    if (status == OIT_OK)
-        status = oit_gl_program(s->shader_dir, "common/fullscreen.vert", "ll/compose.frag",
-                                &s->compose_program, err);
     if (status != OIT_OK) {
         ll_destroy((oit_algorithm *)s);
         return status;
@@ -340,7 +368,7 @@ static oit_status ll_check(const ll_state *s, const char *stage, oit_error *err)
 }
 
 /* Clear heads and counters, then draw every fragment into the lists. */
-static void ll_clear_and_fill(ll_state *s, const oit_scene *scene,
+static void ll_clear_and_fill(ll_state *s, GLuint fill_program, const oit_scene *scene,
                               const oit_frame_settings *frame, int retry)
 {
     oit_timer_stage_begin(&s->timer, retry ? "clear_retry" : "clear");
@@ -356,7 +384,7 @@ static void ll_clear_and_fill(ll_state *s, const oit_scene *scene,
                     GL_TEXTURE_FETCH_BARRIER_BIT);
 
     oit_timer_stage_begin(&s->timer, retry ? "fill_retry" : "fill");
-    glUseProgram(s->fill_program);
+    glUseProgram(fill_program);
     oit_gl_set_frame_uniforms(frame);
     glUniform1ui(OIT_UNIFORM_LL_POOL_CAPACITY, (GLuint)s->pool_capacity);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -381,6 +409,17 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
             return status;
     }
 
+    /* the plain variant unless the frame needs a view or the distance modulation */
+    GLuint fill_program, compose_program;
+    status = ll_programs(s,
+                         frame->modulation.view == OIT_VIEW_COLOUR &&
+                                 frame->modulation.mode != OIT_MODULATE_DISTANCE
+                             ? LL_PLAIN
+                             : LL_GENERAL,
+                         &fill_program, &compose_program, err);
+    if (status != OIT_OK)
+        return status;
+
     oit_stats stats;
     oit_stats_reset(&stats);
     oit_timer_frame_begin(&s->timer, frame);
@@ -399,7 +438,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     int retries = 0;
     uint64_t needed = 0;
     for (;;) {
-        ll_clear_and_fill(s, scene, frame, retries);
+        ll_clear_and_fill(s, fill_program, scene, frame, retries);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         /* the fill's 64-bit count: the counter and the times it wrapped */
         GLuint low = 0, wraps = 0;
@@ -448,7 +487,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
         oit_timer_stage_begin(&s->timer, "distance_max");
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
-        glUseProgram(s->compose_program);
+        glUseProgram(compose_program);
         oit_gl_set_frame_uniforms(frame);
         glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view);
         glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
@@ -462,12 +501,15 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     oit_timer_stage_begin(&s->timer, "compose");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
-    glUseProgram(s->compose_program);
+    glUseProgram(compose_program);
     oit_gl_set_frame_uniforms(frame);
     glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, auto_region ? 2 : 0);
     glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view); /* numbers of OIT_LL_VIEW_* */
     glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    /* compose discards the empty pixels (LL_EMPTY_PIXEL_DISCARD in ll_nodes.glsl): they keep this */
+    glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
     oit_gl_draw_fullscreen(&s->output);
     oit_timer_stage_end(&s->timer);
     status = ll_check(s, "ll compose", err);
@@ -483,9 +525,26 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     glUseProgram(0);
     oit_timer_frame_end(&s->timer, &stats);
+    /* The sort counts each pixel in the histogram only (ll_finish_sort in
+     * ll_nodes.glsl): non-empty pixels, fragments sorted and psi come from it;
+     * lists in the open last bin have their own fragment sum and psi count. */
+    const int open_bin = OIT_HISTOGRAM_BINS - 1;
+    const uint64_t longest = counters[OIT_FRAME_COUNTER_MAX_LIST];
+    uint64_t non_empty = 0, sorted = counters[OIT_LL_COUNTER_SORTED_FRAGMENTS], psi_pixels = 0;
+    for (uint64_t bin = 1; bin < OIT_HISTOGRAM_BINS; ++bin) {
+        const uint64_t bin_pixels = counters[OIT_LL_COUNTER_HISTOGRAM + bin];
+        non_empty += bin_pixels;
+        if (bin < (uint64_t)open_bin) {
+            sorted += bin * bin_pixels;
+            if (3 * bin > 2 * longest)
+                psi_pixels += bin_pixels;
+        }
+    }
+    if (longest >= (uint64_t)open_bin)
+        psi_pixels = counters[OIT_LL_COUNTER_PSI_PIXELS]; /* compose counted them */
     /* the fill stored nodes fragment_counter_start..needed - 1 (0 but in tests) */
-    status = oit_gl_check_sorted_fragments("ll", needed - s->config.fragment_counter_start,
-                                           counters[OIT_LL_COUNTER_SORTED_FRAGMENTS], err);
+    status = oit_gl_check_sorted_fragments("ll", needed - s->config.fragment_counter_start, sorted,
+                                           err);
     if (status != OIT_OK)
         return status;
 
@@ -495,9 +554,8 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     stats.max_list = counters[OIT_FRAME_COUNTER_MAX_LIST];
     stats.overflow_retries = retries; /* this frame's */
     const uint64_t pixels = (uint64_t)s->output.width * (uint64_t)s->output.height;
-    const uint64_t non_empty = counters[OIT_FRAME_COUNTER_NONEMPTY_PIXELS];
     stats.mean_list = non_empty ? (double)stats.fragments / (double)non_empty : 0.0;
-    stats.psi = non_empty ? (double)counters[OIT_LL_COUNTER_PSI_PIXELS] / (double)non_empty : 0.0;
+    stats.psi = non_empty ? (double)psi_pixels / (double)non_empty : 0.0;
     stats.histogram_bins = OIT_HISTOGRAM_BINS;
     stats.list_histogram[0] = pixels - non_empty;
     for (int bin = 1; bin < OIT_HISTOGRAM_BINS; ++bin)

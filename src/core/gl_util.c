@@ -153,13 +153,14 @@ static oit_status expand_file(shader_source *source, const char *shader_dir,
     return status;
 }
 
-static oit_status compile_shader(const char *shader_dir, const char *path, GLenum type,
-                                 GLuint *out, oit_error *err)
+static oit_status compile_shader(const char *shader_dir, const char *path, const char *defines,
+                                 GLenum type, GLuint *out, oit_error *err)
 {
     *out = 0;
     shader_source source = {0};
     oit_status status = OIT_OK;
-    if (!source_append(&source, "#version 430 core\n", 18))
+    if (!source_append(&source, "#version 430 core\n", 18) ||
+        (defines && !source_append(&source, defines, strlen(defines))))
         status = oit_fail(err, OIT_E_RUNTIME, "shader %s: out of memory", path);
     if (status == OIT_OK)
         status = expand_file(&source, shader_dir, path, NULL, 0, err);
@@ -181,8 +182,8 @@ static oit_status compile_shader(const char *shader_dir, const char *path, GLenu
                                      i, source.files[i]);
         char log[OIT_ERROR_MESSAGE_SIZE];
         glGetShaderInfoLog(shader, sizeof log, NULL, log);
-        status = oit_fail(err, OIT_E_RUNTIME, "compile error in %s (sources %s): %s", path, files,
-                          log);
+        status = oit_fail(err, OIT_E_RUNTIME, "compile error in %s%s%s (sources %s): %s", path,
+                          defines ? " with " : "", defines ? defines : "", files, log);
         glDeleteShader(shader);
         shader = 0;
     }
@@ -218,12 +219,21 @@ static oit_status link_program(GLuint *shaders, int shader_count, const char *de
 oit_status oit_gl_program(const char *shader_dir, const char *vertex_path,
                           const char *fragment_path, GLuint *out, oit_error *err)
 {
+    return oit_gl_program_variant(shader_dir, vertex_path, fragment_path, NULL, out, err);
+}
+
+oit_status oit_gl_program_variant(const char *shader_dir, const char *vertex_path,
+                                  const char *fragment_path, const char *defines, GLuint *out,
+                                  oit_error *err)
+{
     *out = 0;
     GLuint shaders[2] = {0, 0};
-    oit_status status = compile_shader(shader_dir, vertex_path, GL_VERTEX_SHADER, &shaders[0], err);
+    oit_status status =
+        compile_shader(shader_dir, vertex_path, defines, GL_VERTEX_SHADER, &shaders[0], err);
     if (status != OIT_OK)
         return status;
-    status = compile_shader(shader_dir, fragment_path, GL_FRAGMENT_SHADER, &shaders[1], err);
+    status =
+        compile_shader(shader_dir, fragment_path, defines, GL_FRAGMENT_SHADER, &shaders[1], err);
     if (status != OIT_OK) {
         glDeleteShader(shaders[0]);
         return status;
@@ -238,7 +248,8 @@ oit_status oit_gl_compute_program(const char *shader_dir, const char *compute_pa
 {
     *out = 0;
     GLuint shader = 0;
-    oit_status status = compile_shader(shader_dir, compute_path, GL_COMPUTE_SHADER, &shader, err);
+    oit_status status =
+        compile_shader(shader_dir, compute_path, NULL, GL_COMPUTE_SHADER, &shader, err);
     if (status != OIT_OK)
         return status;
     return link_program(&shader, 1, compute_path, out, err);

@@ -19,6 +19,14 @@
  * order of first inclusion; compile errors list that numbering with the log. */
 oit_status oit_gl_program(const char *shader_dir, const char *vertex_path,
                           const char *fragment_path, GLuint *out, oit_error *err);
+/* The same sources with `defines` ("#define NAME VALUE\n" lines, or NULL) right
+ * after the #version line: the program variants of common/variants.glsl. A pass
+ * leaves out, at compile time, a feature the frame does not use, rather than
+ * branch on a uniform: llvmpipe runs both sides of every branch, uniform or
+ * not, so a feature compiled in costs its full price when it is off. */
+oit_status oit_gl_program_variant(const char *shader_dir, const char *vertex_path,
+                                  const char *fragment_path, const char *defines, GLuint *out,
+                                  oit_error *err);
 oit_status oit_gl_compute_program(const char *shader_dir, const char *compute_path, GLuint *out,
                                   oit_error *err);
 
