@@ -277,11 +277,18 @@
 #define OIT_TEXUNIT_TIE_PREVIOUS 22
 #define OIT_DP_TIE_LOCATION 2
 #define OIT_SSBO_IB_TRIANGLES 13       /* the triangle table, written by ib/triangles.comp */
+/* the tiles (OIT_IB_TILE_SIZE squared pixels) that hold fragments, one uint each
+ * (x | y << 16, in tiles), appended by ib/sort.comp: the per-pixel passes of the
+ * construction run over these instead of the whole image (ib/tiles.glsl) */
+#define OIT_SSBO_IB_TILES 14
+#define OIT_IB_TILE_SIZE 8
 #define OIT_IB_TRIANGLE_BYTES 32       /* ids (3 uint) + component, eye-space plane (4 float) */
 #define OIT_IB_NODE_BYTES 16
 #define OIT_IB_RUN_CORE_BYTES 16
 #define OIT_IB_RUN_LINKS_BYTES 8
-/* ib counters (uint): [0..2] as OIT_FRAME_COUNTER_*, then: */
+/* ib counters (uint): [0..1] as OIT_FRAME_COUNTER_* ([2] unused: the non-empty
+ * pixels are the histogram's bins 1.., which the sort counts for non-empty
+ * pixels only; bin 0 is the C side's pixels - non-empty), then: */
 #define OIT_IB_COUNTER_RUN_ALLOCATOR 3
 #define OIT_IB_COUNTER_PSI_PIXELS 4
 #define OIT_IB_COUNTER_FOUR_NEIGHBOURS 5
@@ -305,7 +312,11 @@
 #define OIT_IB_COUNTER_LINKS_WRAPS 80
 #define OIT_IB_COUNTER_SYMMETRIC_LINKS_WRAPS 81
 #define OIT_IB_COUNTER_SAME_COMPONENT_LINKS_WRAPS 82
-#define OIT_IB_COUNTER_COUNT 83
+/* the tile list's length, and its work-group counts (x, y, z) for
+ * glDispatchComputeIndirect, written by ib/tiles_dispatch.comp */
+#define OIT_IB_COUNTER_TILES 83
+#define OIT_IB_COUNTER_TILE_DISPATCH 84
+#define OIT_IB_COUNTER_COUNT 87
 /* a neighbour slot without a neighbour */
 #define OIT_IB_NO_NEIGHBOUR 65535
 /* the longest run (a pixel's list) whose layers a 16-bit link addresses:

@@ -4,12 +4,13 @@
 // neighbour and f is g's left one), links that stay on the same component.
 // Diagnostics: runs only with oit_algorithm_config.neighbour_quality (Psi is
 // counted by compose.frag).
-// Compute pass, one invocation per pixel; reads through the buffer textures,
-// the neighbouring runs' starts are loaded once per pixel.
+// Compute pass, one invocation per pixel of the tiles with fragments
+// (ib/tiles.glsl); reads through the buffer textures, the neighbouring runs'
+// starts are loaded once per pixel.
 #include "common/oit_shared.h"
-#include "ib/ib_common.glsl"
+#include "ib/tiles.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = OIT_IB_TILE_SIZE, local_size_y = OIT_IB_TILE_SIZE) in;
 
 // counters[low] += value, carrying into counters[high] when the low word wraps
 void add64(int low, int high, uint value)
@@ -21,8 +22,8 @@ void add64(int low, int high, uint value)
 
 void main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (!ib_inside(pixel))
+    ivec2 pixel;
+    if (!ib_tile_pixel(pixel) || !ib_inside(pixel))
         return;
     uint run_length = ib_run_length(pixel);
     if (run_length == 0u)

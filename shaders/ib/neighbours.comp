@@ -19,16 +19,17 @@
 // neighbours_epsilon.comp searches them: llvmpipe runs a branch's body for all
 // 8 lanes (masked) when any lane takes it, so a rare, costly branch is cheaper
 // as a pass over the few fragments that need it.
-// Compute pass, one invocation per pixel.
+// Compute pass, one invocation per pixel of the tiles with fragments (ib/tiles.glsl).
 #include "common/oit_shared.h"
 #include "ib/neighbour_search.glsl"
+#include "ib/tiles.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = OIT_IB_TILE_SIZE, local_size_y = OIT_IB_TILE_SIZE) in;
 
 void main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (!ib_inside(pixel))
+    ivec2 pixel;
+    if (!ib_tile_pixel(pixel) || !ib_inside(pixel))
         return;
     uint run_length = ib_run_length(pixel);
     if (run_length == 0u)

@@ -82,6 +82,7 @@ enum ib_program {
     IB_NEIGHBOURS,
     IB_NEIGHBOURS_EPSILON,
     IB_EPSILON_DISPATCH,
+    IB_TILES_DISPATCH,
     IB_NEIGHBOUR_STATS,
     IB_FIELDS,
     IB_DIFFUSION,
@@ -97,7 +98,7 @@ enum ib_program {
  * on llvmpipe; compute invocations have no quad or helper semantics.) */
 static const char *const ib_shaders[IB_PROGRAM_COUNT] = {
     "ib/fill.frag",      "ib/sort.comp",      "ib/triangles.comp", "ib/neighbours.comp",
-    "ib/neighbours_epsilon.comp", "ib/epsilon_dispatch.comp",
+    "ib/neighbours_epsilon.comp", "ib/epsilon_dispatch.comp", "ib/tiles_dispatch.comp",
     "ib/neighbour_stats.comp", "ib/fields_init.comp", "ib/diffusion.comp",
     "ib/blur.comp",      "ib/curvature_distance.comp", "ib/compose.frag",
 };
@@ -115,6 +116,8 @@ typedef struct ib_state {
     GLuint counter_buffer, param_buffer;
     /* the triangle table (ib/triangles.comp): 2 uvec4 per triangle */
     GLuint triangle_buffer;
+    /* the tiles with fragments (ib/tiles.glsl): one uint per tile of the image */
+    GLuint tile_buffer;
     uint64_t triangle_capacity;
     /* read-only buffer-texture views of core, links and the triangle table */
     GLuint core_texture, links_texture, triangle_texture, core_words_texture;
@@ -214,9 +217,9 @@ static void ib_destroy(oit_algorithm *alg)
                          s->triangle_texture, s->core_words_texture, s->nodes_texture,
                          s->components_texture, s->triangle_reach_texture};
     oit_gl_memory_delete_textures(&s->memory, 9, textures);
-    GLuint buffers[] = {s->node_buffer, s->core_buffer, s->links_buffer, s->counter_buffer,
-                        s->param_buffer, s->triangle_buffer};
-    oit_gl_memory_delete_buffers(&s->memory, 6, buffers);
+    GLuint buffers[] = {s->node_buffer,  s->core_buffer,     s->links_buffer, s->counter_buffer,
+                        s->param_buffer, s->triangle_buffer, s->tile_buffer};
+    oit_gl_memory_delete_buffers(&s->memory, 7, buffers);
     oit_gl_output_release(&s->output);
     oit_timer_destroy(&s->timer);
     free(s->shader_dir);
@@ -274,14 +277,15 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     if (s->gl_fragment_limit > s->gl_texel_limit / 4u)
         s->gl_fragment_limit = s->gl_texel_limit / 4u;
 
-    GLuint buffers[6];
-    glGenBuffers(6, buffers);
+    GLuint buffers[7];
+    glGenBuffers(7, buffers);
     s->node_buffer = buffers[0];
     s->core_buffer = buffers[1];
     s->links_buffer = buffers[2];
     s->counter_buffer = buffers[3];
     s->param_buffer = buffers[4];
     s->triangle_buffer = buffers[5];
+    s->tile_buffer = buffers[6];
     GLuint buffer_textures[7];
     glGenTextures(7, buffer_textures);
     s->core_texture = buffer_textures[0];
@@ -318,6 +322,11 @@ static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error
         oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
     s->count_image =
         oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+    const uint64_t tiles = (uint64_t)((width + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE) *
+                           (uint64_t)((height + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE);
+    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER,
+                              s->tile_buffer, (GLsizeiptr)(tiles * sizeof(GLuint)), NULL,
+                              GL_DYNAMIC_COPY);
 
     uint64_t initial = s->config.initial_fragment_capacity
                            ? s->config.initial_fragment_capacity
@@ -473,6 +482,7 @@ static void ib_bind(const ib_state *s, const oit_scene *scene)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_RUN_LINKS, s->links_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_COUNTERS, s->counter_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_PARAMS, s->param_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_TILES, s->tile_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_INDICES, scene->index_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_POSITIONS, scene->vertex_buffers[0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_VERTEX_COMPONENT,
@@ -608,6 +618,19 @@ static void ib_pass(ib_state *s, enum ib_program p, const oit_frame_settings *fr
         glDispatchCompute((GLuint)(s->output.width + 7) / 8, (GLuint)(s->output.height + 7) / 8, 1);
 }
 
+/* A per-pixel pass of program p over the tiles with fragments only (ib/tiles.glsl):
+ * the work-group counts tiles_dispatch.comp wrote after the sort. */
+static void ib_tile_pass(ib_state *s, enum ib_program p, const oit_frame_settings *frame)
+{
+    ib_barrier();
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+    glUseProgram(s->programs[p]);
+    oit_gl_set_frame_uniforms(frame);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counter_buffer);
+    glDispatchComputeIndirect((GLintptr)(OIT_IB_COUNTER_TILE_DISPATCH * sizeof(GLuint)));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+}
+
 static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_frame_settings *frame,
                               int retry)
 {
@@ -644,11 +667,15 @@ static void ib_fill_stats(const ib_state *s, const GLuint *counters, int retries
         (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_FRAGMENTS) / (double)s->pool_capacity;
     stats->bytes_per_pixel =
         (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) / (double)pixels;
-    GLuint nonempty = counters[OIT_FRAME_COUNTER_NONEMPTY_PIXELS];
-    stats->mean_list = nonempty ? (double)stats->fragments / nonempty : 0.0;
-    stats->psi = nonempty ? (double)counters[OIT_IB_COUNTER_PSI_PIXELS] / nonempty : 0.0;
+    /* the sort counts non-empty pixels only (sort.comp): bin 0 is the rest */
+    uint64_t nonempty = 0;
+    for (int b = 1; b < OIT_HISTOGRAM_BINS; ++b)
+        nonempty += counters[OIT_IB_COUNTER_HISTOGRAM + b];
+    stats->mean_list = nonempty ? (double)stats->fragments / (double)nonempty : 0.0;
+    stats->psi = nonempty ? (double)counters[OIT_IB_COUNTER_PSI_PIXELS] / (double)nonempty : 0.0;
     stats->histogram_bins = OIT_HISTOGRAM_BINS;
-    for (int b = 0; b < OIT_HISTOGRAM_BINS; ++b)
+    stats->list_histogram[0] = pixels - nonempty;
+    for (int b = 1; b < OIT_HISTOGRAM_BINS; ++b)
         stats->list_histogram[b] = counters[OIT_IB_COUNTER_HISTOGRAM + b];
     if (!s->config.neighbour_quality)
         return; /* the neighbours_* figures stay n/a */
@@ -741,11 +768,14 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
 
     oit_timer_stage_begin(&s->timer, "sort");
     ib_pass(s, IB_SORT, frame, 0);
+    ib_barrier(); /* the tile count, into work-group counts for the tile passes */
+    glUseProgram(s->programs[IB_TILES_DISPATCH]);
+    glDispatchCompute(1, 1, 1);
     /* the triangle table, the index / welded search, then epsilon for the
      * fragments the first search queued (at most all of them) */
     oit_timer_stage_begin(&s->timer, "neighbours");
     ib_item_pass(s, IB_TRIANGLES, frame, scene->index_count / 3u);
-    ib_pass(s, IB_NEIGHBOURS, frame, 0);
+    ib_tile_pass(s, IB_NEIGHBOURS, frame);
     if (plan.params.search != OIT_NEIGHBOURS_INDEX) {
         /* a stage of its own: how much of the search the fallback costs is worth seeing */
         oit_timer_stage_begin(&s->timer, "neighbours_epsilon");
@@ -755,7 +785,7 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     if (s->config.neighbour_quality) {
         /* diagnostics, not part of the frame: oit bench and oit measure turn it off */
         oit_timer_stage_begin(&s->timer, "neighbour_stats");
-        ib_pass(s, IB_NEIGHBOUR_STATS, frame, 0);
+        ib_tile_pass(s, IB_NEIGHBOUR_STATS, frame);
     }
     status = ib_check(s, "ib neighbours", err);
     if (status != OIT_OK)
