@@ -41,7 +41,7 @@
  *            in float and writes the RGBA8 output once (or shows a buffer view:
  *            heat map, peel limit, layer). The output is cleared to the
  *            background first: sort and compose discard the empty pixels, which
- *            is what lets llvmpipe skip them (ll_nodes.glsl).
+ *            lets llvmpipe skip part of their work (ll_nodes.glsl).
  *
  * Statistics: fragments = fragments stored; overflow_retries = fills repeated
  * in this frame; memory_bytes = output + heads + pool (at its capacity, headroom
