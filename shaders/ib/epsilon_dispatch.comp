@@ -12,10 +12,6 @@ layout(local_size_x = 1) in;
 void main()
 {
     uint items = ib_counters[OIT_IB_COUNTER_EPSILON_ITEMS];
-    uint groups = (items + uint(OIT_IB_ITEMS_PER_GROUP) - 1u) / uint(OIT_IB_ITEMS_PER_GROUP);
-    uint x = min(groups, uint(OIT_IB_MAX_GROUPS_X));
-    uint y = x == 0u ? 1u : (groups + x - 1u) / x;
-    ib_counters[OIT_IB_COUNTER_EPSILON_DISPATCH] = x;
-    ib_counters[OIT_IB_COUNTER_EPSILON_DISPATCH + 1] = y;
-    ib_counters[OIT_IB_COUNTER_EPSILON_DISPATCH + 2] = 1u;
+    ib_write_dispatch((items + uint(OIT_IB_ITEMS_PER_GROUP) - 1u) / uint(OIT_IB_ITEMS_PER_GROUP),
+                      OIT_IB_COUNTER_EPSILON_DISPATCH);
 }

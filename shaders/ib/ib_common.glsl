@@ -75,6 +75,17 @@ layout(binding = OIT_TEXUNIT_IB_COMPONENTS) uniform samplerBuffer ib_components_
 layout(binding = OIT_TEXUNIT_IB_NODES) uniform usamplerBuffer ib_nodes_texture;
 layout(binding = OIT_TEXUNIT_IB_TRIANGLE_REACH) uniform samplerBuffer ib_triangle_reach_texture;
 
+// Work-group counts (x, y, 1) at counter `slot` for glDispatchComputeIndirect:
+// `groups` in rows of at most OIT_IB_MAX_GROUPS_X (epsilon_dispatch.comp,
+// tiles_dispatch.comp; the passes number their groups row by row).
+void ib_write_dispatch(uint groups, int slot)
+{
+    uint x = min(groups, uint(OIT_IB_MAX_GROUPS_X));
+    ib_counters[slot] = x;
+    ib_counters[slot + 1] = x == 0u ? 1u : (groups + x - 1u) / x;
+    ib_counters[slot + 2] = 1u;
+}
+
 uvec4 ib_core_fetch(uint slot) { return texelFetch(ib_core_texture, int(slot)); }
 // The component's material (as oit_components[component]: rgb colour, a opacity).
 vec4 ib_component_material(uint component) { return texelFetch(ib_components_texture, int(component)); }

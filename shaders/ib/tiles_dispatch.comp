@@ -9,10 +9,5 @@ layout(local_size_x = 1) in;
 
 void main()
 {
-    uint tiles = ib_counters[OIT_IB_COUNTER_TILES];
-    uint x = min(tiles, uint(OIT_IB_MAX_GROUPS_X));
-    uint y = x == 0u ? 1u : (tiles + x - 1u) / x;
-    ib_counters[OIT_IB_COUNTER_TILE_DISPATCH] = x;
-    ib_counters[OIT_IB_COUNTER_TILE_DISPATCH + 1] = y;
-    ib_counters[OIT_IB_COUNTER_TILE_DISPATCH + 2] = 1u;
+    ib_write_dispatch(ib_counters[OIT_IB_COUNTER_TILES], OIT_IB_COUNTER_TILE_DISPATCH);
 }

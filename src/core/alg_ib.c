@@ -582,16 +582,22 @@ static void ib_item_pass(ib_state *s, enum ib_program p, const oit_frame_setting
         glDispatchCompute(groups, rows, 1);
 }
 
-/* A per-item pass whose item count a GPU pass counted: program `counts` (one
- * invocation) turns it into work-group counts at counter `slot`, and program p
- * runs with exactly those (no invocations that only find they have no item). */
-static void ib_indirect_item_pass(ib_state *s, enum ib_program p, enum ib_program counts, int slot,
-                                  const oit_frame_settings *frame)
+/* Program `counts` (one invocation: epsilon_dispatch, tiles_dispatch) turns a
+ * count a GPU pass made into work-group counts in the counters. */
+static void ib_count_groups(ib_state *s, enum ib_program counts)
 {
     ib_barrier();
     glUseProgram(s->programs[counts]);
     glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* Program p with the work-group counts at counter `slot` that ib_count_groups
+ * wrote: exactly the groups its items or tiles need. */
+static void ib_indirect_pass(ib_state *s, enum ib_program p, int slot,
+                             const oit_frame_settings *frame)
+{
+    ib_barrier();
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
     glUseProgram(s->programs[p]);
     oit_gl_set_frame_uniforms(frame);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counter_buffer);
@@ -616,19 +622,6 @@ static void ib_pass(ib_state *s, enum ib_program p, const oit_frame_settings *fr
         oit_gl_draw_fullscreen(&s->output);
     else
         glDispatchCompute((GLuint)(s->output.width + 7) / 8, (GLuint)(s->output.height + 7) / 8, 1);
-}
-
-/* A per-pixel pass of program p over the tiles with fragments only (ib/tiles.glsl):
- * the work-group counts tiles_dispatch.comp wrote after the sort. */
-static void ib_tile_pass(ib_state *s, enum ib_program p, const oit_frame_settings *frame)
-{
-    ib_barrier();
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
-    glUseProgram(s->programs[p]);
-    oit_gl_set_frame_uniforms(frame);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counter_buffer);
-    glDispatchComputeIndirect((GLintptr)(OIT_IB_COUNTER_TILE_DISPATCH * sizeof(GLuint)));
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 }
 
 static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_frame_settings *frame,
@@ -768,24 +761,22 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
 
     oit_timer_stage_begin(&s->timer, "sort");
     ib_pass(s, IB_SORT, frame, 0);
-    ib_barrier(); /* the tile count, into work-group counts for the tile passes */
-    glUseProgram(s->programs[IB_TILES_DISPATCH]);
-    glDispatchCompute(1, 1, 1);
+    ib_count_groups(s, IB_TILES_DISPATCH); /* for the passes over the tile list */
     /* the triangle table, the index / welded search, then epsilon for the
      * fragments the first search queued (at most all of them) */
     oit_timer_stage_begin(&s->timer, "neighbours");
     ib_item_pass(s, IB_TRIANGLES, frame, scene->index_count / 3u);
-    ib_tile_pass(s, IB_NEIGHBOURS, frame);
+    ib_indirect_pass(s, IB_NEIGHBOURS, OIT_IB_COUNTER_TILE_DISPATCH, frame);
     if (plan.params.search != OIT_NEIGHBOURS_INDEX) {
         /* a stage of its own: how much of the search the fallback costs is worth seeing */
         oit_timer_stage_begin(&s->timer, "neighbours_epsilon");
-        ib_indirect_item_pass(s, IB_NEIGHBOURS_EPSILON, IB_EPSILON_DISPATCH,
-                              OIT_IB_COUNTER_EPSILON_DISPATCH, frame);
+        ib_count_groups(s, IB_EPSILON_DISPATCH);
+        ib_indirect_pass(s, IB_NEIGHBOURS_EPSILON, OIT_IB_COUNTER_EPSILON_DISPATCH, frame);
     }
     if (s->config.neighbour_quality) {
         /* diagnostics, not part of the frame: oit bench and oit measure turn it off */
         oit_timer_stage_begin(&s->timer, "neighbour_stats");
-        ib_tile_pass(s, IB_NEIGHBOUR_STATS, frame);
+        ib_indirect_pass(s, IB_NEIGHBOUR_STATS, OIT_IB_COUNTER_TILE_DISPATCH, frame);
     }
     status = ib_check(s, "ib neighbours", err);
     if (status != OIT_OK)
