@@ -16,5 +16,10 @@
 #ifndef OIT_VARIANT_VIEWS
 #define OIT_VARIANT_VIEWS 1
 #endif
+// the Illustration Buffer's modulations that read the neighbours' results
+// (curvature, distance, dist-curv, edges, fields; ib/compose.frag)
+#ifndef OIT_VARIANT_IB_MODES
+#define OIT_VARIANT_IB_MODES 1
+#endif
 
 #endif

@@ -5,7 +5,9 @@
 // finally C += T background. The RGBA8 output is written once.
 // Views show the buffer instead (heatmap, peel limit, layer, neighbour count,
 // curvature, distance, fields). ib_pass = the fields' current copy.
-// Also counts Psi's pixels.
+// Also counts Psi's pixels. Empty pixels are discarded (as in ll: the output
+// is cleared to the background first); the views and the modulations are
+// compiled in only in the general variant (common/variants.glsl).
 #extension GL_ARB_ES3_1_compatibility : enable
 #include "common/oit_shared.h"
 #include "common/shade.glsl"
@@ -49,15 +51,18 @@ void main()
         return;
     }
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    uint start = ib_run_start(pixel);
     uint run_length = ib_run_length(pixel);
+    if (run_length == 0u)
+        discard; // LL_EMPTY_PIXEL_DISCARD (ll/ll_nodes.glsl)
+    uint start = ib_run_start(pixel);
     // Psi's numerator: pixels whose list is longer than 2/3 of the longest (as ll's compose)
     if (3u * run_length > 2u * ib_counters[OIT_FRAME_COUNTER_MAX_LIST])
         atomicAdd(ib_counters[OIT_IB_COUNTER_PSI_PIXELS], 1u);
 
+#if OIT_VARIANT_VIEWS
     if (ib_view == OIT_IB_VIEW_HEATMAP) {
         uint longest = max(ib_counters[OIT_FRAME_COUNTER_MAX_LIST], 1u);
-        out_colour = vec4(run_length == 0u ? u_background : heat(float(run_length) / float(longest)), 1.0);
+        out_colour = vec4(heat(float(run_length) / float(longest)), 1.0);
         return;
     }
     if (ib_view == OIT_IB_VIEW_CURVATURE || ib_view == OIT_IB_VIEW_DISTANCE ||
@@ -78,16 +83,21 @@ void main()
         out_colour = vec4(value, 1.0);
         return;
     }
+#endif
 
+#if OIT_VARIANT_IB_MODES
     float norm = distance_norm();
     vec3 halo = vec3(ib_halo_r, ib_halo_g, ib_halo_b);
+#endif
     vec3 colour = vec3(0.0);
     float transmittance = 1.0;
     for (uint i = 0u; i < run_length; ++i) {
+#if OIT_VARIANT_VIEWS
         if (ib_view == OIT_IB_VIEW_PEEL_LIMIT && i >= uint(ib_view_parameter))
             break;
         if (ib_view == OIT_IB_VIEW_LAYER && i != uint(ib_view_parameter))
             continue;
+#endif
         uint slot = start + i;
         uvec4 core = ib_core_fetch(slot); // buffer texture: gathered, see ib_common.glsl
         float depth = uintBitsToFloat(core.x);
@@ -96,9 +106,12 @@ void main()
         vec3 normal = oit_unpack_normal(core.z);
         vec3 eye_position = ib_eye_position(gl_FragCoord.xy, depth);
         vec3 rgb = oit_shade_rgb(material.rgb, normal, eye_position);
+#if OIT_VARIANT_VIEWS
         if (ib_view == OIT_IB_VIEW_NEIGHBOURS)
             rgb = neighbour_colour(ib_neighbour_count(slot));
+#endif
 
+#if OIT_VARIANT_IB_MODES
         float curvature = float(core.w & 0xFFFFu) / 65535.0 * ib_curvature_effect;
         float distance = unpackHalf2x16(core.w >> 16).x / norm;
         if (ib_mode == OIT_IB_MODE_CURVATURE)
@@ -109,10 +122,12 @@ void main()
             alpha = clamp(max(distance, curvature), 0.0, 1.0);
         else if (ib_mode == OIT_IB_MODE_EDGES && ib_neighbour_count(slot) < 4)
             alpha = 1.0;
+#endif
         // local modulation (per-part opacity, focus shapes) scales whatever the mode chose
         alpha = oit_local_alpha(alpha, ib_triangle_component(core.y), eye_position);
         bool last = ib_last_layer_opaque != 0 && i + 1u == run_length;
 
+#if OIT_VARIANT_IB_MODES
         if (ib_mode == OIT_IB_MODE_FIELDS) {
             // thesis 4.6 / algorithm 9: the halo is added as colour; the alpha
             // field raises the material opacity (a = a0 + (1 - a0) field alpha)
@@ -124,12 +139,13 @@ void main()
             float a_r = last ? 1.0 : a + (1.0 - a) * b;
             colour += transmittance * a_r * rgb;
             transmittance *= last ? 0.0 : (1.0 - a) * (1.0 - b);
-        } else {
-            if (last)
-                alpha = 1.0;
-            colour += transmittance * alpha * rgb;
-            transmittance *= 1.0 - alpha;
+            continue;
         }
+#endif
+        if (last)
+            alpha = 1.0;
+        colour += transmittance * alpha * rgb;
+        transmittance *= 1.0 - alpha;
     }
     out_colour = vec4(colour + transmittance * u_background, 1.0);
 }

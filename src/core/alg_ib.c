@@ -88,7 +88,8 @@ enum ib_program {
     IB_DIFFUSION,
     IB_BLUR,
     IB_CURVATURE_DISTANCE,
-    IB_COMPOSE,
+    IB_COMPOSE,       /* every view and modulation */
+    IB_COMPOSE_PLAIN, /* the colour image without modulation (common/variants.glsl) */
     IB_PROGRAM_COUNT
 };
 
@@ -100,7 +101,7 @@ static const char *const ib_shaders[IB_PROGRAM_COUNT] = {
     "ib/fill.frag",      "ib/sort.comp",      "ib/triangles.comp", "ib/neighbours.comp",
     "ib/neighbours_epsilon.comp", "ib/epsilon_dispatch.comp", "ib/tiles_dispatch.comp",
     "ib/neighbour_stats.comp", "ib/fields_init.comp", "ib/diffusion.comp",
-    "ib/blur.comp",      "ib/curvature_distance.comp", "ib/compose.frag",
+    "ib/blur.comp",      "ib/curvature_distance.comp", "ib/compose.frag", "ib/compose.frag",
 };
 
 typedef struct ib_state {
@@ -254,9 +255,12 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
         if (p == IB_FILL)
             status = oit_gl_program(s->shader_dir, "common/geometry.vert", ib_shaders[p],
                                     &s->programs[p], err);
-        else if (p == IB_COMPOSE)
-            status = oit_gl_program(s->shader_dir, "ib/compose.vert", ib_shaders[p],
-                                    &s->programs[p], err);
+        else if (p == IB_COMPOSE || p == IB_COMPOSE_PLAIN)
+            status = oit_gl_program_variant(
+                s->shader_dir, "ib/compose.vert", ib_shaders[p],
+                p == IB_COMPOSE_PLAIN ? "#define OIT_VARIANT_VIEWS 0\n#define OIT_VARIANT_IB_MODES 0\n"
+                                      : NULL,
+                &s->programs[p], err);
         else
             status = oit_gl_compute_program(s->shader_dir, ib_shaders[p], &s->programs[p], err);
     }
@@ -618,7 +622,7 @@ static void ib_pass(ib_state *s, enum ib_program p, const oit_frame_settings *fr
                                                                   : "fields_copy") ==
         OIT_UNIFORM_IB_PASS)
         glUniform1i(OIT_UNIFORM_IB_PASS, pass_parameter);
-    if (p == IB_COMPOSE)
+    if (p == IB_COMPOSE || p == IB_COMPOSE_PLAIN)
         oit_gl_draw_fullscreen(&s->output);
     else
         glDispatchCompute((GLuint)(s->output.width + 7) / 8, (GLuint)(s->output.height + 7) / 8, 1);
@@ -815,7 +819,14 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
 
     oit_timer_stage_begin(&s->timer, "compose");
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    ib_pass(s, IB_COMPOSE, frame, fields_copy);
+    /* compose discards the empty pixels: they keep this */
+    glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ib_pass(s,
+            plan.params.mode == OIT_MODULATE_NONE && plan.params.view == OIT_VIEW_COLOUR
+                ? IB_COMPOSE_PLAIN
+                : IB_COMPOSE,
+            frame, fields_copy);
     oit_timer_stage_end(&s->timer);
     status = ib_check(s, "ib compose", err);
     if (status != OIT_OK)
