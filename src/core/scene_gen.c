@@ -689,7 +689,7 @@ static bool menger_cell_solid(int i, int j, int k, int cells, int level)
  * coplanar fragments are the coplanar scene's subject, not this one's; this
  * scene is about very high depth complexity. One group per top-level
  * sub-cube (20 groups); corner positions are shared within a group.
- * Complexity L (default 2, 1..4). */
+ * Complexity L (default 2, 1..5; level 5 has 12.5M triangles). */
 static oit_status build_menger(writer *w, part *p, int level, oit_error *err)
 {
     int cells = 1, block = 1; /* cells per side; cells per side of a sub-cube */
@@ -782,8 +782,8 @@ static const generator_entry generators[] = {
      12, 400, build_gearbox},
     {{"coplanar", "N squares overlapping at z=0, one behind (complexity: N, 1..32)", 3},
      1, 32, build_coplanar},
-    {{"menger", "surface of a Menger sponge of level L (complexity: L, 1..4)", 2},
-     1, 4, build_menger},
+    {{"menger", "surface of a Menger sponge of level L (complexity: L, 1..5)", 2},
+     1, 5, build_menger},
 };
 
 #define GENERATOR_COUNT (sizeof generators / sizeof generators[0])
