@@ -818,6 +818,8 @@ static void write_json_row(FILE *f, const bench_scene *scene, const session *s,
         fprintf(f, ", \"layers\": %lld", (long long)st->layers);
     if (st->overflow_retries >= 0)
         fprintf(f, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
+    if (st->bands >= 0)
+        fprintf(f, ", \"bands\": %lld", (long long)st->bands);
     fprintf(f, ", \"truncated\": %s", st->truncated ? "true" : "false");
     if (st->bytes_per_fragment >= 0.0)
         fprintf(f, ", \"bytes_per_fragment\": %.6g", st->bytes_per_fragment);

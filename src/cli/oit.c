@@ -90,6 +90,8 @@ static void print_render_json(FILE *out, const render_options *o, const session 
         fprintf(out, ", \"layers\": %lld", (long long)st->layers);
     if (st->overflow_retries >= 0)
         fprintf(out, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
+    if (st->bands >= 0)
+        fprintf(out, ", \"bands\": %lld", (long long)st->bands);
     fprintf(out, ", \"truncated\": %s", st->truncated ? "true" : "false");
     /* list and Illustration Buffer figures, where the algorithm has them */
     const struct {
@@ -142,6 +144,8 @@ static const char render_help[] =
     "                         as needed\n"
     "  --fragment-counter-start N  ll, ib (tests): start the fill's 32-bit fragment counter at N,\n"
     "                         0..4294967295 (default 0), to reach its limit without 2^32 fragments\n"
+    "  --buffer-fragment-limit N  ll (tests): address at most N fragments in one buffer, as if\n"
+    "                         the GL's limit were that low, so the frame is drawn in bands of rows\n"
     "  --max-layers N         dp, ddp: peel at most N layers, 1..1000000 (default: no cap, peel\n"
     "                         until nothing is left); a frame the cap cuts short gets a warning\n"
     "                         and \"truncated\": true\n"

@@ -326,6 +326,16 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
             return -1;
         }
         o->config.fragment_counter_start = (uint32_t)start;
+    } else if (strcmp(flag, "--buffer-fragment-limit") == 0) {
+        NEED_VALUE();
+        long limit;
+        if (!parse_int(value, 1, 1L << 30, &limit)) {
+            *status = oit_fail(err, OIT_E_INPUT,
+                               "--buffer-fragment-limit must be a whole number of fragments in [1, 2^30], got '%s'",
+                               value);
+            return -1;
+        }
+        o->config.buffer_fragment_limit = (uint64_t)limit;
     } else if (strcmp(flag, "--locks-held") == 0) {
         o->config.locks_held = true;
     } else if (strcmp(flag, "--frames") == 0) {

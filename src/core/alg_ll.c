@@ -90,6 +90,11 @@ typedef struct ll_state {
     GLuint counter_buffer;
     uint64_t pool_capacity;  /* nodes the pool holds */
     uint64_t gl_node_limit;  /* most nodes one SSBO binding and one buffer texture can address */
+    /* the bands of rows the last frame was drawn in, [first row, rows) pairs bottom to top
+     * (count 0: it was whole): the next frame at the size starts from them instead of from a
+     * fill that only counts */
+    int *band_plan;
+    int band_plan_count;
 
     int64_t overflow_retries_total; /* since create; stats report the last frame's */
     uint32_t long_list_pixels;      /* last frame: pixels the local-array sort could not hold */
@@ -192,6 +197,7 @@ static void ll_destroy(oit_algorithm *alg)
         glDeleteProgram(s->compose_programs[variant]);
     }
     glDeleteProgram(s->sort_program);
+    free(s->band_plan);
     GLuint textures[] = {s->head_image, s->node_texture, s->next_texture, s->sorted_next_texture};
     oit_gl_memory_delete_textures(&s->memory, 4, textures);
     GLuint buffers[] = {s->node_buffer, s->next_buffer, s->sorted_next_buffer, s->counter_buffer};
@@ -265,6 +271,8 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
         s->gl_node_limit = (uint64_t)max_texels;
     if (s->gl_node_limit >= OIT_LIST_END)
         s->gl_node_limit = OIT_LIST_END - 1u; /* node indices are uint, END is reserved */
+    if (config->buffer_fragment_limit && s->gl_node_limit > config->buffer_fragment_limit)
+        s->gl_node_limit = config->buffer_fragment_limit; /* tests: bands without 8M fragments */
     GLuint textures[3];
     glGenTextures(3, textures);
     s->node_texture = textures[0];
@@ -296,6 +304,7 @@ static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error
     oit_status status = oit_gl_output_resize(&s->output, width, height, err);
     if (status != OIT_OK)
         return status;
+    s->band_plan_count = 0; /* bands of the old size */
     oit_gl_memory_delete_textures(&s->memory, 1, &s->head_image);
     s->head_image =
         oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
@@ -369,9 +378,9 @@ static oit_status ll_check(const ll_state *s, const char *stage, oit_error *err)
 
 /* Clear heads and counters, then draw every fragment into the lists. */
 static void ll_clear_and_fill(ll_state *s, GLuint fill_program, const oit_scene *scene,
-                              const oit_frame_settings *frame, int retry)
+                              const oit_frame_settings *frame, const char *const names[2])
 {
-    oit_timer_stage_begin(&s->timer, retry ? "clear_retry" : "clear");
+    oit_timer_stage_begin(&s->timer, names[0]);
     const GLuint list_end = OIT_LIST_END;
     glClearTexImage(s->head_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
     GLuint zeros[OIT_LL_COUNTER_COUNT] = {0};
@@ -383,13 +392,256 @@ static void ll_clear_and_fill(ll_state *s, GLuint fill_program, const oit_scene 
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
 
-    oit_timer_stage_begin(&s->timer, retry ? "fill_retry" : "fill");
+    oit_timer_stage_begin(&s->timer, names[1]);
     glUseProgram(fill_program);
     oit_gl_set_frame_uniforms(frame);
     glUniform1ui(OIT_UNIFORM_LL_POOL_CAPACITY, (GLuint)s->pool_capacity);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     oit_gl_draw_scene(scene);
     oit_timer_stage_end(&s->timer);
+}
+
+/* The figures one sort (and compose) counted, summed over the bands of a frame. */
+typedef struct ll_counts {
+    uint64_t counted; /* the fills' counts (config.fragment_counter_start included, as tests expect) */
+    uint64_t sorted, non_empty, psi_pixels, longest, long_list_pixels;
+    uint64_t histogram[OIT_HISTOGRAM_BINS]; /* bin 0 unused: empty pixels are pixels - non_empty */
+} ll_counts;
+
+/* Read the counters of the last sort and compose and add them to `sum`. The sort
+ * counts each pixel in the histogram only (ll_finish_sort in ll_nodes.glsl):
+ * non-empty pixels, fragments sorted and psi come from it; lists in the open last
+ * bin have their own fragment sum and psi count. Fails if the sort walked fewer
+ * fragments than the fill stored. */
+static oit_status ll_add_counts(ll_state *s, uint64_t needed, ll_counts *sum, oit_error *err)
+{
+    /* reading them waits for the passes, which the timer does anyway */
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint counters[OIT_LL_COUNTER_COUNT];
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counters, counters);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    const int open_bin = OIT_HISTOGRAM_BINS - 1;
+    const uint64_t longest = counters[OIT_FRAME_COUNTER_MAX_LIST];
+    uint64_t sorted = counters[OIT_LL_COUNTER_SORTED_FRAGMENTS], psi_pixels = 0;
+    for (uint64_t bin = 1; bin < OIT_HISTOGRAM_BINS; ++bin) {
+        const uint64_t bin_pixels = counters[OIT_LL_COUNTER_HISTOGRAM + bin];
+        sum->histogram[bin] += bin_pixels;
+        sum->non_empty += bin_pixels;
+        if (bin < (uint64_t)open_bin) {
+            sorted += bin * bin_pixels;
+            if (3 * bin > 2 * longest)
+                psi_pixels += bin_pixels;
+        }
+    }
+    if (longest >= (uint64_t)open_bin)
+        psi_pixels = counters[OIT_LL_COUNTER_PSI_PIXELS]; /* compose counted them */
+    /* the fill stored nodes fragment_counter_start..needed - 1 (0 but in tests) */
+    const uint64_t stored = needed - s->config.fragment_counter_start;
+    oit_status status = oit_gl_check_sorted_fragments("ll", stored, sorted, err);
+    if (status != OIT_OK)
+        return status;
+    sum->counted += needed;
+    sum->sorted += sorted;
+    sum->psi_pixels += psi_pixels;
+    sum->long_list_pixels += counters[OIT_FRAME_COUNTER_LONG_LIST_PIXELS];
+    if (longest > sum->longest)
+        sum->longest = longest;
+    return OIT_OK;
+}
+
+/* Sort, the distance pass if the frame needs one, and compose, on the pixels the
+ * scissor lets through. `clear`: clear the output to the background first (the
+ * compose discards empty pixels: they keep it). */
+static oit_status ll_sort_and_compose(ll_state *s, GLuint compose_program,
+                                      const oit_frame_settings *frame, bool clear,
+                                      const char *const names[3], oit_error *err)
+{
+    oit_timer_stage_begin(&s->timer, names[0]);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
+    glUseProgram(s->sort_program);
+    oit_gl_draw_fullscreen(&s->output); /* colour writes are still off */
+    oit_status status = ll_check(s, "ll sort", err);
+    if (status != OIT_OK)
+        return status;
+
+    /* The distance modulation with an automatic region: the frame's largest
+     * distance first (one more full-screen pass over the sorted lists). */
+    const bool distance = frame->modulation.mode == OIT_MODULATE_DISTANCE;
+    const bool auto_region = distance && !(frame->modulation.focus_region > 0.0f);
+    if (auto_region) {
+        oit_timer_stage_begin(&s->timer, "distance_max");
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
+        glUseProgram(compose_program);
+        oit_gl_set_frame_uniforms(frame);
+        glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view);
+        glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
+        glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, 1);
+        oit_gl_draw_fullscreen(&s->output); /* colour writes are still off */
+        status = ll_check(s, "ll distance_max", err);
+        if (status != OIT_OK)
+            return status;
+    }
+
+    oit_timer_stage_begin(&s->timer, names[1]);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
+    glUseProgram(compose_program);
+    oit_gl_set_frame_uniforms(frame);
+    glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, auto_region ? 2 : 0);
+    glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view); /* numbers of OIT_LL_VIEW_* */
+    glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    if (clear) {
+        /* compose discards the empty pixels (LL_EMPTY_PIXEL_DISCARD in ll_nodes.glsl) */
+        glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+    }
+    oit_gl_draw_fullscreen(&s->output);
+    oit_timer_stage_end(&s->timer);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    return ll_check(s, "ll compose", err);
+}
+
+/* Clear, fill and read the fill's 64-bit count (the counter and the times it wrapped). */
+static oit_status ll_fill_and_count(ll_state *s, GLuint fill_program, const oit_scene *scene,
+                                    const oit_frame_settings *frame, const char *const names[2],
+                                    uint64_t *needed, oit_error *err)
+{
+    ll_clear_and_fill(s, fill_program, scene, frame, names);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint low = 0, wraps = 0;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_FRAME_COUNTER_FRAGMENTS * sizeof(GLuint),
+                       sizeof low, &low);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_LL_COUNTER_FRAGMENTS_WRAPS * sizeof(GLuint),
+                       sizeof wraps, &wraps);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    *needed = (uint64_t)wraps << 32 | low;
+    oit_status status = ll_check(s, "ll fill", err);
+    if (status != OIT_OK)
+        return status;
+    return oit_gl_check_frame_fragments("ll", *needed, s->config.fragment_counter_start, err);
+}
+
+/* A frame that needs more fragments than one storage-buffer binding or buffer
+ * texture can address (llvmpipe: 128 MiB, 8M nodes; s->gl_node_limit) but fits
+ * the memory budget is rendered in bands of rows under the scissor test: each
+ * band clears, fills, sorts and composes alone in a pool at the largest size the
+ * GL addresses. Every band draws the whole scene again, so a frame of B bands
+ * costs about B fills; the bands start as equal shares of the frame's count with
+ * a quarter of headroom, and a band whose fill still overflows (fragments are not
+ * spread evenly over the rows) is halved and done again. Only the colour image:
+ * the heat map and the automatic distance region need the whole frame's figures. */
+#define LL_MAX_BANDS 4096
+static bool ll_bands_allowed(const oit_frame_settings *frame)
+{
+    const bool auto_region = frame->modulation.mode == OIT_MODULATE_DISTANCE &&
+                             !(frame->modulation.focus_region > 0.0f);
+    return frame->modulation.view != OIT_VIEW_HEATMAP && !auto_region;
+}
+
+static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compose_program,
+                                  const oit_scene *scene, const oit_frame_settings *frame,
+                                  uint64_t frame_needed, ll_counts *sum, int *band_count,
+                                  oit_error *err)
+{
+    const bool auto_region = frame->modulation.mode == OIT_MODULATE_DISTANCE &&
+                             !(frame->modulation.focus_region > 0.0f);
+    if (!ll_bands_allowed(frame))
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ll: the frame needs %llu fragments, more than this GL can address in "
+                        "one shader storage buffer or buffer texture (%llu); it could be drawn in "
+                        "bands of rows, but not with %s, which needs the whole frame's figures",
+                        (unsigned long long)frame_needed, (unsigned long long)s->gl_node_limit,
+                        auto_region ? "the distance modulation's automatic region"
+                                    : "the heat map view");
+    oit_status status = OIT_OK;
+    if (s->pool_capacity < s->gl_node_limit) {
+        status = ll_allocate_pool(s, ll_node_limit(s), err);
+        if (status != OIT_OK)
+            return status;
+        ll_bind_pool(s);
+    }
+    const int height = s->output.height, width = s->output.width;
+    /* the bands still to draw: a stack of [first row, rows), the bottom band on top */
+    int *stack = malloc(2 * (size_t)LL_MAX_BANDS * sizeof *stack);
+    if (!s->band_plan)
+        s->band_plan = malloc(2 * (size_t)LL_MAX_BANDS * sizeof *s->band_plan);
+    if (!stack || !s->band_plan) {
+        free(stack);
+        return oit_fail(err, OIT_E_RUNTIME, "ll: out of memory planning bands of rows");
+    }
+    int depth = 0;
+    if (frame_needed == 0) { /* the last frame's bands */
+        for (int band = s->band_plan_count - 1; band >= 0; --band, ++depth) {
+            stack[2 * depth] = s->band_plan[2 * band];
+            stack[2 * depth + 1] = s->band_plan[2 * band + 1];
+        }
+    } else { /* equal shares of the count, with a quarter of headroom */
+        uint64_t shares = (frame_needed + frame_needed / 4) / s->pool_capacity + 1;
+        int rows = (int)(((uint64_t)height + shares - 1) / shares);
+        for (int first = ((height - 1) / rows) * rows; first >= 0; first -= rows, ++depth) {
+            stack[2 * depth] = first;
+            stack[2 * depth + 1] = first + rows > height ? height - first : rows;
+        }
+    }
+    s->band_plan_count = 0; /* rewritten below with the bands that fit */
+    static const char *const band_names[3] = {"band_sort", "band_compose", NULL};
+    glEnable(GL_SCISSOR_TEST);
+    /* the output is cleared once; each band's compose keeps the background of its empty pixels */
+    glScissor(0, 0, width, height);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    *band_count = 0;
+    while (depth > 0) {
+        --depth;
+        const int first = stack[2 * depth], band_rows = stack[2 * depth + 1];
+        glScissor(0, first, width, band_rows);
+        uint64_t needed = 0;
+        static const char *const band_fill_names[2] = {"band_clear", "band_fill"};
+        status = ll_fill_and_count(s, fill_program, scene, frame, band_fill_names, &needed, err);
+        if (status != OIT_OK)
+            break;
+        if (needed > s->pool_capacity) {
+            if (band_rows == 1 || depth + 2 > LL_MAX_BANDS) {
+                status = oit_fail(err, OIT_E_RUNTIME,
+                                  "ll: row %d of the image alone needs %llu fragments, more than "
+                                  "this GL can address in one buffer (%llu)",
+                                  first, (unsigned long long)needed,
+                                  (unsigned long long)s->pool_capacity);
+                break;
+            }
+            /* halve it: the upper half below the lower on the stack, the lower drawn next */
+            const int lower = band_rows / 2;
+            stack[2 * depth] = first + lower;
+            stack[2 * depth + 1] = band_rows - lower;
+            stack[2 * depth + 2] = first;
+            stack[2 * depth + 3] = lower;
+            depth += 2;
+            continue;
+        }
+        status = ll_sort_and_compose(s, compose_program, frame, false, band_names, err);
+        if (status == OIT_OK)
+            status = ll_add_counts(s, needed, sum, err);
+        if (status != OIT_OK)
+            break;
+        ++*band_count;
+        s->band_plan[2 * s->band_plan_count] = first;
+        s->band_plan[2 * s->band_plan_count + 1] = band_rows;
+        ++s->band_plan_count;
+    }
+    /* the next frame at this size starts from the bands that fitted, unless this
+     * one failed or would have fitted whole with room to spare (the camera moved away) */
+    if (status != OIT_OK || sum->counted + sum->counted / 4 <= s->gl_node_limit)
+        s->band_plan_count = 0;
+    glDisable(GL_SCISSOR_TEST);
+    free(stack);
+    return status;
 }
 
 static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
@@ -434,25 +686,23 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
     ll_bind_pool(s);
 
-    /* Fill until the pool holds the whole frame. */
-    int retries = 0;
+    /* Fill until the pool holds the whole frame, or draw it in bands of rows
+     * when no one buffer can (straight away when the last frame was banded). */
+    int retries = 0, bands = 1;
     uint64_t needed = 0;
-    for (;;) {
-        ll_clear_and_fill(s, fill_program, scene, frame, retries);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        /* the fill's 64-bit count: the counter and the times it wrapped */
-        GLuint low = 0, wraps = 0;
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_FRAME_COUNTER_FRAGMENTS * sizeof(GLuint),
-                           sizeof low, &low);
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_LL_COUNTER_FRAGMENTS_WRAPS * sizeof(GLuint),
-                           sizeof wraps, &wraps);
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-        needed = (uint64_t)wraps << 32 | low;
-        status = ll_check(s, "ll fill", err);
+    ll_counts sum;
+    memset(&sum, 0, sizeof sum);
+    const bool planned = s->band_plan_count > 0 && ll_bands_allowed(frame);
+    if (planned) {
+        status = ll_render_bands(s, fill_program, compose_program, scene, frame, 0, &sum, &bands,
+                                 err);
         if (status != OIT_OK)
             goto failed;
-        status = oit_gl_check_frame_fragments("ll", needed, s->config.fragment_counter_start, err);
+    }
+    while (!planned) {
+        static const char *const fill_names[2][2] = {{"clear", "fill"}, {"clear_retry", "fill_retry"}};
+        status = ll_fill_and_count(s, fill_program, scene, frame, fill_names[retries > 0], &needed,
+                                   err);
         if (status != OIT_OK)
             goto failed;
         if (needed <= s->pool_capacity)
@@ -464,102 +714,55 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
                               (unsigned long long)needed, (unsigned long long)s->pool_capacity);
             goto failed;
         }
+        if (needed > s->gl_node_limit && needed <= ll_budget_nodes(s))
+            break; /* bands */
         status = ll_grow_pool(s, needed, err);
         if (status != OIT_OK)
             goto failed;
         ++retries;
     }
 
-    oit_timer_stage_begin(&s->timer, "sort");
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
-                    GL_TEXTURE_FETCH_BARRIER_BIT);
-    glUseProgram(s->sort_program);
-    oit_gl_draw_fullscreen(&s->output); /* colour writes are still off */
-    status = ll_check(s, "ll sort", err);
-    if (status != OIT_OK)
-        goto failed;
-
-    /* The distance modulation with an automatic region: the frame's largest
-     * distance first (one more full-screen pass over the sorted lists). */
-    const bool distance = frame->modulation.mode == OIT_MODULATE_DISTANCE;
-    const bool auto_region = distance && !(frame->modulation.focus_region > 0.0f);
-    if (auto_region) {
-        oit_timer_stage_begin(&s->timer, "distance_max");
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
-                    GL_TEXTURE_FETCH_BARRIER_BIT);
-        glUseProgram(compose_program);
-        oit_gl_set_frame_uniforms(frame);
-        glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view);
-        glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
-        glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, 1);
-        oit_gl_draw_fullscreen(&s->output); /* colour writes are still off */
-        status = ll_check(s, "ll distance_max", err);
-        if (status != OIT_OK)
-            goto failed;
+    if (planned) {
+        /* drawn above */
+    } else if (needed > s->pool_capacity) {
+        status = ll_render_bands(s, fill_program, compose_program, scene, frame, needed, &sum,
+                                 &bands, err);
+    } else {
+        s->band_plan_count = 0;
+        static const char *const names[3] = {"sort", "compose", NULL};
+        status = ll_sort_and_compose(s, compose_program, frame, true, names, err);
+        if (status == OIT_OK)
+            status = ll_add_counts(s, needed, &sum, err);
     }
-
-    oit_timer_stage_begin(&s->timer, "compose");
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
-                    GL_TEXTURE_FETCH_BARRIER_BIT);
-    glUseProgram(compose_program);
-    oit_gl_set_frame_uniforms(frame);
-    glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, auto_region ? 2 : 0);
-    glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view); /* numbers of OIT_LL_VIEW_* */
-    glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    /* compose discards the empty pixels (LL_EMPTY_PIXEL_DISCARD in ll_nodes.glsl): they keep this */
-    glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
-    oit_gl_draw_fullscreen(&s->output);
-    oit_timer_stage_end(&s->timer);
-    status = ll_check(s, "ll compose", err);
     if (status != OIT_OK)
         goto failed;
-
-    /* The figures the sort pass counted; reading them waits for it, which
-     * the timer does anyway. */
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    GLuint counters[OIT_LL_COUNTER_COUNT];
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counters, counters);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glUseProgram(0);
     oit_timer_frame_end(&s->timer, &stats);
-    /* The sort counts each pixel in the histogram only (ll_finish_sort in
-     * ll_nodes.glsl): non-empty pixels, fragments sorted and psi come from it;
-     * lists in the open last bin have their own fragment sum and psi count. */
-    const int open_bin = OIT_HISTOGRAM_BINS - 1;
-    const uint64_t longest = counters[OIT_FRAME_COUNTER_MAX_LIST];
-    uint64_t non_empty = 0, sorted = counters[OIT_LL_COUNTER_SORTED_FRAGMENTS], psi_pixels = 0;
-    for (uint64_t bin = 1; bin < OIT_HISTOGRAM_BINS; ++bin) {
-        const uint64_t bin_pixels = counters[OIT_LL_COUNTER_HISTOGRAM + bin];
-        non_empty += bin_pixels;
-        if (bin < (uint64_t)open_bin) {
-            sorted += bin * bin_pixels;
-            if (3 * bin > 2 * longest)
-                psi_pixels += bin_pixels;
-        }
-    }
-    if (longest >= (uint64_t)open_bin)
-        psi_pixels = counters[OIT_LL_COUNTER_PSI_PIXELS]; /* compose counted them */
-    /* the fill stored nodes fragment_counter_start..needed - 1 (0 but in tests) */
-    status = oit_gl_check_sorted_fragments("ll", needed - s->config.fragment_counter_start, sorted,
-                                           err);
-    if (status != OIT_OK)
-        return status;
 
     s->overflow_retries_total += retries;
-    s->long_list_pixels = counters[OIT_FRAME_COUNTER_LONG_LIST_PIXELS];
-    stats.fragments = counters[OIT_FRAME_COUNTER_FRAGMENTS];
-    stats.max_list = counters[OIT_FRAME_COUNTER_MAX_LIST];
+    s->long_list_pixels = (uint32_t)sum.long_list_pixels;
+    stats.fragments = (int64_t)sum.counted;
+    stats.max_list = (int64_t)sum.longest;
     stats.overflow_retries = retries; /* this frame's */
+    stats.bands = bands;
     const uint64_t pixels = (uint64_t)s->output.width * (uint64_t)s->output.height;
-    stats.mean_list = non_empty ? (double)stats.fragments / (double)non_empty : 0.0;
-    stats.psi = non_empty ? (double)psi_pixels / (double)non_empty : 0.0;
+    stats.mean_list = sum.non_empty ? (double)stats.fragments / (double)sum.non_empty : 0.0;
+    /* A banded frame: psi from the summed histogram against the frame's longest
+     * list, unless that list is in the open last bin; then each band's compose
+     * counted psi against the band's own longest list (docs/algorithms.md, Limits). */
+    uint64_t psi_pixels = sum.psi_pixels;
+    if (bands > 1 && sum.longest < OIT_HISTOGRAM_BINS - 1) {
+        psi_pixels = 0;
+        for (uint64_t bin = 1; bin < OIT_HISTOGRAM_BINS - 1; ++bin)
+            if (3 * bin > 2 * sum.longest)
+                psi_pixels += sum.histogram[bin];
+    }
+    stats.psi = sum.non_empty ? (double)psi_pixels / (double)sum.non_empty : 0.0;
     stats.histogram_bins = OIT_HISTOGRAM_BINS;
-    stats.list_histogram[0] = pixels - non_empty;
+    stats.list_histogram[0] = pixels - sum.non_empty;
     for (int bin = 1; bin < OIT_HISTOGRAM_BINS; ++bin)
-        stats.list_histogram[bin] = counters[OIT_LL_COUNTER_HISTOGRAM + bin];
+        stats.list_histogram[bin] = sum.histogram[bin];
     /* the figures of what is allocated (oit_stats in oit.h defines them) */
     stats.memory_bytes = oit_gl_memory_total(&s->memory);
     stats.bytes_per_fragment = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_FRAGMENTS) /
@@ -571,6 +774,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
 
 failed:
     oit_timer_stage_end(&s->timer);
+    glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glUseProgram(0);
     return status;

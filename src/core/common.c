@@ -28,6 +28,7 @@ void oit_stats_reset(oit_stats *stats)
     stats->max_list = -1;
     stats->layers = -1;
     stats->overflow_retries = -1;
+    stats->bands = -1;
     stats->mean_list = -1.0;
     stats->psi = -1.0;
     stats->bytes_per_fragment = -1.0;
