@@ -810,6 +810,12 @@ class Report:
             quality_map.published_section(self, rows, quality_map.read_published(
                 os.path.join(ROOT, "docs", "data", "published_approximations.csv")), q.time_ms)
 
+    def scale(self):
+        """Screen sizes and the 13M-triangle model (bat/scale.py writes scale.json and renders it)."""
+        import scale
+
+        scale.section(self, self.args.results, table, fmt)
+
     def accuracy(self):
         rows_in = [r for r in read_csv(os.path.join(self.args.results, "accuracy.csv")) if not r["error"]]
         if not rows_in:
@@ -969,6 +975,7 @@ class Report:
         self.modulation_passes()
         self.accuracy()
         self.quality_map()
+        self.scale()
         self.why_missed()
         self.footer()
         path = os.path.join(self.args.docs, "benchmarks.md")

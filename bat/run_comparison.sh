@@ -8,6 +8,8 @@
 #   3b. the cost/quality map: every algorithm and parameter (kbuffer/hybrid/mlab k = 4/8/16, mboit
 #      power4/power6/trig3) against the reference -> quality.json and quality-bundle/; the flicker
 #      of a slow orbit -> stability.json; nested spheres of growing depth -> depth_sweep.json
+#   3c. scale (bat/scale.py): the deepest scenes at 1920x1080 and 3840x2160, and a level-5 Menger
+#      sponge (13M triangles) at 600x600 and 1920x1080 -> scale.json
 #   4. the source's six measurements (bat/measure_*.sh) -> BUILD/bench/results/*.txt
 #   5. a perf profile of ll and ib on one scene (bat/profile.sh; skipped without perf)
 #   6. bat/report.py -> docs/benchmarks.md and docs/images/bench-*.png (with the machine of step 3,
@@ -122,6 +124,9 @@ done
 "$OIT" bench --scene-list "$sweep_dir/scenes.txt" --algorithms ll,dp,kbuffer:8,hybrid:8,mlab:8,mboit:power4,wboit \
     --sizes "$quality_size" --frames 3 --warmup 1 --reference-max-pixels $((quality_size * quality_size)) --quiet \
     --json "$RESULTS/depth_sweep.json"
+step "scale: the deepest scenes at 1920x1080 and 3840x2160, a 13M-triangle sponge -> scale.json"
+python3 "$ROOT/bat/scale.py" --oit "$OIT" --results "$RESULTS" --scene-list "$SCENES" \
+    --models "$BUILD/bench/models" "${quick[@]}"
 set -e
 
 [ $bench_status -eq 0 ] || echo "run_comparison.sh: some bench runs failed (rows with an error in bench.csv)" >&2
