@@ -939,7 +939,12 @@ class Report:
                    "blending is vectorised" if self.renderer_name() == "llvmpipe" else "")
                 + ". The rest is the sort and the compose over every fragment, "
                 "work `blend` does not do (they already read through buffer textures, "
-                "[algorithms.md](algorithms.md#ll-per-pixel-linked-lists-yang-et-al-2010)).")
+                "[algorithms.md](algorithms.md#ll-per-pixel-linked-lists-yang-et-al-2010)). "
+                "`bat/fill_profile.py` takes the fill apart piece by piece (rasterisation, shading, counter, "
+                "canonical depth, node store, head swap): every piece past the shading costs something, none "
+                "dominates, and the pieces `blend` does not have add up to more than its whole draw "
+                "([algorithms.md](algorithms.md#where-lls-time-goes-llvmpipe)); the fill alone is the floor that keeps "
+                "this ratio above the target.")
         if notes:
             self.emit("## Where a target is missed, and why", "", *notes, "")
 

@@ -70,6 +70,34 @@ done
 for text in "no GPU" "llvmpipe runs" "two cores" "AMD EPYC"; do
     ! grep -qF -- "$text" "$other" || fail "the other machine's page still says '$text'"
 done
+# ... the scale section comes from scale.json (bat/scale.py): figures, ll's bands and a refusal ...
+"$oit" bench --model "$scenes/onion.obj" --name onion-bands --algorithms blend,ll --sizes 48 --frames 1 --warmup 0 \
+    --quiet --reference-max-pixels 0 --buffer-fragment-limit 1000 --json "$work/scale-run.json" || fail "scale bench"
+cp -r "$work/results" "$work/scaled"
+python3 - "$work/scale-run.json" "$work/scaled/scale.json" <<'PY' || fail "could not write scale.json"
+import copy, json, sys
+run = json.load(open(sys.argv[1]))
+run["label"] = "screens"
+big = copy.deepcopy(run)
+big["label"] = "big"
+big["results"].append(dict(big["results"][0], algorithm="ib", error="ib: the frame needs 9 fragments, more than this GL can address in one shader storage buffer (8)"))
+json.dump({"command": "python3 bat/scale.py", "runs": [run, big]}, open(sys.argv[2], "w"))
+PY
+python3 "$source/bat/report.py" --results "$work/scaled" --docs "$work/scaled-docs" --command "tests/bench_report.sh" \
+    >/dev/null || fail "report.py with scale.json"
+python3 - "$work/scale-run.json" "$work/scaled-docs/benchmarks.md" <<'PY' || fail "the scale section does not show the run"
+import json, sys
+run, page = json.load(open(sys.argv[1])), open(sys.argv[2]).read()
+assert "## Scale: screen sizes and a large model" in page, "no scale section"
+ll = next(r for r in run["results"] if r["algorithm"] == "ll")
+assert ll["bands"] > 1, ll
+row = f"| onion-bands | 48×48 | `ll` | "
+lines = [l for l in page.splitlines() if l.startswith(row)]
+assert len(lines) == 2, lines  # one per run
+assert lines[0].endswith(f"| {ll['fragments']:,} | {ll['max_list']} | {ll['bands']} |"), lines[0]
+assert "| onion-bands | 48×48 | `ib` | refused |" in page and "more than this GL can address in one shader storage buffer (8)" in page
+PY
+! grep -qF "## Scale" "$page" || fail "a page without scale.json has a scale section"
 # ... and the thesis's figures come from ../shared (a changed copy changes them) ...
 mkdir -p "$work/shared"
 cp -r "$source/../shared/data" "$source/../shared/sources" "$work/shared/" || fail "no ../shared beside $source"
