@@ -455,7 +455,7 @@ static oit_status ll_add_counts(ll_state *s, uint64_t needed, ll_counts *sum, oi
  * compose discards empty pixels: they keep it). */
 static oit_status ll_sort_and_compose(ll_state *s, GLuint compose_program,
                                       const oit_frame_settings *frame, bool clear,
-                                      const char *const names[3], oit_error *err)
+                                      const char *const names[2], oit_error *err)
 {
     oit_timer_stage_begin(&s->timer, names[0]);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
@@ -526,15 +526,6 @@ static oit_status ll_fill_and_count(ll_state *s, GLuint fill_program, const oit_
     return oit_gl_check_frame_fragments("ll", *needed, s->config.fragment_counter_start, err);
 }
 
-/* A frame that needs more fragments than one storage-buffer binding or buffer
- * texture can address (llvmpipe: 128 MiB, 8M nodes; s->gl_node_limit) but fits
- * the memory budget is rendered in bands of rows under the scissor test: each
- * band clears, fills, sorts and composes alone in a pool at the largest size the
- * GL addresses. Every band draws the whole scene again, so a frame of B bands
- * costs about B fills; the bands start as equal shares of the frame's count with
- * a quarter of headroom, and a band whose fill still overflows (fragments are not
- * spread evenly over the rows) is halved and done again. Only the colour image:
- * the heat map and the automatic distance region need the whole frame's figures. */
 #define LL_MAX_BANDS 4096
 static bool ll_bands_allowed(const oit_frame_settings *frame)
 {
@@ -543,6 +534,17 @@ static bool ll_bands_allowed(const oit_frame_settings *frame)
     return frame->modulation.view != OIT_VIEW_HEATMAP && !auto_region;
 }
 
+/* A frame that needs more fragments than one storage-buffer binding or buffer
+ * texture can address (llvmpipe: 128 MiB, 8M nodes; s->gl_node_limit) but fits
+ * the memory budget is rendered in bands of rows under the scissor test: each
+ * band clears, fills, sorts and composes alone in a pool at the largest size the
+ * GL addresses. Every band draws the whole scene again, so a frame of B bands
+ * costs about B fills (B + 1 when a fill that only counted came first). The
+ * bands start as equal shares of the frame's count with a quarter of headroom,
+ * or as the last frame's bands (frame_needed 0); a band whose fill still
+ * overflows (fragments are not spread evenly over the rows) is halved and done
+ * again. Only the colour image and the views that read one pixel's list: the
+ * heat map and the automatic distance region need the whole frame's figures. */
 static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compose_program,
                                   const oit_scene *scene, const oit_frame_settings *frame,
                                   uint64_t frame_needed, ll_counts *sum, int *band_count,
@@ -589,7 +591,7 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
         }
     }
     s->band_plan_count = 0; /* rewritten below with the bands that fit */
-    static const char *const band_names[3] = {"band_sort", "band_compose", NULL};
+    static const char *const band_names[2] = {"band_sort", "band_compose"};
     glEnable(GL_SCISSOR_TEST);
     /* the output is cleared once; each band's compose keeps the background of its empty pixels */
     glScissor(0, 0, width, height);
@@ -729,7 +731,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
                                  &bands, err);
     } else {
         s->band_plan_count = 0;
-        static const char *const names[3] = {"sort", "compose", NULL};
+        static const char *const names[2] = {"sort", "compose"};
         status = ll_sort_and_compose(s, compose_program, frame, true, names, err);
         if (status == OIT_OK)
             status = ll_add_counts(s, needed, &sum, err);
