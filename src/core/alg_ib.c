@@ -732,16 +732,7 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     uint64_t needed = 0;
     for (;;) {
         ib_clear_and_fill(s, scene, frame, retries);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        /* the fill's 64-bit count: the counter and the times it wrapped */
-        GLuint low = 0, wraps = 0;
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_FRAME_COUNTER_FRAGMENTS * sizeof(GLuint),
-                           sizeof low, &low);
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_IB_COUNTER_FRAGMENTS_WRAPS * sizeof(GLuint),
-                           sizeof wraps, &wraps);
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-        needed = (uint64_t)wraps << 32 | low;
+        needed = oit_gl_read_frame_fragments(s->counter_buffer, OIT_IB_COUNTER_FRAGMENTS_WRAPS);
         status = ib_check(s, "ib fill", err);
         if (status != OIT_OK)
             goto failed;

@@ -511,15 +511,7 @@ static oit_status ll_fill_and_count(ll_state *s, GLuint fill_program, const oit_
                                     uint64_t *needed, oit_error *err)
 {
     ll_clear_and_fill(s, fill_program, scene, frame, names);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    GLuint low = 0, wraps = 0;
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_FRAME_COUNTER_FRAGMENTS * sizeof(GLuint),
-                       sizeof low, &low);
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_LL_COUNTER_FRAGMENTS_WRAPS * sizeof(GLuint),
-                       sizeof wraps, &wraps);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    *needed = (uint64_t)wraps << 32 | low;
+    *needed = oit_gl_read_frame_fragments(s->counter_buffer, OIT_LL_COUNTER_FRAGMENTS_WRAPS);
     oit_status status = ll_check(s, "ll fill", err);
     if (status != OIT_OK)
         return status;

@@ -929,6 +929,19 @@ void oit_gl_set_frame_uniforms(const oit_frame_settings *frame)
 
 /* --------------------------------------------------------------- limits */
 
+uint64_t oit_gl_read_frame_fragments(GLuint counter_buffer, int wraps_slot)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint low = 0, wraps = 0;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, counter_buffer);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, OIT_FRAME_COUNTER_FRAGMENTS * sizeof(GLuint),
+                       sizeof low, &low);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)wraps_slot * sizeof(GLuint), sizeof wraps,
+                       &wraps);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    return (uint64_t)wraps << 32 | low;
+}
+
 oit_status oit_gl_check_frame_fragments(const char *algorithm, uint64_t fragments,
                                         uint32_t counter_start, oit_error *err)
 {

@@ -178,6 +178,11 @@ void oit_gl_bind_part_alpha(const oit_scene *scene, const oit_frame_settings *fr
 
 /* ---- limits ---- */
 
+/* ll, ib: read the fill's 64-bit fragment count from the counter buffer: the
+ * 32-bit counter at OIT_FRAME_COUNTER_FRAGMENTS and the times it wrapped at
+ * wraps_slot (after a buffer-update barrier; waits for the fill). */
+uint64_t oit_gl_read_frame_fragments(GLuint counter_buffer, int wraps_slot);
+
 /* ll, ib: the fill's fragment count (64-bit: the 32-bit counter plus the times
  * it wrapped) must fit the 32-bit node indices (OIT_MAX_FRAME_FRAGMENTS);
  * past it OIT_E_RUNTIME naming the algorithm, the count and the limit.
