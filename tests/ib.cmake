@@ -51,3 +51,10 @@ foreach(scene ${IB_MODULATION_MODELS})
             ${MODEL_${scene}} ${scene})
   set_tests_properties(ib_modulations_${scene} PROPERTIES FIXTURES_REQUIRED scenes)
 endforeach()
+
+# The epsilon search's bounds (the fallback queue, the mutual check's limit)
+# change no link: the same images and figures as a shader copy without them.
+add_test(NAME ib_epsilon_bounds
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/ib_epsilon_bounds.sh ${OIT} ${WORK}/ib/epsilon_bounds
+          ${PROJECT_SOURCE_DIR}/shaders ${MODEL_gearbox} ${MODEL_menger} ${MODEL_spheres} ${MODEL_engine})
+set_tests_properties(ib_epsilon_bounds PROPERTIES FIXTURES_REQUIRED scenes)

@@ -8,9 +8,13 @@
 #include "ib/ib_common.glsl"
 
 // The ray through a pixel centre, in eye space: near + t * direction.
+// near_z and span_z: ib_eye_depth's terms along this ray, so that
+// ray_eye_depth(r, s) == ib_eye_depth(centre, s) without its two matrix products.
 struct pixel_ray {
     vec3 near;
     vec3 direction;
+    float near_z;
+    float span_z;
 };
 
 pixel_ray ray_through(vec2 pixel_centre)
@@ -18,7 +22,16 @@ pixel_ray ray_through(vec2 pixel_centre)
     pixel_ray r;
     r.near = ib_eye_position(pixel_centre, 0.0);
     r.direction = ib_eye_position(pixel_centre, 1.0) - r.near;
+    vec3 near_point = ib_ray_point(pixel_centre, -1.0);
+    r.near_z = near_point.z;
+    r.span_z = (ib_ray_point(pixel_centre, 1.0) - near_point).z;
     return r;
+}
+
+// ib_eye_depth(centre, depth) for the ray through centre (the same terms)
+float ray_eye_depth(pixel_ray r, float depth)
+{
+    return -(r.near_z + depth * r.span_z);
 }
 
 // A fragment with what the searches need of it.
@@ -69,6 +82,9 @@ float predicted_depth(described_fragment d, pixel_ray r)
 
 // ---- epsilon
 
+// eps_n = 1 - dot(n_f, n_g) may round below 0 by this much
+const float IB_EPSILON_MARGIN = 1e-5;
+
 // eps_z: |from's plane depth on the ray through to's pixel - to's depth| / radius
 // (best_by_epsilon computes it first: it also bounds the walk)
 float epsilon(described_fragment from, float eps_z, uvec4 to)
@@ -80,15 +96,15 @@ float epsilon(described_fragment from, float eps_z, uvec4 to)
     return eps_z + eps_n;
 }
 
-// First slot of the run [start, start + count) whose eye depth at to_centre is
+// First slot of the run [start, start + count) whose eye depth on to_ray is
 // >= depth (count if none): runs are sorted by window depth, and eye depth
 // grows with window depth along a pixel's ray.
-uint first_at_or_behind(vec2 to_centre, uint start, uint count, float depth)
+uint first_at_or_behind(pixel_ray to_ray, uint start, uint count, float depth)
 {
     uint low = 0u, high = count;
     while (low < high) {
         uint middle = (low + high) / 2u;
-        if (ib_eye_depth(to_centre, ib_depth_fetch(start + middle)) < depth)
+        if (ray_eye_depth(to_ray, ib_depth_fetch(start + middle)) < depth)
             low = middle + 1u;
         else
             high = middle;
@@ -96,27 +112,27 @@ uint first_at_or_behind(vec2 to_centre, uint start, uint count, float depth)
     return low;
 }
 
-// Best partner of `from` in the run [start, start + run_length) at to_centre:
+// Best partner of `from` in the run [start, start + run_length) on to_ray:
 // the smallest epsilon (the first slot on ties), ignoring candidates above
 // `limit`. eps >= eps_z, and eps_z only grows away from the predicted depth,
 // so the walk outwards from it stops on each side once eps_z exceeds the best
 // so far (or the limit); `margin` covers eps_n's rounding below 0. The same
 // answer as trying every candidate (the thesis did), for a few of them.
-uint best_by_epsilon(described_fragment from, pixel_ray to_ray, vec2 to_centre, uint start,
-                     uint run_length, float limit, out float best_eps)
+uint best_by_epsilon(described_fragment from, pixel_ray to_ray, uint start, uint run_length,
+                     float limit, out float best_eps)
 {
-    const float margin = 1e-5;
+    const float margin = IB_EPSILON_MARGIN;
     uint best = IB_NONE;
     best_eps = 1e30;
     uint count = min(run_length, IB_NONE);
     float predicted = predicted_depth(from, to_ray);
-    uint first_behind = first_at_or_behind(to_centre, start, count, predicted);
+    uint first_behind = first_at_or_behind(to_ray, start, count, predicted);
     for (int side = 0; side < 2; ++side) {
         int step = side == 0 ? 1 : -1;
         for (int j = side == 0 ? int(first_behind) : int(first_behind) - 1; j >= 0 && j < int(count);
              j += step) {
             uvec4 to = ib_core_fetch(start + uint(j));
-            float actual = ib_eye_depth(to_centre, uintBitsToFloat(to.x));
+            float actual = ray_eye_depth(to_ray, uintBitsToFloat(to.x));
             float eps_z = abs(predicted - actual) / ib_radius_eye;
             if (eps_z > min(best_eps, limit) + margin)
                 break;
@@ -136,14 +152,20 @@ uint search_by_epsilon(uint i, described_fragment described, pixel_ray ray, vec2
                        uint other_length)
 {
     float eps;
-    uint candidate = best_by_epsilon(described, other_ray, other_centre, other_start, other_length,
-                                     ib_epsilon_max, eps);
+    uint candidate =
+        best_by_epsilon(described, other_ray, other_start, other_length, ib_epsilon_max, eps);
     if (candidate == IB_NONE || eps > ib_epsilon_max)
         return IB_NONE;
-    // mutual check: f must be the candidate's best partner in f's pixel
-    float back_eps;
+    // mutual check: f must be the candidate's best partner in f's pixel. f's
+    // own epsilon from the candidate bounds that search: a fragment whose eps_z
+    // alone passes it cannot beat f (the same answer, for fewer candidates)
     described_fragment partner = describe(ib_core_fetch(other_start + candidate), other_centre);
-    uint back = best_by_epsilon(partner, ray, centre, start, run_length, 1e30, back_eps);
+    uvec4 f = ib_core_fetch(start + i);
+    float f_eps_z = abs(predicted_depth(partner, ray) - ray_eye_depth(ray, uintBitsToFloat(f.x))) /
+                    ib_radius_eye;
+    float back_eps;
+    uint back = best_by_epsilon(partner, ray, start, run_length,
+                                epsilon(partner, f_eps_z, f) + IB_EPSILON_MARGIN, back_eps);
     return back == i ? candidate : IB_NONE;
 }
 
@@ -158,20 +180,21 @@ bool adjacent_to(described_fragment f, uint triangle)
     return row.w == f.component && shared_ids(f.ids, row.xyz) > 0;
 }
 
-// Best candidate in the run [start, start + run_length) at to_centre: on f's
+// Best candidate in the run [start, start + run_length) on to_ray: on f's
 // component, sharing a vertex id with f's triangle, and nearest to the depth
 // f's triangle plane predicts there. The run is sorted by depth, so a binary
 // search finds where the predicted depth falls and the candidates are tried
 // outwards from there, nearest first: the first adjacent one is the answer,
 // and most candidates are never loaded (the thesis walked the whole list).
-uint search_by_ids(described_fragment f, pixel_ray to_ray, vec2 to_centre, uint start,
-                   uint run_length)
+uint search_by_ids(described_fragment f, pixel_ray to_ray, uint start, uint run_length,
+                   out float nearest_gap)
 {
+    nearest_gap = 1e30;
     if (run_length == 0u)
         return IB_NONE;
     uint count = min(run_length, IB_NONE);
     float predicted = predicted_depth(f, to_ray);
-    uint low = first_at_or_behind(to_centre, start, count, predicted);
+    uint low = first_at_or_behind(to_ray, start, count, predicted);
     // the next candidates at or behind the prediction and in front of it,
     // with their triangles and depth gaps (1e30: none left on that side)
     uint behind = low;
@@ -187,7 +210,7 @@ uint search_by_ids(described_fragment f, pixel_ray to_ray, vec2 to_centre, uint 
     float depth_behind = 0.0, depth_in_front = 0.0;
     if (behind < count) {
         core_behind = ib_core_fetch(start + behind);
-        depth_behind = ib_eye_depth(to_centre, uintBitsToFloat(core_behind.x));
+        depth_behind = ray_eye_depth(to_ray, uintBitsToFloat(core_behind.x));
         gap_behind = depth_behind - predicted;
         if (depth_behind > window_far) {
             behind = count;
@@ -196,13 +219,16 @@ uint search_by_ids(described_fragment f, pixel_ray to_ray, vec2 to_centre, uint 
     }
     if (in_front >= 0) {
         core_in_front = ib_core_fetch(start + uint(in_front));
-        depth_in_front = ib_eye_depth(to_centre, uintBitsToFloat(core_in_front.x));
+        depth_in_front = ray_eye_depth(to_ray, uintBitsToFloat(core_in_front.x));
         gap_in_front = predicted - depth_in_front;
         if (depth_in_front < window_near) {
             in_front = -1;
             gap_in_front = 1e30;
         }
     }
+    // before the window cut: what bounds the epsilon search's eps_z from below
+    nearest_gap = min(low < count ? abs(depth_behind - predicted) : 1e30,
+                      low > 0u ? abs(predicted - depth_in_front) : 1e30);
     // one candidate per step, without branches on the side taken: llvmpipe
     // would run both sides (masked) and load twice as much
     while (behind < count || in_front >= 0) {
@@ -215,7 +241,7 @@ uint search_by_ids(described_fragment f, pixel_ray to_ray, vec2 to_centre, uint 
         // the next candidate on the side just tried (the fetch is ignored past the run)
         int next = take_behind ? int(behind) + 1 : in_front - 1;
         uvec4 next_core = ib_core_fetch(start + uint(next));
-        float next_depth = ib_eye_depth(to_centre, uintBitsToFloat(next_core.x));
+        float next_depth = ray_eye_depth(to_ray, uintBitsToFloat(next_core.x));
         float gap = next_depth - predicted;
         if (take_behind) {
             bool valid = uint(next) < count && next_depth <= window_far;

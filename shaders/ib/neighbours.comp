@@ -15,7 +15,9 @@
 //
 // This pass runs the index / welded search. Fragments that need epsilon (every
 // fragment for epsilon; for welded those with a direction left without a
-// neighbour) are queued in the fill nodes, free between sort and fields, and
+// neighbour where the candidate nearest the predicted depth is near enough for
+// epsilon to accept: eps >= eps_z) are queued in the fill nodes, free between
+// sort and fields, and
 // neighbours_epsilon.comp searches them: llvmpipe runs a branch's body for all
 // 8 lanes (masked) when any lane takes it, so a rare, costly branch is cheaper
 // as a pass over the few fragments that need it.
@@ -39,7 +41,6 @@ void main()
     // the four neighbouring runs (empty outside the image) and the rays
     // through their centres, once per pixel
     uint other_start[4], other_length[4];
-    vec2 other_centre[4];
     pixel_ray other_ray[4];
     for (int d = 0; d < 4; ++d) {
         ivec2 other = pixel + IB_DIRECTIONS[d];
@@ -49,8 +50,7 @@ void main()
             other_start[d] = ib_run_start(other);
             other_length[d] = ib_run_length(other);
         }
-        other_centre[d] = centre + vec2(IB_DIRECTIONS[d]);
-        other_ray[d] = ray_through(other_centre[d]);
+        other_ray[d] = ray_through(centre + vec2(IB_DIRECTIONS[d]));
     }
     for (uint i = 0u; i < run_length; ++i) {
         uint found[4];
@@ -63,9 +63,14 @@ void main()
         } else {
             described_fragment described = describe(ib_core_fetch(start + i), centre);
             for (int d = 0; d < 4; ++d) {
-                found[d] = search_by_ids(described, other_ray[d], other_centre[d], other_start[d],
-                                         other_length[d]);
-                missing |= found[d] == IB_NONE && other_length[d] > 0u ? 1u << d : 0u;
+                float nearest_gap;
+                found[d] = search_by_ids(described, other_ray[d], other_start[d], other_length[d],
+                                         nearest_gap);
+                // epsilon >= eps_z >= nearest_gap / radius (less eps_n's rounding):
+                // past the largest accepted epsilon it can find nothing there
+                bool epsilon_may_find =
+                    nearest_gap / ib_radius_eye <= ib_epsilon_max + IB_EPSILON_MARGIN;
+                missing |= found[d] == IB_NONE && epsilon_may_find ? 1u << d : 0u;
             }
             if (ib_search == OIT_IB_SEARCH_INDEX)
                 missing = 0u;
