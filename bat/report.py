@@ -631,7 +631,8 @@ class Report:
         self.emit("## Illustration Buffer: stage breakdown", "",
                   "Median ms per stage of `ib` (no modulation: the construction and the compose). "
                   "`neighbours` is the triangle table and the welded-id search, `neighbours_epsilon` the epsilon "
-                  "fallback for the fragments the id search left without a neighbour in some direction. "
+                  "fallback for the fragments the id search left without a neighbour in some direction "
+                  "where a candidate lies within `--epsilon-max` of the predicted depth. "
                   "`oit bench` leaves out the `neighbour_stats` pass (link quality, a diagnostic of "
                   "`oit render --json` and the workbench), as the thesis's timings did.", "",
                   self.save(fig, "ib-stages"), "",

@@ -1,5 +1,5 @@
 // sort.comp: turns each pixel's linked list into a contiguous run sorted front
-// to back (insertion sort in the run itself). Each tile (one work group of
+// to back (insertion sort in the run itself, from either end). Each tile (one work group of
 // OIT_IB_TILE_SIZE squared pixels) takes one block of the run buffer with one
 // atomicAdd, its pixels their places in the block from a shared counter, so
 // the runs of neighbouring pixels lie together in memory; the head image then
@@ -28,9 +28,18 @@ void main()
     barrier();
     uint head = inside ? imageLoad(ib_heads, pixel).x : OIT_LIST_END;
     uint run_length = 0u;
+    // adjacent nodes where the later one in the list lies in front: a move for
+    // the forward insertion below, none for the backward one (counted between
+    // neighbours only, a cheap guess at which end moves fewer fragments)
+    uint later_in_front = 0u;
+    uvec2 previous = uvec2(0u);
     // the nodes are only read here: through the buffer texture (see ib_common.glsl)
-    for (uint node = head; node != OIT_LIST_END; node = texelFetch(ib_nodes_texture, int(node)).w)
-        ++run_length;
+    for (uint node = head; node != OIT_LIST_END; ++run_length) {
+        uvec4 data = texelFetch(ib_nodes_texture, int(node));
+        later_in_front += run_length > 0u && ib_in_front(data.xy, previous) ? 1u : 0u;
+        previous = data.xy;
+        node = data.w;
+    }
     uint offset = run_length > 0u ? atomicAdd(tile_fragments, run_length) : 0u;
     memoryBarrierShared();
     barrier();
@@ -44,14 +53,27 @@ void main()
     if (!inside)
         return;
     uint start = run_length > 0u ? tile_start + offset : 0u;
+    // Insertion sort in the run, from the end the count above favours:
+    // forwards the sorted part grows from the start and each node moves the
+    // ones behind it back; backwards it grows from the end and each node moves
+    // the ones in front of it forward. The order is total (depth, triangle),
+    // so both give the same run; the moves (storage-buffer loads and stores,
+    // lane by lane in llvmpipe) are most of the sort's time.
+    bool backwards = 2u * later_in_front > run_length;
+    uint end = start + run_length;
     uint size = 0u;
     for (uint node = head; node != OIT_LIST_END; ++size) {
         uvec4 data = texelFetch(ib_nodes_texture, int(node));
-        uint slot = start + size;
-        // move the fragments behind this one a place back
-        while (slot > start && ib_in_front(data.xy, ib_core[slot - 1u].xy)) {
-            ib_core[slot] = ib_core[slot - 1u];
-            --slot;
+        uint slot = backwards ? end - 1u - size : start + size;
+        while (true) {
+            uint other = backwards ? slot + 1u : slot - 1u;
+            if (backwards ? other >= end : slot <= start)
+                break;
+            uvec2 key = ib_core[other].xy;
+            if (!(backwards ? ib_in_front(key, data.xy) : ib_in_front(data.xy, key)))
+                break;
+            ib_core[slot] = ib_core[other];
+            slot = other;
         }
         ib_core[slot] = uvec4(data.xyz, 0u);
         node = data.w;
