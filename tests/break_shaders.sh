@@ -11,17 +11,15 @@
 #  - mboit/common.glsl: the power moments' depth warp reversed (1 - 2 s instead of
 #    2 s - 1, in both passes), so the reconstruction puts the far layers in front.
 set -eu
+source "$(dirname "$0")/lib.sh"
 src=$1 out=$2
 rm -rf "$out"
 mkdir -p "$(dirname "$out")"
 cp -R "$src" "$out"
 # replace FILE OLD NEW: OLD must occur exactly once, and NEW afterwards
 replace() {
-    local file=$out/$1 old=$2 new=$3
-    [ "$(grep -cF -- "$old" "$file")" -eq 1 ] || { echo "FAIL: '$old' is not once in $1" >&2; exit 1; }
-    OLD=$old NEW=$new perl -0pi -e 's/\Q$ENV{OLD}\E/$ENV{NEW}/' "$file"
-    grep -qF -- "$new" "$file" || { echo "FAIL: $1 unchanged" >&2; exit 1; }
-    echo "broke $1: $new"
+    replace_once "$out/$1" "$2" "$3"
+    echo "broke $1: $3"
 }
 replace blend/draw.frag "o_colour = oit_shade_fragment();" \
     "o_colour = oit_shade_fragment(); o_colour.rgb *= o_colour.a; // BROKEN: premultiplied twice"

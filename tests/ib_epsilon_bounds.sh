@@ -16,17 +16,10 @@ shift 3
 rm -rf "$work"; mkdir -p "$work"
 unbounded=$work/unbounded_shaders
 cp -R "$shaders" "$unbounded"
-# replace FILE OLD NEW: OLD must occur exactly once
-replace() {
-    local file=$unbounded/$1 old=$2 new=$3
-    [ "$(grep -cF -- "$old" "$file")" -eq 1 ] || fail "'$old' is not once in $1"
-    OLD=$old NEW=$new perl -0pi -e 's/\Q$ENV{OLD}\E/$ENV{NEW}/' "$file"
-    grep -qF -- "$new" "$file" || fail "$1 unchanged"
-}
-replace ib/neighbours.comp "nearest_gap / ib_radius_eye <= ib_epsilon_max + IB_EPSILON_MARGIN;" \
-    "other_length[d] > 0u; // unbounded"
-replace ib/neighbour_search.glsl "epsilon(partner, f_eps_z, f) + IB_EPSILON_MARGIN, back_eps);" \
-    "1e30, back_eps); // unbounded"
+replace_once "$unbounded/ib/neighbours.comp" \
+    "nearest_gap / ib_radius_eye <= ib_epsilon_max + IB_EPSILON_MARGIN;" "other_length[d] > 0u; // unbounded"
+replace_once "$unbounded/ib/neighbour_search.glsl" \
+    "epsilon(partner, f_eps_z, f) + IB_EPSILON_MARGIN, back_eps);" "1e30, back_eps); // unbounded"
 
 for model in "$@"; do
     name=$(basename "${model%.*}")
