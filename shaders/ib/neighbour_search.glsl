@@ -146,8 +146,9 @@ uint best_by_epsilon(described_fragment from, pixel_ray to_ray, uint start, uint
     return best;
 }
 
-// epsilon with the mutual check; IB_NONE if there is no acceptable partner
-uint search_by_epsilon(uint i, described_fragment described, pixel_ray ray, vec2 centre, uint start,
+// epsilon with the mutual check for f (core f, slot i of its run, described);
+// IB_NONE if there is no acceptable partner
+uint search_by_epsilon(uint i, uvec4 f, described_fragment described, pixel_ray ray, uint start,
                        uint run_length, pixel_ray other_ray, vec2 other_centre, uint other_start,
                        uint other_length)
 {
@@ -160,7 +161,6 @@ uint search_by_epsilon(uint i, described_fragment described, pixel_ray ray, vec2
     // own epsilon from the candidate bounds that search: a fragment whose eps_z
     // alone passes it cannot beat f (the same answer, for fewer candidates)
     described_fragment partner = describe(ib_core_fetch(other_start + candidate), other_centre);
-    uvec4 f = ib_core_fetch(start + i);
     float f_eps_z = abs(predicted_depth(partner, ray) - ray_eye_depth(ray, uintBitsToFloat(f.x))) /
                     ib_radius_eye;
     float back_eps;

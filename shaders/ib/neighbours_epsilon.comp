@@ -23,14 +23,15 @@ void main()
     uint run_length = ib_run_length(pixel);
     vec2 centre = vec2(pixel) + 0.5;
     pixel_ray ray = ray_through(centre);
-    described_fragment described = describe(ib_core_fetch(start + i), centre);
+    uvec4 core = ib_core_fetch(start + i);
+    described_fragment described = describe(core, centre);
     uvec2 words = texelFetch(ib_links_texture, int(start + i)).xy;
     for (int d = 0; d < 4; ++d) {
         if ((directions & (1u << d)) == 0u)
             continue;
         ivec2 other = pixel + IB_DIRECTIONS[d];
         vec2 other_centre = centre + vec2(IB_DIRECTIONS[d]);
-        uint found = search_by_epsilon(i, described, ray, centre, start, run_length,
+        uint found = search_by_epsilon(i, core, described, ray, start, run_length,
                                        ray_through(other_centre), other_centre,
                                        ib_run_start(other), ib_run_length(other));
         uint shift = (d & 1) == 0 ? 0u : 16u;
