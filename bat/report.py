@@ -901,13 +901,14 @@ class Report:
                 "(1: it follows the list length exactly, 0: unrelated). The thesis's FindNeighbors "
                 f"was {spread_text([100 * x[2] for x in self._thesis_shares()], 0)} % of its construction. "
                 "What shortened the search so far, and what was tried and did not pay, with numbers: "
-                "[illustration-buffer.md](illustration-buffer.md#speed-on-llvmpipe). The floor it shows: "
-                "cutting the neighbour pass down step by step, its straight-line loads (the fragment's triangle "
-                "row and plane, the candidates beside each predicted depth) and the four binary searches are "
-                "nearly all of its time and the walk over candidates little: about 30 texels read per fragment, "
-                "on every lane since llvmpipe runs a branch's body for all lanes when one takes it, where the "
-                "fill writes one node. Search starts from a hint, narrower views, a finer epsilon queue "
-                "and other sorts were measured there and did not pay.")
+                "[illustration-buffer.md](illustration-buffer.md#speed-on-llvmpipe)."
+                + (" The floor it shows: cutting the neighbour pass down step by step, its straight-line loads "
+                   "(the fragment's triangle row and plane, the candidates beside each predicted depth) and the "
+                   "four binary searches are nearly all of its time and the walk over candidates little: about "
+                   "30 texels read per fragment, on every lane since llvmpipe runs a branch's body for all lanes "
+                   "when one takes it, where the fill writes one node. Search starts from a hint, narrower "
+                   "views, a finer epsilon queue and other sorts were measured there and did not pay."
+                   if self.renderer_name() == "llvmpipe" else ""))
             if self.profile:
                 notes.append("  " + self.profile)
         dp_ll = self.ratios.get("dp_ll", {})
