@@ -851,7 +851,8 @@ class Report:
         notes = []
         ib_ll = self.ratios.get("ib_ll", {})
         if ib_ll and max(ib_ll.values()) > TARGETS["ib_ll"]:
-            sort_ratio, nb_share, epsilon_share, fill_ratio = [], [], [], []
+            sort_ratio, fill_ratio = [], []
+            shares = {}  # scene -> the search's and the epsilon fallback's shares of its construction
             for s in ib_ll:
                 ib = stages_of(self.row(s, "ib"))
                 ll = stages_of(self.row(s, "ll"))
@@ -861,8 +862,10 @@ class Report:
                 if ll.get("fill"):
                     fill_ratio.append(stage_sum(ib, ("fill",)) / stage_sum(ll, ("fill",)))
                 if construction:
-                    nb_share.append(stage_sum(ib, ("neighbours",)) / construction)
-                    epsilon_share.append(ib.get("neighbours_epsilon", 0) / construction)
+                    shares[s] = (stage_sum(ib, ("neighbours",)) / construction,
+                                 ib.get("neighbours_epsilon", 0) / construction)
+            nb_share = [search for search, _ in shares.values()]
+            epsilon_share = [epsilon for _, epsilon in shares.values()]
             # does the search's cost follow the list length? (per fragment, across scenes)
             per_fragment, mean_list = [], []
             for s in ib_ll:
@@ -877,12 +880,9 @@ class Report:
             over = sorted((s for s, v in ib_ll.items() if v > TARGETS["ib_ll"]), key=ib_ll.get, reverse=True)
 
             def over_text(s):
-                ib = stages_of(self.row(s, "ib"))
-                construction = stage_sum(ib, IB_CONSTRUCTION)
-                search = stage_sum(ib, ("neighbours",)) / construction * 100 if construction else 0
-                epsilon = ib.get("neighbours_epsilon", 0) / construction * 100 if construction else 0
-                return (f"{s} {ib_ll[s]:.2f}× (the search {search:.0f} % of its construction, the epsilon "
-                        f"fallback within it {epsilon:.0f} %)")
+                search, epsilon = shares.get(s, (0, 0))
+                return (f"{s} {ib_ll[s]:.2f}× (the search {100 * search:.0f} % of its construction, the epsilon "
+                        f"fallback within it {100 * epsilon:.0f} %)")
             notes.append(
                 f"- **`ib` construction vs `ll`** (worst {max(ib_ll.values()):.2f}×, on "
                 f"{max(ib_ll, key=ib_ll.get)}; {len(ib_ll) - len(over)} of {len(ib_ll)} scenes within "
