@@ -34,3 +34,28 @@ for backend in egl osmesa; do
     done
 done
 echo "depth precision: all exact algorithms separate the pairs"
+
+# A face exactly on the far plane: its canonical depth is the largest the
+# clamp allows; dp's depth test against the cleared 1.0 must still let it
+# through (it lost the face while the clamp went up to 1.0 itself).
+cat >"$work/far.obj" <<'OBJ'
+v -1 -1 -2
+v 1 -1 -2
+v 1 1 -2
+v -1 1 -2
+v -0.5 -0.5 -1.5
+v 0.5 -0.5 -1.5
+v 0 0.5 -1.5
+f 1 2 3
+f 1 3 4
+f 5 6 7
+OBJ
+far=(--model "$work/far.obj" --size 32x32 --modelview 1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1
+     --projection 3,0,0,0,0,3,0,0,0,0,-3,-4,0,0,-1,0) # near 1, far 2
+"$oit" render "${far[@]}" --algorithm reference --out "$work/far_reference.png" >/dev/null || fail "far: reference"
+for variant in dp ddp ll ib; do
+    "$oit" render "${far[@]}" --algorithm $variant --out "$work/far_$variant.png" >/dev/null || fail "far: $variant"
+    "$oit" compare "$work/far_reference.png" "$work/far_$variant.png" --tolerance 2 \
+        || fail "$variant: a face on the far plane is lost"
+done
+echo "depth precision: a face on the far plane is drawn by every exact algorithm"

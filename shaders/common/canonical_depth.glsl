@@ -40,5 +40,5 @@ float oit_canonical_depth()
         s = dot(v_eye_position - near_point, along) / dot(along, along);
     else
         s = -at_near / slope;
-    return clamp(s, 0.0, 1.0);
+    return clamp(s, 0.0, float(OIT_CANONICAL_DEPTH_MAX));
 }

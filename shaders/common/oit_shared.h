@@ -205,6 +205,11 @@
 /* a plane is seen edge-on from a pixel when its normal is within 1e-6 (in
  * millionths) of perpendicular to the pixel's ray: the interpolated depth is kept */
 #define OIT_EDGE_ON_PLANE_PPM 1
+/* the canonical depth is clamped to [0, this]: the largest float below 1, so a
+ * fragment whose plane meets its ray at or beyond the far plane (a plane that
+ * fits a nearly edge-on triangle only within the coplanar tolerance) still
+ * passes dp's depth test against the cleared 1.0, as every list keeps it */
+#define OIT_CANONICAL_DEPTH_MAX 0.999999940395355224609375
 /* focus shapes (oit_focus_shape in oit.h) */
 #define OIT_FOCUS_SHAPE_NONE 0
 #define OIT_FOCUS_SHAPE_POINT 1

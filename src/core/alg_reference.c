@@ -459,7 +459,7 @@ static double canonical_depth(const raster_context *ctx, int64_t x, int64_t y, c
             s += ((double)eye[k] - near_point[k]) * along[k];
         s /= along_length2;
     }
-    return s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+    return s < 0.0 ? 0.0 : (s > OIT_CANONICAL_DEPTH_MAX ? OIT_CANONICAL_DEPTH_MAX : s);
 }
 
 /* Counting pass: would this fragment be stored (alpha > 0)? */
