@@ -150,7 +150,7 @@ def main():
             view = model["views"][view_name]
             scene_lines.append(f"{model['name']}-{view_name} {path} {view}")
             modelview, projection = matrices(oit, path, view)
-            numbers = " ".join("%.9g" % x for x in modelview + projection)
+            numbers = " ".join(repr(float(x)) for x in modelview + projection)  # the same doubles
             view_lines.append(f"{model['name']} {counter} {path} {numbers}")
         log(f"{model['name']}: {path}")
     suffix = "-quick" if args.quick else ""

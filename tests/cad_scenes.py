@@ -52,7 +52,7 @@ class Obj:
                              ((x0, y0, z0), (0, dy, 0), (0, 0, dz)), ((x1, y0, z0), (0, dy, 0), (0, 0, dz))):
             self.quad_grid(origin, u, v, grid)
 
-    def write(self, path):
+    def write(self, path, digits=9):
         base = os.path.splitext(path)[0]
         with open(base + ".mtl", "w") as f:
             for name, colour, _ in self.parts:
@@ -60,7 +60,7 @@ class Obj:
         with open(path, "w") as f:
             f.write("mtllib %s\n" % os.path.basename(base + ".mtl"))
             for p in self.vertices:
-                f.write("v %.9g %.9g %.9g\n" % p)
+                f.write("v %s %s %s\n" % tuple("%.*g" % (digits, c) for c in p))
             for name, _, triangles in self.parts:
                 f.write("o %s\nusemtl %s\n" % (name, name))
                 for t in triangles:
@@ -151,4 +151,5 @@ def main():
     print(" ".join(scenes))
 
 
-main()
+if __name__ == "__main__":
+    main()

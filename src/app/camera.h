@@ -1,6 +1,8 @@
 // camera.h: the workbench camera (GLM): a pose (eye position + orientation
 // quaternion) that orbit mode turns about a target with a virtual trackball and
 // walk mode moves with W/A/S/D, Q/E and mouse look; perspective or orthographic.
+// In double, in the model's file coordinates: a part far from the origin keeps
+// its matrices exact (the core moves them to the model's centre in double).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -19,13 +21,13 @@ public:
 
     // Keep the direction of view, look at the box's centre from where its
     // bounding sphere fits the view (frame selected parts).
-    void frame_box(const float box_min[3], const float box_max[3], int width, int height);
+    void frame_box(const double box_min[3], const double box_max[3], int width, int height);
     // A standard view of the target from the same distance: azimuth about the
     // vertical axis, elevation above the horizon (front 0,0; top 0,90; ...).
     void set_view_direction(float azimuth_degrees, float elevation_degrees);
 
     // Column-major matrices for a view of width x height pixels.
-    void matrices(int width, int height, float modelview[16], float projection[16]) const;
+    void matrices(int width, int height, double modelview[16], double projection[16]) const;
 
     // Orbit: virtual trackball between two points in widget pixels.
     void trackball(glm::vec2 from, glm::vec2 to, int width, int height);
@@ -44,11 +46,11 @@ public:
     float fov_degrees = 40.0f;
 
     // The pose, for presets and saved views.
-    glm::vec3 eye{0.0f, 0.0f, 1.0f};
-    glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f}; // camera to world
-    glm::vec3 target{0.0f};                       // orbit centre
-    glm::vec3 scene_centre{0.0f};
-    float scene_radius = 1.0f;
+    glm::dvec3 eye{0.0, 0.0, 1.0};
+    glm::dquat orientation{1.0, 0.0, 0.0, 0.0}; // camera to world
+    glm::dvec3 target{0.0};                     // orbit centre
+    glm::dvec3 scene_centre{0.0};
+    double scene_radius = 1.0;
 
 private:
     Mode mode_ = Mode::Orbit;

@@ -1039,13 +1039,15 @@ QWidget *MainWindow::build_opacity_tab()
                                            s.focus_shape = oit_focus_shape(i);
                                            if (model_ && i != OIT_FOCUS_NONE) {
                                                // start from something visible: the model's centre / bounds
+                                               // (in file coordinates: origin + relative bounds)
                                                const oit_model &mo = *model_;
-                                               float defaults[4][6] = {
+                                               const double *o = mo.origin;
+                                               double defaults[4][6] = {
                                                    {0, 0, 0, 0, 0, 0},
-                                                   {mo.centre[0], mo.centre[1], mo.centre[2], 0, 0, 0},
-                                                   {0, 0, 1, -mo.centre[2], 0, 0},
-                                                   {mo.bounds_min[0], mo.bounds_min[1], mo.bounds_min[2], mo.centre[0],
-                                                    mo.centre[1], mo.centre[2]}};
+                                                   {o[0], o[1], o[2], 0, 0, 0},
+                                                   {0, 0, 1, -o[2], 0, 0},
+                                                   {o[0] + mo.bounds_min[0], o[1] + mo.bounds_min[1],
+                                                    o[2] + mo.bounds_min[2], o[0], o[1], o[2]}};
                                                std::copy(defaults[i], defaults[i] + 6, s.focus);
                                            }
                                            settings_changed();
@@ -1062,14 +1064,14 @@ QWidget *MainWindow::build_opacity_tab()
         value->setMaximumWidth(110);
         connect(value, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this, &s, i](double v) {
             if (!syncing_) {
-                s.focus[i] = float(v);
+                s.focus[i] = v;
                 render_now();
             }
         });
         sync_actions_.push_back([&s, value, i] {
             int used = s.focus_shape == OIT_FOCUS_POINT ? 3 : s.focus_shape == OIT_FOCUS_PLANE ? 4
                        : s.focus_shape == OIT_FOCUS_BOX ? 6 : 0;
-            value->setValue(double(s.focus[i]));
+            value->setValue(s.focus[i]);
             value->setVisible(i < used);
         });
         focus_layout->addWidget(value, i / 3, i % 3);
@@ -1244,7 +1246,7 @@ void MainWindow::frame_parts(const std::vector<int> &parts)
     if (!model_ || parts.empty())
         return;
     const oit_model &m = *model_;
-    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}; // relative
     for (int part : parts) {
         if (part < 0 || uint32_t(part) >= m.component_count)
             continue;
@@ -1260,8 +1262,13 @@ void MainWindow::frame_parts(const std::vector<int> &parts)
     }
     if (!(lo[0] <= hi[0]))
         return; // parts without triangles
+    double box_min[3], box_max[3]; // in file coordinates, as the camera
+    for (int a = 0; a < 3; ++a) {
+        box_min[a] = m.origin[a] + lo[a];
+        box_max[a] = m.origin[a] + hi[a];
+    }
     QSize size = view_->side_pixel_size();
-    view_->camera.frame_box(lo, hi, size.width(), size.height());
+    view_->camera.frame_box(box_min, box_max, size.width(), size.height());
     emit view_->camera_changed();
     render_now();
 }

@@ -46,7 +46,7 @@ bool shown(size_t component, const std::vector<float> &alpha, const std::vector<
 
 } // namespace
 
-PickResult pick(const oit_model &model, const float modelview[16], const float projection[16], int width,
+PickResult pick(const oit_model &model, const double file_modelview[16], const double projection[16], int width,
                 int height, double x, double y, const std::vector<float> &alpha,
                 const std::vector<char> &visible)
 {
@@ -55,14 +55,10 @@ PickResult pick(const oit_model &model, const float modelview[16], const float p
         !std::isfinite(x) || !std::isfinite(y))
         return result;
 
-    double mvp[16], inverse[16];
-    for (int col = 0; col < 4; ++col)
-        for (int row = 0; row < 4; ++row) {
-            double sum = 0.0;
-            for (int k = 0; k < 4; ++k)
-                sum += double(projection[k * 4 + row]) * double(modelview[col * 4 + k]);
-            mvp[col * 4 + row] = sum;
-        }
+    // the positions are relative to the model's origin, as the renderers draw them
+    double modelview[16], mvp[16], inverse[16];
+    oit_model_modelview(&model, file_modelview, modelview);
+    oit_mat4_multiply(projection, modelview, mvp);
     if (!oit_mat4_inverse_double(mvp, inverse))
         return result;
 
@@ -119,8 +115,7 @@ PickResult pick(const oit_model &model, const float modelview[16], const float p
     if (result.triangle >= 0) {
         const Vec3 hit{near_point.x + best_s * direction.x, near_point.y + best_s * direction.y,
                        near_point.z + best_s * direction.z};
-        const double eye_z = double(modelview[2]) * hit.x + double(modelview[6]) * hit.y +
-                             double(modelview[10]) * hit.z + double(modelview[14]);
+        const double eye_z = modelview[2] * hit.x + modelview[6] * hit.y + modelview[10] * hit.z + modelview[14];
         result.eye_depth = -eye_z;
     }
     return result;

@@ -16,11 +16,12 @@ struct PickResult {
 // The nearest triangle of a part that is shown (visible[c] != 0 and alpha[c] > 0;
 // an empty vector, or an index past its end, counts as shown) under pixel (x, y)
 // of a width x height frame: pixel centres at +0.5, y down from the top row.
-// Matrices are column-major, clip = projection * modelview * v; orthographic and
-// perspective both work. Only hits between the near and far planes count, as
+// Matrices are column-major, clip = projection * modelview * v, the modelview of
+// the model's file coordinates (as every frame's); orthographic and perspective
+// both work. Only hits between the near and far planes count, as
 // those are the ones drawn; at equal depth the lower triangle index wins, as in
 // the renderers' (depth, triangle) order.
-PickResult pick(const oit_model &model, const float modelview[16], const float projection[16], int width,
+PickResult pick(const oit_model &model, const double modelview[16], const double projection[16], int width,
                 int height, double x, double y, const std::vector<float> &alpha,
                 const std::vector<char> &visible);
 

@@ -423,7 +423,7 @@ bool RenderWorker::probe_step()
                 break;
             feature.apply(frame);
             reset_gl_state();
-            oit_status status = ops->render(algorithm, ops->uses_gl ? &probe_scene_ : &cpu_scene, &frame, &err);
+            oit_status status = oit_algorithm_render(ops, algorithm, ops->uses_gl ? &probe_scene_ : &cpu_scene, &frame, &err);
             if (status != OIT_E_INPUT) // refused before any work: the algorithm cannot express it
                 probe_table_[feature.key] << ops->name;
         }
@@ -554,7 +554,7 @@ oit_status RenderWorker::render_side(const FrameJob &job, const std::string &nam
     QString first_refusal;
     while (status == OIT_OK) {
         reset_gl_state();
-        status = ops->render(algorithm, scene, &frame, &err);
+        status = oit_algorithm_render(ops, algorithm, scene, &frame, &err);
         if (status != OIT_E_INPUT)
             break;
         // an option this algorithm cannot express: leave it out, say so

@@ -84,6 +84,14 @@ std::string number(double value)
     return buffer;
 }
 
+// Every double survives the round trip (matrices, coordinates).
+std::string exact_number(double value)
+{
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.17g", value);
+    return buffer;
+}
+
 std::string shell_quote(const std::string &text)
 {
     bool plain = !text.empty();
@@ -174,11 +182,11 @@ std::string render_command(const std::string &oit_program, const std::string &mo
     c << shell_quote(oit_program) << " render --model " << shell_quote(model_path) << " --algorithm "
       << s.algorithm << " --size " << frame.width << "x" << frame.height;
     for (int which = 0; which < 2; ++which) {
-        const float *m = which == 0 ? frame.modelview : frame.projection;
+        const double *m = which == 0 ? frame.modelview : frame.projection;
         c << (which == 0 ? " --modelview " : " --projection ");
         for (int row = 0; row < 4; ++row)
             for (int col = 0; col < 4; ++col)
-                c << (row || col ? "," : "") << number(m[col * 4 + row]);
+                c << (row || col ? "," : "") << exact_number(m[col * 4 + row]);
     }
     c << " --alpha " << number(s.alpha) << " --shading " << (s.shading == OIT_SHADE_FLAT ? "flat" : "headlight");
     c << " --background " << number(s.background[0]) << "," << number(s.background[1]) << ","
@@ -236,15 +244,17 @@ std::string render_command(const std::string &oit_program, const std::string &mo
         for (uint32_t i = 0; i < frame.local.component_count; ++i)
             if (frame.local.component_alpha[i] != 1.0f)
                 c << " --component-alpha " << i << "=" << number(frame.local.component_alpha[i]);
-    const float *f = s.focus;
-    if (s.focus_shape == OIT_FOCUS_POINT)
-        c << " --focus-point " << number(f[0]) << "," << number(f[1]) << "," << number(f[2]);
-    else if (s.focus_shape == OIT_FOCUS_PLANE)
-        c << " --focus-plane " << number(f[0]) << "," << number(f[1]) << "," << number(f[2]) << ","
-          << number(f[3]);
-    else if (s.focus_shape == OIT_FOCUS_BOX)
-        c << " --focus-box " << number(f[0]) << "," << number(f[1]) << "," << number(f[2]) << ","
-          << number(f[3]) << "," << number(f[4]) << "," << number(f[5]);
+    const int focus_values = s.focus_shape == OIT_FOCUS_POINT   ? 3
+                             : s.focus_shape == OIT_FOCUS_PLANE ? 4
+                             : s.focus_shape == OIT_FOCUS_BOX   ? 6
+                                                                : 0;
+    if (focus_values > 0) {
+        c << (s.focus_shape == OIT_FOCUS_POINT   ? " --focus-point "
+              : s.focus_shape == OIT_FOCUS_PLANE ? " --focus-plane "
+                                                 : " --focus-box ");
+        for (int i = 0; i < focus_values; ++i)
+            c << (i ? "," : "") << exact_number(s.focus[i]);
+    }
     if (s.contrast != 0.0f && s.contrast != 1.0f)
         c << " --contrast " << number(s.contrast);
     if (s.error_view) {
@@ -289,7 +299,8 @@ Value string_value(const std::string &text, rapidjson::Document::AllocatorType &
     return Value(text.c_str(), rapidjson::SizeType(text.size()), a);
 }
 
-Value array_value(const float *values, int count, rapidjson::Document::AllocatorType &a)
+template <typename Number>
+Value array_value(const Number *values, int count, rapidjson::Document::AllocatorType &a)
 {
     Value array(rapidjson::kArrayType);
     for (int i = 0; i < count; ++i)
@@ -342,7 +353,8 @@ struct PresetReader {
         out = v.GetInt();
         return true;
     }
-    bool numbers(const Value &object, const char *key, int count, float *out, bool &present)
+    template <typename Number>
+    bool numbers(const Value &object, const char *key, int count, Number *out, bool &present)
     {
         present = object.HasMember(key);
         if (!present)
@@ -353,7 +365,7 @@ struct PresetReader {
         for (int i = 0; i < count; ++i) {
             if (!v[i].IsNumber() || !std::isfinite(v[i].GetDouble()))
                 return fail(key, "element " + std::to_string(i) + " is not a finite number");
-            out[i] = float(v[i].GetDouble());
+            out[i] = Number(v[i].GetDouble());
         }
         return true;
     }
@@ -446,7 +458,7 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     add(cam, "projection", Value(rapidjson::StringRef(camera.orthographic ? "orthographic" : "perspective")), a);
     add(cam, "fov", Value(double(camera.fov_degrees)), a);
     add(cam, "eye", array_value(&camera.eye.x, 3, a), a);
-    const float q[4] = {camera.orientation.w, camera.orientation.x, camera.orientation.y, camera.orientation.z};
+    const double q[4] = {camera.orientation.w, camera.orientation.x, camera.orientation.y, camera.orientation.z};
     add(cam, "orientation", array_value(q, 4, a), a);
     add(cam, "target", array_value(&camera.target.x, 3, a), a);
     add(d, "camera", std::move(cam), a);
@@ -581,7 +593,7 @@ bool preset_from_json(const std::string &file, const std::string &text, RenderSe
         int count;
     } shapes[] = {{"focus-point", OIT_FOCUS_POINT, 3}, {"focus-plane", OIT_FOCUS_PLANE, 4}, {"focus-box", OIT_FOCUS_BOX, 6}};
     for (const auto &shape : shapes) {
-        float values[6] = {0, 0, 0, 0, 0, 0};
+        double values[6] = {0, 0, 0, 0, 0, 0};
         if (!r.numbers(d, shape.key, shape.count, values, present))
             return false;
         if (present) {
@@ -647,16 +659,16 @@ bool preset_from_json(const std::string &file, const std::string &text, RenderSe
         static const char *const modes[] = {"orbit", "walk"};
         static const char *const projections[] = {"perspective", "orthographic"};
         int cam_mode = c.mode() == Camera::Mode::Walk, projection = c.orthographic;
-        float q[4] = {c.orientation.w, c.orientation.x, c.orientation.y, c.orientation.z};
+        double q[4] = {c.orientation.w, c.orientation.x, c.orientation.y, c.orientation.z};
         if (!r.choice(cam, "mode", modes, 2, cam_mode) || !r.choice(cam, "projection", projections, 2, projection) ||
             !r.number(cam, "fov", 1.0, 170.0, c.fov_degrees) || !r.numbers(cam, "eye", 3, &c.eye.x, present) ||
             !r.numbers(cam, "orientation", 4, q, present) || !r.numbers(cam, "target", 3, &c.target.x, present))
             return false;
-        glm::quat orientation(q[0], q[1], q[2], q[3]);
-        if (!(glm::length(orientation) > 1e-6f))
+        glm::dquat orientation(q[0], q[1], q[2], q[3]);
+        if (!(glm::length(orientation) > 1e-6))
             return r.fail("orientation", "must be a non-zero quaternion w, x, y, z");
         // renormalised only if needed, so a saved view comes back bit for bit
-        c.orientation = std::fabs(glm::length(orientation) - 1.0f) > 1e-5f ? glm::normalize(orientation) : orientation;
+        c.orientation = std::fabs(glm::length(orientation) - 1.0) > 1e-5 ? glm::normalize(orientation) : orientation;
         c.orthographic = projection == 1;
         c.set_mode(cam_mode ? Camera::Mode::Walk : Camera::Mode::Orbit);
         has_camera = true;

@@ -24,7 +24,7 @@ struct RenderSettings {
     float background[3] = {1.0f, 1.0f, 1.0f};
     oit_modulation modulation{};
     oit_focus_shape focus_shape = OIT_FOCUS_NONE;
-    float focus[6] = {0, 0, 0, 0, 0, 0};
+    double focus[6] = {0, 0, 0, 0, 0, 0}; // model (file) coordinates
     float contrast = 1.0f;
     // per component of the loaded model; opacity used = visible ? part_alpha : 0
     std::vector<float> part_alpha;
@@ -52,7 +52,7 @@ bool parse_view(const std::string &text, oit_modulation &modulation);
 const char *modulation_mode_name(oit_modulation_mode mode);
 
 // The `oit render` command that reproduces a frame (matrices row by row, with
-// enough digits that every float survives the round trip). With the error
+// enough digits that every double survives the round trip). With the error
 // view, --error-vs-reference and --error-map (out_path's name with "-error").
 // The command line has no split view: the command is side A's.
 std::string render_command(const std::string &oit_program, const std::string &model_path,

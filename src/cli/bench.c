@@ -451,7 +451,7 @@ static oit_status run_algorithm(session *s, const render_options *o, int warmup,
             progress(progress_data, f + 1, warmup + frames);
         if (f == warmup)
             measure_start_ms = now_ms();
-        status = ops->render(alg, setup.scene, &setup.frame, err);
+        status = oit_algorithm_render(ops, alg, setup.scene, &setup.frame, err);
         if (status == OIT_OK && f >= warmup) {
             ops->stats(alg, &per_frame[measured++]);
             if (budget_ms > 0.0 && measured >= BENCH_MIN_FRAMES && now_ms() - measure_start_ms > budget_ms)
@@ -525,10 +525,11 @@ static double stages_sum(const run_result *r, const char *const *prefixes, int p
 /* -------------------------------------------------------- orbit sequence */
 
 /* modelview * T(centre) * Ry(-degrees) * T(-centre): the camera orbited about
- * the model's vertical axis through its bounding sphere's centre. For the
- * default camera this is the camera of azimuth + degrees (oit_default_camera
- * builds translate * rotate_x(el) * rotate_y(-az) * translate(-centre)). */
-static void orbit_modelview(const float modelview[16], const float centre[3], double degrees, float out[16])
+ * the model's vertical axis through its bounding sphere's centre (the model's
+ * origin). For the default camera this is the camera of azimuth + degrees
+ * (oit_default_camera builds translate * rotate_x(el) * rotate_y(-az) *
+ * translate(-centre)). */
+static void orbit_modelview(const double modelview[16], const double centre[3], double degrees, double out[16])
 {
     double angle = -degrees * 3.14159265358979323846 / 180.0;
     double c = cos(angle), sn = sin(angle);
@@ -544,8 +545,8 @@ static void orbit_modelview(const float modelview[16], const float centre[3], do
         for (int row = 0; row < 4; ++row) {
             double sum = 0.0;
             for (int k = 0; k < 4; ++k)
-                sum += (double)modelview[k * 4 + row] * m[col * 4 + k];
-            out[col * 4 + row] = (float)sum;
+                sum += modelview[k * 4 + row] * m[col * 4 + k];
+            out[col * 4 + row] = sum;
         }
 }
 
@@ -567,7 +568,7 @@ static oit_status orbit_reference(session *s, const render_options *o, const oit
     }
     reference->frame = *frame;
     if (status == OIT_OK)
-        status = oit_algorithm_reference.render(reference->alg, reference->scene, &reference->frame, err);
+        status = oit_algorithm_render(&oit_algorithm_reference, reference->alg, reference->scene, &reference->frame, err);
     oit_image *target = cached ? cached : scratch;
     oit_image_free(target);
     if (status == OIT_OK)
@@ -597,13 +598,13 @@ static oit_status run_orbit(session *s, const render_options *o, int count, doub
     if (status == OIT_OK && (!previous || !current))
         status = oit_fail(err, OIT_E_RUNTIME, "--orbit-sequence: out of memory for %dx%d error images",
                           o->width, o->height);
-    float base[16];
+    double base[16];
     memcpy(base, setup.frame.modelview, sizeof base);
     oit_image image = {0}, scratch = {0};
     double pair_sum = 0.0, pair_max = 0.0, rmse_sum = 0.0;
     for (int i = 0; status == OIT_OK && i < count; ++i) {
-        orbit_modelview(base, s->model.centre, step_degrees * i, setup.frame.modelview);
-        status = ops->render(setup.alg, setup.scene, &setup.frame, err);
+        orbit_modelview(base, s->model.origin, step_degrees * i, setup.frame.modelview);
+        status = oit_algorithm_render(ops, setup.alg, setup.scene, &setup.frame, err);
         if (status == OIT_OK) {
             oit_image_free(&image);
             status = ops->read_image(setup.alg, &image, err);
@@ -1383,15 +1384,6 @@ static bool file_checksum(const char *path, uint64_t *hash, long long *bytes)
     *hash = h;
     *bytes = total;
     return ok;
-}
-
-static void json_matrix_rows(FILE *f, const float m[16])
-{
-    fputc('[', f);
-    for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 4; ++col)
-            fprintf(f, "%s%.9g", row || col ? ", " : "", m[col * 4 + row]);
-    fputc(']', f);
 }
 
 /* A scene's entry: its model (path, bytes, checksum) and render options;

@@ -26,7 +26,7 @@ static struct {
     size_t count, capacity;
     oit_focus_shape focus_shape;
     const char *focus_flag;
-    float focus[6];
+    double focus[6]; /* model (file) coordinates, in double as they reach the core */
     float contrast;
     float *resolved_alpha; /* handed to frame->local */
     bool registered_free;
@@ -51,18 +51,27 @@ static void register_free(void)
     }
 }
 
-static bool parse_number(const char *text, double low, double high, float *out)
+static bool parse_double_in(const char *text, double low, double high, double *out)
 {
     char *end = NULL;
     double value = strtod(text, &end);
     if (end == text || *end != '\0' || !isfinite(value) || value < low || value > high)
+        return false;
+    *out = value;
+    return true;
+}
+
+static bool parse_number(const char *text, double low, double high, float *out)
+{
+    double value;
+    if (!parse_double_in(text, low, high, &value))
         return false;
     *out = (float)value;
     return true;
 }
 
 /* count comma-separated numbers, each within +-COORDINATE_LIMIT */
-static bool parse_numbers(const char *text, int count, float *out)
+static bool parse_numbers(const char *text, int count, double *out)
 {
     char buffer[512];
     if (strlen(text) >= sizeof buffer)
@@ -75,7 +84,7 @@ static bool parse_numbers(const char *text, int count, float *out)
             return false;
         if (comma)
             *comma = '\0';
-        if (!parse_number(cursor, -COORDINATE_LIMIT, COORDINATE_LIMIT, &out[k]))
+        if (!parse_double_in(cursor, -COORDINATE_LIMIT, COORDINATE_LIMIT, &out[k]))
             return false;
         cursor = comma ? comma + 1 : cursor;
     }
@@ -107,7 +116,7 @@ static int add_setting(const char *name, size_t name_length, float alpha, const 
     return 1;
 }
 
-static int set_focus(oit_focus_shape shape, const char *flag, const float *values, int count,
+static int set_focus(oit_focus_shape shape, const char *flag, const double *values, int count,
                      oit_error *err, oit_status *status)
 {
     if (options.focus_shape != OIT_FOCUS_NONE) {
@@ -161,22 +170,22 @@ int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oi
         return add_setting(value, strlen(value), 0.0f, flag, err, status);
     }
     if (strcmp(flag, "--focus-point") == 0) {
-        float p[3];
+        double p[3];
         if (!parse_numbers(value, 3, p))
             BAD("--focus-point must be x,y,z in model coordinates (each within +-1e9), got '%s'", value);
         return set_focus(OIT_FOCUS_POINT, flag, p, 3, err, status);
     }
     if (strcmp(flag, "--focus-plane") == 0) {
-        float p[4];
+        double p[4];
         if (!parse_numbers(value, 4, p))
             BAD("--focus-plane must be a,b,c,d (the plane ax+by+cz+d=0, each within +-1e9), got '%s'",
                 value);
-        if (p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f)
+        if (p[0] == 0.0 && p[1] == 0.0 && p[2] == 0.0)
             BAD("--focus-plane %s: the normal (a,b,c) must not be zero", value);
         return set_focus(OIT_FOCUS_PLANE, flag, p, 4, err, status);
     }
     if (strcmp(flag, "--focus-box") == 0) {
-        float p[6];
+        double p[6];
         if (!parse_numbers(value, 6, p))
             BAD("--focus-box must be x0,y0,z0,x1,y1,z1 (two corners, each within +-1e9), got '%s'",
                 value);

@@ -62,15 +62,10 @@ static void print_render_json(FILE *out, const render_options *o, const session 
     oit_frame_settings frame;
     oit_error ignored;
     if (render_frame_settings(s, o, &frame, &ignored) == OIT_OK) {
-        const float *matrices[2] = {frame.modelview, frame.projection};
-        const char *keys[2] = {"modelview", "projection"};
-        for (int m = 0; m < 2; ++m) {
-            fprintf(out, ", \"%s\": [", keys[m]);
-            for (int row = 0; row < 4; ++row)
-                for (int col = 0; col < 4; ++col)
-                    fprintf(out, "%s%.9g", row || col ? ", " : "", matrices[m][col * 4 + row]);
-            fprintf(out, "]");
-        }
+        fprintf(out, ", \"modelview\": ");
+        json_matrix_rows(out, frame.modelview);
+        fprintf(out, ", \"projection\": ");
+        json_matrix_rows(out, frame.projection);
     }
     fprintf(out, ", \"gpu_ms\": %.4f, \"cpu_ms\": %.4f", stages_total(st), st->cpu_ms);
     fprintf(out, ", \"stages\": [");
@@ -368,6 +363,11 @@ static int command_info(int argc, char **argv)
     if (status != OIT_OK)
         return report(status, &err);
     print_model_warnings(&m);
+    double lo[3], hi[3]; /* in the file's coordinates */
+    for (int k = 0; k < 3; ++k) {
+        lo[k] = m.origin[k] + m.bounds_min[k];
+        hi[k] = m.origin[k] + m.bounds_max[k];
+    }
     if (json) {
         printf("{\"model\": ");
         json_string(stdout, model_path);
@@ -375,10 +375,10 @@ static int command_info(int argc, char **argv)
         printf(", \"vertices\": %u, \"welded_vertices\": %u, \"triangles\": %u, \"planes\": %u, "
                "\"components\": %u",
                m.vertex_count, m.welded_count, m.triangle_count, m.plane_count, m.component_count);
-        printf(", \"bounds_min\": [%g, %g, %g], \"bounds_max\": [%g, %g, %g]", m.bounds_min[0],
-               m.bounds_min[1], m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);
-        printf(", \"centre\": [%g, %g, %g], \"radius\": %g, \"longest_edge\": %.9g, \"parts\": [",
-               m.centre[0], m.centre[1], m.centre[2], m.radius, m.longest_edge);
+        printf(", \"bounds_min\": [%.9g, %.9g, %.9g], \"bounds_max\": [%.9g, %.9g, %.9g]", lo[0], lo[1], lo[2],
+               hi[0], hi[1], hi[2]);
+        printf(", \"centre\": [%.9g, %.9g, %.9g], \"radius\": %g, \"longest_edge\": %.9g, \"parts\": [",
+               m.origin[0], m.origin[1], m.origin[2], m.radius, m.longest_edge);
         for (uint32_t c = 0; c < m.component_count; ++c) {
             const oit_component *p = &m.components[c];
             printf("%s{\"name\": ", c ? ", " : "");
@@ -394,9 +394,9 @@ static int command_info(int argc, char **argv)
         printf("vertices    %u (%u distinct positions)\n", m.vertex_count, m.welded_count);
         printf("triangles   %u (%u distinct planes)\n", m.triangle_count, m.plane_count);
         printf("components  %u\n", m.component_count);
-        printf("bounds      (%g, %g, %g) .. (%g, %g, %g)\n", m.bounds_min[0], m.bounds_min[1],
-               m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);
-        printf("sphere      centre (%g, %g, %g), radius %g\n", m.centre[0], m.centre[1], m.centre[2],
+        printf("bounds      (%.9g, %.9g, %.9g) .. (%.9g, %.9g, %.9g)\n", lo[0], lo[1], lo[2], hi[0], hi[1],
+               hi[2]);
+        printf("sphere      centre (%.9g, %.9g, %.9g), radius %g\n", m.origin[0], m.origin[1], m.origin[2],
                m.radius);
         printf("longest edge %g\n", m.longest_edge);
         for (uint32_t c = 0; c < m.component_count; ++c) {

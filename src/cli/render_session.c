@@ -109,7 +109,7 @@ int parse_number_list(const char *text, double *values, int capacity)
 }
 
 /* 16 numbers row by row (as the source's measuring command line) into column-major. */
-oit_status matrix_from_rows(const char *what, const double values[16], float out[16], oit_error *err)
+oit_status matrix_from_rows(const char *what, const double values[16], double out[16], oit_error *err)
 {
     for (int row = 0; row < 4; ++row)
         for (int col = 0; col < 4; ++col) {
@@ -117,12 +117,12 @@ oit_status matrix_from_rows(const char *what, const double values[16], float out
             if (!isfinite(value) || fabs(value) > 3.0e38)
                 return oit_fail(err, OIT_E_INPUT, "%s: element at row %d, column %d is not a finite number",
                                 what, row, col);
-            out[col * 4 + row] = (float)value;
+            out[col * 4 + row] = value;
         }
     return OIT_OK;
 }
 
-oit_status parse_matrix(const char *flag, const char *text, float out[16], oit_error *err)
+oit_status parse_matrix(const char *flag, const char *text, double out[16], oit_error *err)
 {
     double values[16];
     int count = parse_number_list(text, values, 16);
@@ -132,6 +132,15 @@ oit_status parse_matrix(const char *flag, const char *text, float out[16], oit_e
         return oit_fail(err, OIT_E_INPUT, "%s needs 16 comma-separated numbers (row by row), got %d",
                         flag, count);
     return matrix_from_rows(flag, values, out, err);
+}
+
+void json_matrix_rows(FILE *out, const double m[16])
+{
+    fputc('[', out);
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            fprintf(out, "%s%.17g", row || col ? ", " : "", m[col * 4 + row]);
+    fputc(']', out);
 }
 
 oit_status parse_size(const char *text, int *width, int *height, oit_error *err)
@@ -471,7 +480,7 @@ oit_status render_frame_settings(const session *s, const render_options *o, oit_
     memset(frame, 0, sizeof *frame);
     frame->width = o->width;
     frame->height = o->height;
-    float default_modelview[16], default_projection[16];
+    double default_modelview[16], default_projection[16];
     if (!o->has_modelview || !o->has_projection) {
         oit_status status = oit_default_camera(&s->model, o->width, o->height, o->orbit[0], o->orbit[1],
                                                default_modelview, default_projection, err);
@@ -535,7 +544,7 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
     if (status == OIT_OK)
         status = render_setup_create(s, o, &setup, err);
     for (int f = 0; status == OIT_OK && f < o->frames; ++f) {
-        status = ops->render(setup.alg, setup.scene, &setup.frame, err);
+        status = oit_algorithm_render(ops, setup.alg, setup.scene, &setup.frame, err);
         if (status == OIT_OK)
             ops->stats(setup.alg, &per_frame[f]);
     }

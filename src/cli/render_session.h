@@ -30,9 +30,12 @@ bool parse_int(const char *text, long minimum, long maximum, long *out);
 /* Comma-separated finite numbers; returns the count parsed or -1 on a bad token. */
 int parse_number_list(const char *text, double *values, int capacity);
 /* 16 numbers row by row (as the source's measuring command line) into column-major. */
-oit_status parse_matrix(const char *flag, const char *text, float out[16], oit_error *err);
+oit_status parse_matrix(const char *flag, const char *text, double out[16], oit_error *err);
 /* Checks and converts 16 row-by-row numbers (already parsed) into column-major. */
-oit_status matrix_from_rows(const char *what, const double rows[16], float out[16], oit_error *err);
+oit_status matrix_from_rows(const char *what, const double rows[16], double out[16], oit_error *err);
+/* A column-major matrix as a JSON array of 16 numbers, row by row, as --modelview and
+ * --projection take it back (%.17g: the same doubles). */
+void json_matrix_rows(FILE *out, const double m[16]);
 oit_status parse_size(const char *text, int *width, int *height, oit_error *err);
 
 /* ----------------------------------------------------- render options */
@@ -44,7 +47,7 @@ typedef struct render_options {
     int width, height;
     bool has_modelview, has_projection;
     float orbit[2]; /* default camera: azimuth, elevation in degrees */
-    float modelview[16], projection[16];
+    double modelview[16], projection[16];
     float alpha;
     oit_shading_mode shading;
     float background[3];

@@ -350,7 +350,7 @@ static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error
 
 /* Inverse of a column-major 4x4 matrix by Gauss-Jordan elimination with
  * partial pivoting; false if singular. */
-static bool ib_invert(const float m[16], float out[16])
+static bool ib_invert(const double m[16], float out[16])
 {
     double a[4][8];
     for (int r = 0; r < 4; ++r)
@@ -440,7 +440,8 @@ static oit_status ib_make_plan(const oit_frame_settings *frame, const oit_scene 
     /* the model radius in eye space: scaled by the modelview's largest axis scale */
     float scale = 0.0f;
     for (int c = 0; c < 3; ++c) {
-        const float *col = frame->modelview + c * 4;
+        const double *column = frame->modelview + c * 4; /* float values (oit_algorithm_render) */
+        float col[3] = {(float)column[0], (float)column[1], (float)column[2]};
         float length = sqrtf(col[0] * col[0] + col[1] * col[1] + col[2] * col[2]);
         if (length > scale)
             scale = length;
@@ -459,7 +460,7 @@ static oit_status ib_make_plan(const oit_frame_settings *frame, const oit_scene 
     for (int i = 0; i < 3; ++i) {
         double row_sum = 0.0;
         for (int j = 0; j < 3; ++j) {
-            const float *ci = frame->modelview + i * 4, *cj = frame->modelview + j * 4;
+            const double *ci = frame->modelview + i * 4, *cj = frame->modelview + j * 4;
             row_sum += fabs((double)ci[0] * cj[0] + (double)ci[1] * cj[1] + (double)ci[2] * cj[2]);
         }
         if (row_sum > gram_bound)

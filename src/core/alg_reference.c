@@ -213,14 +213,6 @@ static bool invert4(const double m[16], double out[16])
     return true;
 }
 
-static bool invert4_float(const float m[16], double out[16])
-{
-    double d[16];
-    for (int i = 0; i < 16; ++i)
-        d[i] = m[i];
-    return invert4(d, out);
-}
-
 /* The focus shapes' fall-off length R (docs/modulation.md): --focus-region, or
  * when that is auto (0) the default the caller set (the CLI: a quarter of the
  * bounding radius), or when neither is set 1 (oit.h, oit_local_modulation). */
@@ -237,7 +229,7 @@ static double focus_region(const oit_frame_settings *frame)
  * inside). */
 static double focus_distance(const oit_local_modulation *local, const double p[3])
 {
-    const float *f = local->focus;
+    const double *f = local->focus;
     double sum = 0.0;
     switch (local->focus_shape) {
     case OIT_FOCUS_POINT:
@@ -982,13 +974,12 @@ static void transform_vertices(const oit_model *model, const oit_frame_settings 
     for (int col = 0; col < 3; ++col)
         for (int row = 0; row < 3; ++row)
             normal_matrix[col * 3 + row] = regular ? inverse[row * 4 + col] : 0.0;
-    const float *mv = frame->modelview, *pr = frame->projection;
+    const double *mv = frame->modelview, *pr = frame->projection;
     for (uint32_t v = 0; v < model->vertex_count; ++v) {
         const float *p = &model->positions[3 * (size_t)v];
         double eye[4];
         for (int row = 0; row < 4; ++row)
-            eye[row] = (double)mv[row] * p[0] + (double)mv[4 + row] * p[1] +
-                       (double)mv[8 + row] * p[2] + (double)mv[12 + row];
+            eye[row] = mv[row] * p[0] + mv[4 + row] * p[1] + mv[8 + row] * p[2] + mv[12 + row];
         clip_vertex *o = &out[v];
         for (int row = 0; row < 4; ++row)
             o->clip[row] = pr[row] * eye[0] + pr[4 + row] * eye[1] + pr[8 + row] * eye[2] +
@@ -1089,9 +1080,9 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
         .guard_band_y = GUARD_BAND_PIXELS / alg->height,
         .per_fragment_alpha = frame->local.focus_shape != OIT_FOCUS_NONE,
     };
-    invert4_float(frame->projection, ctx.inverse_projection); /* validated regular */
+    invert4(frame->projection, ctx.inverse_projection); /* validated regular */
     ctx.focus_region = focus_region(frame);
-    bool modelview_regular = invert4_float(frame->modelview, ctx.inverse_modelview);
+    bool modelview_regular = invert4(frame->modelview, ctx.inverse_modelview);
     if (ctx.per_fragment_alpha && !modelview_regular)
         return oit_fail(err, OIT_E_INPUT,
                         "reference: the modelview is singular, so focus shapes (model coordinates) "
@@ -1143,7 +1134,7 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
     double distance_norm = 1.0;
     if (distance_mode) {
         double inverse_projection[16];
-        if (!invert4_float(frame->projection, inverse_projection))
+        if (!invert4(frame->projection, inverse_projection))
             return oit_fail(err, OIT_E_INPUT, "reference: the projection matrix is singular");
         double largest = distances(alg, frame, inverse_projection);
         /* focus region 0: normalise by the frame's largest distance (as ib) */

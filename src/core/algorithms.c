@@ -1,4 +1,6 @@
-/* algorithms.c: the registry of algorithms, in the order `oit algorithms` lists them. */
+/* algorithms.c: the registry of algorithms, in the order `oit algorithms` lists them, and
+ * oit_algorithm_render, the one entry every frame goes through. */
+#include <math.h>
 #include <string.h>
 
 #include "oit.h"
@@ -21,4 +23,47 @@ const oit_algorithm_ops *oit_algorithm_find(const char *name)
         if (strcmp(registry[i]->name, name) == 0)
             return registry[i];
     return NULL;
+}
+
+static double as_float(double value) { return (double)(float)value; }
+
+oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg, const oit_scene *scene,
+                                const oit_frame_settings *frame, oit_error *err)
+{
+    if (!ops || !alg || !scene || !scene->model || !frame)
+        return oit_fail(err, OIT_E_INPUT, "render: no algorithm, scene or frame settings");
+    oit_status status = oit_matrices_validate(frame->modelview, frame->projection, err);
+    if (status != OIT_OK)
+        return status;
+    const double *origin = scene->model->origin;
+    oit_frame_settings relative = *frame;
+    oit_model_modelview(scene->model, frame->modelview, relative.modelview);
+    oit_local_modulation *local = &relative.local;
+    switch (local->focus_shape) {
+    case OIT_FOCUS_POINT:
+        for (int k = 0; k < 3; ++k)
+            local->focus[k] -= origin[k];
+        break;
+    case OIT_FOCUS_PLANE: /* n . (origin + r) + d = 0 */
+        local->focus[3] += local->focus[0] * origin[0] + local->focus[1] * origin[1] + local->focus[2] * origin[2];
+        break;
+    case OIT_FOCUS_BOX:
+        for (int k = 0; k < 6; ++k)
+            local->focus[k] -= origin[k % 3];
+        break;
+    case OIT_FOCUS_NONE:
+        break;
+    }
+    for (int i = 0; i < 16; ++i) {
+        relative.modelview[i] = as_float(relative.modelview[i]);
+        relative.projection[i] = as_float(relative.projection[i]);
+        if (!isfinite(relative.modelview[i]) || !isfinite(relative.projection[i]))
+            return oit_fail(err, OIT_E_INPUT,
+                            "the %s's element %d (row %d, column %d) is too large for single precision "
+                            "once moved to the model's centre",
+                            isfinite(relative.modelview[i]) ? "projection" : "modelview", i, i % 4, i / 4);
+    }
+    for (int k = 0; k < 6; ++k)
+        local->focus[k] = as_float(local->focus[k]);
+    return ops->render(alg, scene, &relative, err);
 }

@@ -811,6 +811,15 @@ static bool uniform_active(GLuint program, const char *name, GLint location)
     return glGetUniformLocation(program, name) == location;
 }
 
+/* Matrices are double in C and float on the GPU: rounded here, once. */
+static void set_matrix4_uniform(GLint location, const double m[16])
+{
+    float rounded[16];
+    for (int i = 0; i < 16; ++i)
+        rounded[i] = (float)m[i];
+    glUniformMatrix4fv(location, 1, GL_FALSE, rounded);
+}
+
 /* The local modulation of common/local_modulation.glsl (docs/modulation.md). */
 static void set_local_uniforms(GLuint p, const oit_local_modulation *local,
                                const oit_frame_settings *frame)
@@ -818,30 +827,24 @@ static void set_local_uniforms(GLuint p, const oit_local_modulation *local,
     if (uniform_active(p, "u_local_focus_shape", OIT_UNIFORM_LOCAL_FOCUS_SHAPE))
         glUniform1i(OIT_UNIFORM_LOCAL_FOCUS_SHAPE, (GLint)local->focus_shape);
     if (uniform_active(p, "u_local_focus_a", OIT_UNIFORM_LOCAL_FOCUS_A))
-        glUniform4f(OIT_UNIFORM_LOCAL_FOCUS_A, local->focus[0], local->focus[1], local->focus[2],
-                    local->focus_shape == OIT_FOCUS_BOX ? 0.0f : local->focus[3]);
+        glUniform4f(OIT_UNIFORM_LOCAL_FOCUS_A, (float)local->focus[0], (float)local->focus[1],
+                    (float)local->focus[2], local->focus_shape == OIT_FOCUS_BOX ? 0.0f : (float)local->focus[3]);
     if (uniform_active(p, "u_local_focus_b", OIT_UNIFORM_LOCAL_FOCUS_B))
-        glUniform4f(OIT_UNIFORM_LOCAL_FOCUS_B, local->focus[3], local->focus[4], local->focus[5],
-                    0.0f);
+        glUniform4f(OIT_UNIFORM_LOCAL_FOCUS_B, (float)local->focus[3], (float)local->focus[4],
+                    (float)local->focus[5], 0.0f);
     if (uniform_active(p, "u_local_focus_region", OIT_UNIFORM_LOCAL_FOCUS_REGION))
         glUniform1f(OIT_UNIFORM_LOCAL_FOCUS_REGION, oit_local_focus_region(frame));
     if (uniform_active(p, "u_local_contrast", OIT_UNIFORM_LOCAL_CONTRAST))
         glUniform1f(OIT_UNIFORM_LOCAL_CONTRAST, local->contrast);
     if (uniform_active(p, "u_local_inverse_modelview", OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW)) {
         double inverse[16];
-        float inverse_float[16];
-        oit_local_inverse_modelview(frame->modelview, inverse); /* zero if singular */
-        for (int i = 0; i < 16; ++i)
-            inverse_float[i] = (float)inverse[i];
-        glUniformMatrix4fv(OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW, 1, GL_FALSE, inverse_float);
+        oit_mat4_inverse_double(frame->modelview, inverse); /* zero if singular */
+        set_matrix4_uniform(OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW, inverse);
     }
     if (uniform_active(p, "u_local_inverse_projection", OIT_UNIFORM_LOCAL_INVERSE_PROJECTION)) {
         double inverse[16];
-        float inverse_float[16];
-        oit_local_inverse_modelview(frame->projection, inverse); /* any 4x4; zero if singular */
-        for (int i = 0; i < 16; ++i)
-            inverse_float[i] = (float)inverse[i];
-        glUniformMatrix4fv(OIT_UNIFORM_LOCAL_INVERSE_PROJECTION, 1, GL_FALSE, inverse_float);
+        oit_mat4_inverse_double(frame->projection, inverse); /* zero if singular */
+        set_matrix4_uniform(OIT_UNIFORM_LOCAL_INVERSE_PROJECTION, inverse);
     }
     const oit_modulation *m = &frame->modulation;
     if (uniform_active(p, "u_distance_mode", OIT_UNIFORM_DISTANCE_MODE))
@@ -896,18 +899,21 @@ void oit_gl_set_frame_uniforms(const oit_frame_settings *frame)
         return;
     GLuint p = (GLuint)program;
     if (uniform_active(p, "u_modelview", OIT_UNIFORM_MODELVIEW))
-        glUniformMatrix4fv(OIT_UNIFORM_MODELVIEW, 1, GL_FALSE, frame->modelview);
+        set_matrix4_uniform(OIT_UNIFORM_MODELVIEW, frame->modelview);
     if (uniform_active(p, "u_projection", OIT_UNIFORM_PROJECTION))
-        glUniformMatrix4fv(OIT_UNIFORM_PROJECTION, 1, GL_FALSE, frame->projection);
+        set_matrix4_uniform(OIT_UNIFORM_PROJECTION, frame->projection);
     if (uniform_active(p, "u_normal_matrix", OIT_UNIFORM_NORMAL_MATRIX)) {
-        float normal_matrix[9];
+        double normal_matrix[9];
+        float rounded[9];
         if (!oit_mat4_normal_matrix(frame->modelview, normal_matrix)) {
             /* singular modelview: fall back to its upper 3x3 */
             for (int col = 0; col < 3; ++col)
                 for (int row = 0; row < 3; ++row)
                     normal_matrix[col * 3 + row] = frame->modelview[col * 4 + row];
         }
-        glUniformMatrix3fv(OIT_UNIFORM_NORMAL_MATRIX, 1, GL_FALSE, normal_matrix);
+        for (int i = 0; i < 9; ++i)
+            rounded[i] = (float)normal_matrix[i];
+        glUniformMatrix3fv(OIT_UNIFORM_NORMAL_MATRIX, 1, GL_FALSE, rounded);
     }
     if (uniform_active(p, "u_alpha", OIT_UNIFORM_ALPHA))
         glUniform1f(OIT_UNIFORM_ALPHA, frame->alpha);
@@ -920,9 +926,9 @@ void oit_gl_set_frame_uniforms(const oit_frame_settings *frame)
     if (uniform_active(p, "u_viewport", OIT_UNIFORM_VIEWPORT))
         glUniform2i(OIT_UNIFORM_VIEWPORT, frame->width, frame->height);
     if (uniform_active(p, "u_plane_to_eye", OIT_UNIFORM_PLANE_TO_EYE)) {
-        float plane_to_eye[16];
-        oit_plane_to_eye(frame, plane_to_eye);
-        glUniformMatrix4fv(OIT_UNIFORM_PLANE_TO_EYE, 1, GL_FALSE, plane_to_eye);
+        double plane_to_eye[16];
+        oit_plane_to_eye_double(frame, plane_to_eye);
+        set_matrix4_uniform(OIT_UNIFORM_PLANE_TO_EYE, plane_to_eye);
     }
     set_local_uniforms(p, &frame->local, frame);
 }

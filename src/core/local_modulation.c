@@ -18,14 +18,6 @@ float oit_local_focus_region(const oit_frame_settings *frame)
 }
 
 /* General 4x4 inverse by cofactors, in double. */
-bool oit_local_inverse_modelview(const float modelview[16], double out[16])
-{
-    double m[16];
-    for (int i = 0; i < 16; ++i)
-        m[i] = modelview[i];
-    return oit_mat4_inverse_double(m, out);
-}
-
 bool oit_mat4_inverse_double(const double m[16], double out[16])
 {
     double inv[16];

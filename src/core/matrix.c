@@ -5,27 +5,38 @@
 #include "oit.h"
 #include "oit_shared.h"
 
-void oit_mat4_identity(float m[16])
+void oit_mat4_identity(double m[16])
 {
     memset(m, 0, 16 * sizeof m[0]);
-    m[0] = m[5] = m[10] = m[15] = 1.0f;
+    m[0] = m[5] = m[10] = m[15] = 1.0;
 }
 
-void oit_mat4_multiply(const float a[16], const float b[16], float out[16])
+void oit_mat4_multiply(const double a[16], const double b[16], double out[16])
 {
-    float result[16];
+    double result[16];
     for (int col = 0; col < 4; ++col)
         for (int row = 0; row < 4; ++row) {
             double sum = 0.0;
             for (int k = 0; k < 4; ++k)
-                sum += (double)a[k * 4 + row] * b[col * 4 + k];
-            result[col * 4 + row] = (float)sum;
+                sum += a[k * 4 + row] * b[col * 4 + k];
+            result[col * 4 + row] = sum;
         }
     memcpy(out, result, sizeof result);
 }
 
-/* Upper 3x3 of a column-major 4x4, as a[row][col] in double. */
-static void upper3x3(const float m[16], double a[3][3])
+void oit_model_modelview(const oit_model *model, const double modelview[16], double out[16])
+{
+    /* modelview x translate(origin): only the translation column changes */
+    double result[16];
+    memcpy(result, modelview, sizeof result);
+    for (int row = 0; row < 4; ++row)
+        result[12 + row] = modelview[row] * model->origin[0] + modelview[4 + row] * model->origin[1] +
+                           modelview[8 + row] * model->origin[2] + modelview[12 + row];
+    memcpy(out, result, sizeof result);
+}
+
+/* Upper 3x3 of a column-major 4x4, as a[row][col]. */
+static void upper3x3(const double m[16], double a[3][3])
 {
     for (int row = 0; row < 3; ++row)
         for (int col = 0; col < 3; ++col)
@@ -39,7 +50,7 @@ static double det3(double a[3][3])
            a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
 }
 
-bool oit_mat4_normal_matrix(const float m[16], float out[9])
+bool oit_mat4_normal_matrix(const double m[16], double out[9])
 {
     double a[3][3];
     upper3x3(m, a);
@@ -60,7 +71,7 @@ bool oit_mat4_normal_matrix(const float m[16], float out[9])
         }
     for (int row = 0; row < 3; ++row)
         for (int col = 0; col < 3; ++col)
-            out[col * 3 + row] = (float)(cof[row][col] / det);
+            out[col * 3 + row] = cof[row][col] / det;
     return true;
 }
 
@@ -79,7 +90,7 @@ static double det4(double a[4][4])
     return det;
 }
 
-double oit_mat4_regularity(const float m[16])
+double oit_mat4_regularity(const double m[16])
 {
     /* Units make a plain determinant useless as a test: a projection's
      * translation column carries lengths (2fn/(n-f)) while its other columns
@@ -120,7 +131,7 @@ double oit_mat4_regularity(const float m[16])
     return isfinite(ratio) ? fmin(ratio, 1.0) : 0.0;
 }
 
-oit_status oit_matrices_validate(const float modelview[16], const float projection[16],
+oit_status oit_matrices_validate(const double modelview[16], const double projection[16],
                                  oit_error *err)
 {
     for (int i = 0; i < 16; ++i) {
@@ -131,7 +142,7 @@ oit_status oit_matrices_validate(const float modelview[16], const float projecti
             return oit_fail(err, OIT_E_INPUT, "projection element %d (row %d, column %d) is not finite",
                             i, i % 4, i / 4);
     }
-    float normal_matrix[9];
+    double normal_matrix[9];
     if (!oit_mat4_normal_matrix(modelview, normal_matrix))
         return oit_fail(err, OIT_E_INPUT, "modelview is singular (its 3x3 part has no inverse)");
     double regularity = oit_mat4_regularity(projection);
@@ -143,8 +154,8 @@ oit_status oit_matrices_validate(const float modelview[16], const float projecti
     return OIT_OK;
 }
 
-oit_status oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
-                              float elevation_degrees, float modelview[16], float projection[16],
+oit_status oit_default_camera(const oit_model *model, int width, int height, double azimuth_degrees,
+                              double elevation_degrees, double modelview[16], double projection[16],
                               oit_error *err)
 {
     /* Eye space keeps the model's units (focus regions and distances along the
@@ -166,7 +177,8 @@ oit_status oit_default_camera(const oit_model *model, int width, int height, flo
     double near_plane = fmax(distance - 1.1 * radius, distance * 1e-3);
     double far_plane = distance + 1.1 * radius;
 
-    /* modelview = translate(0, 0, -distance) * rotate_x(elevation) * rotate_y(-azimuth) * translate(-centre) */
+    /* modelview = translate(0, 0, -distance) * rotate_x(elevation) * rotate_y(-azimuth) * translate(-origin),
+     * the origin being the sphere's centre in file coordinates */
     double ca = cos(-azimuth_degrees * degrees), sa = sin(-azimuth_degrees * degrees);
     double ce = cos(elevation_degrees * degrees), se = sin(elevation_degrees * degrees);
     double rotation[3][3] = {/* rows of rotate_x(e) * rotate_y(a) */
@@ -177,19 +189,19 @@ oit_status oit_default_camera(const oit_model *model, int width, int height, flo
     for (int row = 0; row < 3; ++row) {
         double moved = 0.0;
         for (int col = 0; col < 3; ++col) {
-            modelview[col * 4 + row] = (float)rotation[row][col];
-            moved -= rotation[row][col] * model->centre[col];
+            modelview[col * 4 + row] = rotation[row][col];
+            moved -= rotation[row][col] * model->origin[col];
         }
-        modelview[12 + row] = (float)(moved - (row == 2 ? distance : 0.0));
+        modelview[12 + row] = moved - (row == 2 ? distance : 0.0);
     }
 
     double f = 1.0 / tan(fov_y / 2.0);
     memset(projection, 0, 16 * sizeof projection[0]);
-    projection[0] = (float)(f / aspect);
-    projection[5] = (float)f;
-    projection[10] = (float)((far_plane + near_plane) / (near_plane - far_plane));
-    projection[11] = -1.0f;
-    projection[14] = (float)(2.0 * far_plane * near_plane / (near_plane - far_plane));
+    projection[0] = f / aspect;
+    projection[5] = f;
+    projection[10] = (far_plane + near_plane) / (near_plane - far_plane);
+    projection[11] = -1.0;
+    projection[14] = 2.0 * far_plane * near_plane / (near_plane - far_plane);
     return OIT_OK;
 }
 
@@ -198,7 +210,7 @@ void oit_plane_to_eye_double(const oit_frame_settings *frame, double out[16])
     /* planes transform with the inverse transpose: for eye = M p, a plane
      * with q . (p, 1) = 0 becomes (M^-T q) . (eye, 1) = 0 */
     double inverse[16];
-    if (!oit_local_inverse_modelview(frame->modelview, inverse)) {
+    if (!oit_mat4_inverse_double(frame->modelview, inverse)) {
         for (int i = 0; i < 16; ++i)
             out[i] = (i % 5 == 0) ? 1.0 : 0.0;
         return;
@@ -208,11 +220,4 @@ void oit_plane_to_eye_double(const oit_frame_settings *frame, double out[16])
             out[col * 4 + row] = inverse[row * 4 + col];
 }
 
-void oit_plane_to_eye(const oit_frame_settings *frame, float out[16])
-{
-    double m[16];
-    oit_plane_to_eye_double(frame, m);
-    for (int i = 0; i < 16; ++i)
-        out[i] = (float)m[i];
-}
 

@@ -18,7 +18,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include "oit.h"
+#include "model_internal.h"
 
 /* Every count in the model must fit the GL's signed 32-bit indices and
  * gl_PrimitiveID, so anything above 2^31 is rejected. */
@@ -424,163 +424,33 @@ static oit_status join_identical_vertices(oit_model *model, float *texture_coord
     return OIT_OK;
 }
 
-/* ------------------------------------------------------- coplanar clusters */
-
-typedef struct plane_cluster {
-    double normal[3], d; /* the seed triangle's plane, in double */
-    int32_t key[4];      /* its bucket */
-    uint32_t next;       /* next cluster in the same hash chain + 1, 0 = none */
-} plane_cluster;
-
-typedef struct triangle_area {
-    double area2;
-    uint32_t triangle;
-} triangle_area;
-
-static int larger_area_first(const void *a, const void *b)
+/* File coordinates far from the origin (a part of an assembly drawn in
+ * millimetres) leave float positions few bits for the part's own size, and
+ * every product with them (the modelview's, a plane's offset) loses more.
+ * Positions are kept relative to the box centre, rounded to a float so that
+ * the subtraction is exact wherever the model is far from the origin;
+ * origin carries the translation, in double (oit_model_modelview). */
+static void centre_positions(oit_model *model)
 {
-    const triangle_area *x = a, *y = b;
-    if (x->area2 != y->area2)
-        return x->area2 > y->area2 ? -1 : 1;
-    return x->triangle < y->triangle ? -1 : (x->triangle > y->triangle);
-}
-
-/* Buckets: normals in steps of 1/256 per component, offsets in steps of
- * 1024 tolerances, both far coarser than the noise of coplanar triangles;
- * a lookup tries, per dimension, the bucket and its nearer neighbour. */
-#define PLANE_NORMAL_STEPS 256.0
-#define PLANE_OFFSET_STEPS 1024.0
-
-static uint64_t bucket_hash(const int32_t key[4])
-{
-    return hash_words((const uint32_t *)(const void *)key, 4);
-}
-
-/* A triangle joins a cluster when its three vertices lie within the
- * tolerance of the cluster's plane: then every point of it does, so its
- * depth differs from the plane's by at most that. Seeds are taken largest
- * first, as large triangles have the most accurate normals. */
-static oit_status cluster_planes(oit_model *model, oit_error *err)
-{
-    uint32_t n = model->triangle_count;
+    float lo[3], hi[3];
     const float *p = model->positions;
-    double size = model->radius + sqrt((double)model->centre[0] * model->centre[0] +
-                                       (double)model->centre[1] * model->centre[1] +
-                                       (double)model->centre[2] * model->centre[2]);
-    double tolerance = OIT_COPLANAR_TOLERANCE * (size > 0.0 ? size : 1.0);
-    /* a generic direction: which of n and -n is the canonical normal */
-    const double generic[3] = {0.3479, 0.5638, 0.7490};
-
-    free(model->planes);
-    free(model->triangle_plane);
-    model->planes = NULL;
-    model->triangle_plane = alloc_array(n, sizeof *model->triangle_plane);
-    triangle_area *order = alloc_array(n, sizeof *order);
-    double *plane_of = alloc_array((uint64_t)n * 4, sizeof *plane_of);
-    plane_cluster *clusters = alloc_array(n, sizeof *clusters);
-    uint64_t capacity = 16;
-    while (capacity < (uint64_t)n * 2)
-        capacity *= 2;
-    uint32_t *heads = calloc_array(capacity, sizeof *heads);
-    oit_status status = OIT_OK;
-    if (!model->triangle_plane || !order || !plane_of || !clusters || !heads) {
-        status = oit_fail(err, OIT_E_RUNTIME, "out of memory finding coplanar faces (%u triangles)", n);
-        goto done;
-    }
-    for (uint32_t t = 0; t < n; ++t) {
-        const uint32_t *tri = model->indices + (size_t)t * 3;
-        const float *a = p + (size_t)tri[0] * 3, *b = p + (size_t)tri[1] * 3, *c = p + (size_t)tri[2] * 3;
-        double e1[3] = {(double)b[0] - a[0], (double)b[1] - a[1], (double)b[2] - a[2]};
-        double e2[3] = {(double)c[0] - a[0], (double)c[1] - a[1], (double)c[2] - a[2]};
-        double normal[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                            e1[0] * e2[1] - e1[1] * e2[0]};
-        double length = sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-        double *plane = plane_of + (size_t)t * 4;
-        if (!(length > 0.0) || !isfinite(length)) {
-            /* zero area: GL draws nothing; any plane through it will do */
-            plane[0] = plane[1] = 0.0;
-            plane[2] = 1.0;
-            length = 0.0;
-        } else {
-            double sign = normal[0] * generic[0] + normal[1] * generic[1] + normal[2] * generic[2] < 0.0
-                              ? -1.0 : 1.0;
-            for (int k = 0; k < 3; ++k)
-                plane[k] = sign * normal[k] / length;
+    for (int k = 0; k < 3; ++k)
+        lo[k] = hi[k] = p[k];
+    for (uint64_t v = 1; v < model->vertex_count; ++v)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = fminf(lo[k], p[v * 3 + k]);
+            hi[k] = fmaxf(hi[k], p[v * 3 + k]);
         }
-        double centroid[3];
+    double shift[3];
+    for (int k = 0; k < 3; ++k) {
+        shift[k] = (double)(float)(0.5 * ((double)lo[k] + (double)hi[k]));
+        model->origin[k] += shift[k];
+    }
+    if (shift[0] == 0.0 && shift[1] == 0.0 && shift[2] == 0.0)
+        return;
+    for (uint64_t v = 0; v < model->vertex_count; ++v)
         for (int k = 0; k < 3; ++k)
-            centroid[k] = ((double)a[k] + b[k] + c[k]) / 3.0;
-        plane[3] = -(plane[0] * centroid[0] + plane[1] * centroid[1] + plane[2] * centroid[2]);
-        order[t].area2 = length;
-        order[t].triangle = t;
-    }
-    qsort(order, n, sizeof *order, larger_area_first);
-
-    uint64_t mask = capacity - 1;
-    uint32_t count = 0;
-    for (uint32_t i = 0; i < n; ++i) {
-        uint32_t t = order[i].triangle;
-        const double *plane = plane_of + (size_t)t * 4;
-        const uint32_t *tri = model->indices + (size_t)t * 3;
-        double scaled[4] = {plane[0] * PLANE_NORMAL_STEPS, plane[1] * PLANE_NORMAL_STEPS,
-                            plane[2] * PLANE_NORMAL_STEPS,
-                            plane[3] / (tolerance * PLANE_OFFSET_STEPS)};
-        int32_t own[4], nearer[4];
-        for (int k = 0; k < 4; ++k) {
-            double f = floor(scaled[k]);
-            own[k] = (int32_t)f;
-            nearer[k] = scaled[k] - f < 0.5 ? own[k] - 1 : own[k] + 1;
-        }
-        uint32_t found = UINT32_MAX;
-        for (int probe = 0; probe < 16 && found == UINT32_MAX && order[i].area2 > 0.0; ++probe) {
-            int32_t key[4];
-            for (int k = 0; k < 4; ++k)
-                key[k] = (probe >> k) & 1 ? nearer[k] : own[k];
-            for (uint32_t c = heads[bucket_hash(key) & mask]; c && found == UINT32_MAX;
-                 c = clusters[c - 1].next) {
-                const plane_cluster *cluster = &clusters[c - 1];
-                if (memcmp(cluster->key, key, sizeof key) != 0)
-                    continue;
-                bool inside = true;
-                for (int v = 0; v < 3 && inside; ++v) {
-                    const float *q = p + (size_t)tri[v] * 3;
-                    double distance = cluster->normal[0] * q[0] + cluster->normal[1] * q[1] +
-                                      cluster->normal[2] * q[2] + cluster->d;
-                    inside = fabs(distance) <= tolerance;
-                }
-                if (inside)
-                    found = c - 1;
-            }
-        }
-        if (found == UINT32_MAX) {
-            found = count++;
-            plane_cluster *cluster = &clusters[found];
-            memcpy(cluster->normal, plane, 3 * sizeof(double));
-            cluster->d = plane[3];
-            memcpy(cluster->key, own, sizeof own);
-            uint64_t slot = bucket_hash(own) & mask;
-            cluster->next = heads[slot];
-            heads[slot] = found + 1;
-        }
-        model->triangle_plane[t] = found;
-    }
-    model->plane_count = count;
-    model->planes = alloc_array((uint64_t)count * 4, sizeof *model->planes);
-    if (!model->planes) {
-        status = oit_fail(err, OIT_E_RUNTIME, "out of memory for %u planes", count);
-        goto done;
-    }
-    for (uint32_t c = 0; c < count; ++c) {
-        for (int k = 0; k < 3; ++k)
-            model->planes[(size_t)c * 4 + k] = (float)clusters[c].normal[k];
-        model->planes[(size_t)c * 4 + 3] = (float)clusters[c].d;
-    }
-done:
-    free(order);
-    free(plane_of);
-    free(clusters);
-    free(heads);
-    return status;
+            model->positions[v * 3 + k] = (float)((double)model->positions[v * 3 + k] - shift[k]);
 }
 
 /* The triangle ranges must tile [0, triangle_count) in order, so that every
@@ -651,6 +521,7 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
     oit_status status = check_components(model, err);
     if (status != OIT_OK)
         return status;
+    centre_positions(model);
 
     uint64_t n = model->vertex_count;
     if (!model->normals) {
@@ -710,20 +581,17 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
             if (x > model->bounds_max[k])
                 model->bounds_max[k] = x;
         }
-    /* Bounding sphere: centre of the box, radius to the farthest vertex (not
-     * minimal, but stable and cheap). A single point gives radius 0, which is
-     * valid here; the camera code must cope with it. */
-    double centre[3], radius2 = 0.0;
-    for (int k = 0; k < 3; ++k)
-        centre[k] = 0.5 * ((double)model->bounds_min[k] + (double)model->bounds_max[k]);
+    /* Bounding sphere about the origin (the box centre, up to its rounding to
+     * float): radius to the farthest vertex (not minimal, but stable and
+     * cheap). A single point gives radius 0, which is valid here; the camera
+     * code must cope with it. */
+    double radius2 = 0.0;
     for (uint64_t v = 0; v < n; ++v) {
-        double d[3] = {p[v * 3] - centre[0], p[v * 3 + 1] - centre[1], p[v * 3 + 2] - centre[2]};
+        double d[3] = {p[v * 3], p[v * 3 + 1], p[v * 3 + 2]};
         double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         if (d2 > radius2)
             radius2 = d2;
     }
-    for (int k = 0; k < 3; ++k)
-        model->centre[k] = (float)centre[k];
     /* Round the radius up so that every vertex is inside despite float rounding. */
     model->radius = radius2 > 0.0 ? nextafterf((float)sqrt(radius2), INFINITY) : 0.0f;
     if (!isfinite(model->radius))
@@ -777,7 +645,7 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
         model->triangle_reach[t] = reach;
     }
     free(vertex_reach);
-    return cluster_planes(model, err);
+    return oit_model_find_planes(model, err);
 }
 
 /* -------------------------------------------------------------- loading */

@@ -6,8 +6,13 @@
  * never prints and never exits.
  *
  * Conventions
- * - Matrices are float[16] in OpenGL's column-major order (m[col * 4 + row]),
- *   column-vector convention: clip = projection * modelview * v.
+ * - Matrices are double[16] in OpenGL's column-major order (m[col * 4 + row]),
+ *   column-vector convention: clip = projection * modelview * v. A frame's
+ *   modelview applies to the model's own (file) coordinates; the model keeps
+ *   its positions relative to its centre (oit_model.origin), and
+ *   oit_algorithm_render folds that translation into the modelview in double,
+ *   so a part drawn in millimetres far from the origin reaches the GPU and
+ *   the reference as the same well-conditioned numbers as one at the origin.
  * - Images are RGBA8, top row first (as PNG stores them).
  * - Fragments are ordered by (depth, triangle index). The depth is the
  *   canonical one (common/canonical_depth.glsl): where the fragment's coplanar
@@ -68,8 +73,13 @@ typedef struct oit_component {
 } oit_component;
 
 typedef struct oit_model {
+    /* The centre of the bounding box in the file's coordinates, a float value
+     * (so most positions subtract from it exactly). Every coordinate below
+     * (positions, bounds, planes) is relative to it: file coordinates =
+     * origin + relative ones. oit_model_finish sets it. */
+    double origin[3];
     uint32_t vertex_count;
-    float *positions;           /* 3 per vertex, model space */
+    float *positions;           /* 3 per vertex, relative to origin */
     float *normals;             /* 3 per vertex, unit length (computed if the file has none) */
     uint32_t *vertex_component; /* per vertex: index of its component */
     uint32_t *welded_ids;       /* per vertex: vertices at the same position share an id */
@@ -81,18 +91,19 @@ typedef struct oit_model {
     uint32_t component_count;
     oit_component *components;
 
-    float bounds_min[3], bounds_max[3];
-    float centre[3]; /* bounding sphere */
-    float radius;
+    float bounds_min[3], bounds_max[3]; /* relative to origin */
+    float radius; /* bounding sphere about origin: every vertex lies within it */
     float longest_edge; /* the longest triangle edge (model space), the largest of the
                            components' */
-    /* Coplanar clusters (oit_model_finish): triangles whose three vertices lie
-     * within OIT_COPLANAR_TOLERANCE x (radius + |centre|) of one plane share
-     * it, and every exact algorithm and the reference take a fragment's sort
-     * depth from its triangle's plane at the pixel centre, so coincident
-     * faces tie bit for bit and then order by triangle index. */
+    /* Coplanar clusters (oit_model_finish): triangles that lie within
+     * OIT_COPLANAR_ULPS float ulps of the largest file coordinate of one
+     * plane and touch (directly or through others in it) share it, and every exact algorithm
+     * and the reference take a fragment's sort depth from its triangle's
+     * plane at the pixel centre, so coincident faces tie bit for bit and then
+     * order by triangle index. */
     uint32_t plane_count;
-    float *planes;            /* 4 per plane: unit normal xyz, d (n . p + d = 0), model space */
+    float *planes;            /* 4 per plane: unit normal xyz, d (n . p + d = 0), relative
+                                 to origin */
     uint32_t *triangle_plane; /* per triangle: its plane */
     /* What the import skipped, repaired or could not check, one line each
      * ("FILE: what"): a model that loads is never silently incomplete. At most
@@ -107,18 +118,21 @@ typedef struct oit_model {
 } oit_model;
 
 #define OIT_MODEL_WARNING_LIMIT 16
-/* Coplanar tolerance, relative to the model's size (radius + |centre|): two
- * float ulps (2^-22), so faces that are coplanar in the file and rounded to
- * float still tie, while faces 1e-3 apart in a model 1,600 units across stay
- * apart (docs/algorithms.md, "Ties and precision"). */
-#define OIT_COPLANAR_TOLERANCE 2.384185791015625e-07
+/* Coplanar tolerance, in ulps of the model's largest file coordinate (the
+ * import's own rounding: half an ulp per coordinate, under one off a plane),
+ * so faces that are coplanar in the file and rounded to float on import still
+ * tie, while faces 1e-3 apart in a model 1,600 units across stay apart
+ * (docs/algorithms.md, "Ties and precision"). */
+#define OIT_COPLANAR_ULPS 2
 
 /* Import any format Assimp reads. Bad files give OIT_E_INPUT and a message
  * naming the file and the problem. */
 oit_status oit_model_load(const char *path, oit_model *out, oit_error *err);
-/* Validate indices and coordinates, compute missing normals, welded ids,
- * bounds and bounding sphere. Called by oit_model_load; usable for models
- * built in memory (tests, generators). */
+/* Validate indices and coordinates, move the positions to be relative to
+ * the model's centre (origin), compute missing normals, welded ids, bounds,
+ * bounding sphere and coplanar planes. Called by oit_model_load; usable for
+ * models built in memory (tests, generators), once per model: the positions
+ * given are file coordinates. */
 oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *err);
 void oit_model_free(oit_model *model);
 
@@ -338,7 +352,8 @@ typedef struct oit_local_modulation {
     const float *component_alpha;
     uint32_t component_count;
     oit_focus_shape focus_shape;
-    float focus[6];  /* point xyz | plane abcd | box min xyz, max xyz; model coordinates */
+    double focus[6]; /* point xyz | plane abcd | box min xyz, max xyz; model (file)
+                        coordinates */
     float contrast;  /* 0 or 1: unchanged */
     /* The fall-off length of the focus shapes (model units) when
      * modulation.focus_region is 0; 0 here too: 1 (the CLI sets a quarter of
@@ -360,8 +375,8 @@ typedef struct oit_progress {
 
 typedef struct oit_frame_settings {
     int width, height;
-    float modelview[16];  /* column-major */
-    float projection[16]; /* column-major */
+    double modelview[16];  /* column-major; model (file) coordinates to eye */
+    double projection[16]; /* column-major */
     float alpha;          /* uniform opacity multiplier in [0, 1] */
     oit_shading_mode shading;
     float background[3];
@@ -370,49 +385,50 @@ typedef struct oit_frame_settings {
     oit_progress progress;
 } oit_frame_settings;
 
-/* Matrix helpers (matrix.c). */
-void oit_mat4_identity(float m[16]);
-void oit_mat4_multiply(const float a[16], const float b[16], float out[16]);
+/* Matrix helpers (matrix.c), column-major double[16]. */
+void oit_mat4_identity(double m[16]);
+void oit_mat4_multiply(const double a[16], const double b[16], double out[16]);
 /* normal matrix: inverse transpose of the upper 3x3 of m, column-major 3x3 */
-bool oit_mat4_normal_matrix(const float m[16], float out[9]);
+bool oit_mat4_normal_matrix(const double m[16], double out[9]);
 /* How far m is from singular, independent of units and scale: |det| over the
  * product of the row lengths after equilibrating rows and columns, in [0, 1]
  * (1: orthogonal rows; 0: singular). */
-double oit_mat4_regularity(const float m[16]);
+double oit_mat4_regularity(const double m[16]);
 /* Below this a projection counts as singular: float rounding of an exactly
  * singular matrix leaves about 1e-7. */
 #define OIT_MATRIX_REGULARITY_MIN 1e-5
 /* Reject NaN/inf, a singular modelview (its 3x3 part) and singular
  * projections (oit_mat4_regularity) with OIT_E_INPUT. */
-oit_status oit_matrices_validate(const float modelview[16], const float projection[16],
+oit_status oit_matrices_validate(const double modelview[16], const double projection[16],
                                  oit_error *err);
+/* The inverse of a column-major 4x4 in double; false (and zeros) if singular. */
+bool oit_mat4_inverse_double(const double m[16], double out[16]);
+/* The modelview that applies to model->positions (relative to model->origin):
+ * modelview x translate(origin), in double. */
+void oit_model_modelview(const oit_model *model, const double modelview[16], double out[16]);
 /* A camera that frames the model's bounding sphere: perspective with a 40
  * degree vertical field of view, near/far around the sphere. With azimuth and
  * elevation 0 it looks down -z from +z; azimuth turns the model about the
  * vertical axis (degrees, positive shows its right side), elevation tilts the
- * camera up (positive looks down on it). */
+ * camera up (positive looks down on it). The modelview applies to file
+ * coordinates, like every frame's. */
 #define OIT_MODEL_RADIUS_MIN 1e-12f
 #define OIT_MODEL_RADIUS_MAX 1e15f
 /* Fails (OIT_E_INPUT) for a bounding radius outside [OIT_MODEL_RADIUS_MIN,
  * OIT_MODEL_RADIUS_MAX]; a radius of 0 (a single point) is framed as 1. */
-oit_status oit_default_camera(const oit_model *model, int width, int height, float azimuth_degrees,
-                              float elevation_degrees, float modelview[16], float projection[16],
+oit_status oit_default_camera(const oit_model *model, int width, int height, double azimuth_degrees,
+                              double elevation_degrees, double modelview[16], double projection[16],
                               oit_error *err);
-/* The matrix that takes a model-space plane (a, b, c, d) to eye space:
- * transpose(inverse(modelview)), computed in double, column-major; the
- * identity if the modelview is singular (canonical depth,
+/* The matrix that takes a plane (a, b, c, d) of the frame's modelview's
+ * space to eye space: transpose(inverse(modelview)), computed in double,
+ * column-major; the identity if the modelview is singular (canonical depth,
  * common/canonical_depth.glsl). */
 void oit_plane_to_eye_double(const oit_frame_settings *frame, double out[16]);
-void oit_plane_to_eye(const oit_frame_settings *frame, float out[16]);
 
 /* Local modulation set-up for the GPU (local_modulation.c; the per-fragment
  * formulas are in shaders/common/local_modulation.glsl, the reference has its
  * own). The focus shapes' fall-off length, in model units. */
 float oit_local_focus_region(const oit_frame_settings *frame);
-/* The inverse of a column-major 4x4 in double; false (and zeros) if singular. */
-bool oit_mat4_inverse_double(const double m[16], double out[16]);
-/* The inverse of the modelview (model <- eye), column-major; false if singular. */
-bool oit_local_inverse_modelview(const float modelview[16], double out[16]);
 
 /* -------------------------------------------------------------- statistics */
 
@@ -570,6 +586,15 @@ typedef struct oit_algorithm_ops {
     void (*stats)(const oit_algorithm *alg, oit_stats *out);
     void (*destroy)(oit_algorithm *alg);
 } oit_algorithm_ops;
+
+/* The one way to render a frame (every shell calls it, never ops->render):
+ * validates the matrices, then hands the algorithm the frame as its GPU
+ * passes must see it: the modelview folded onto the model's relative
+ * positions (oit_model_modelview) and the focus shapes moved with them, both
+ * matrices and the focus rounded to float, as the GL takes them. The
+ * reference gets the same frame, so the oracle sees the numbers the GL sees. */
+oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg, const oit_scene *scene,
+                                const oit_frame_settings *frame, oit_error *err);
 
 /* The registry, in the order `oit algorithms` lists them. */
 const oit_algorithm_ops *const *oit_algorithm_list(size_t *count);

@@ -103,23 +103,23 @@ QString part_name(int i) { return QString::asprintf("part_%05d", i); }
 // ------------------------------------------------ matrices, written by hand
 
 struct Matrices {
-    float modelview[16];
-    float projection[16];
+    double modelview[16];
+    double projection[16];
 };
 
-void identity(float m[16])
+void identity(double m[16])
 {
-    std::fill(m, m + 16, 0.0f);
-    m[0] = m[5] = m[10] = m[15] = 1.0f;
+    std::fill(m, m + 16, 0.0);
+    m[0] = m[5] = m[10] = m[15] = 1.0;
 }
 
 // Eye at (0, 0, z) looking down -z (from_below: at (0, 0, -z) looking up +z).
-void look_along_z(float m[16], float z, bool from_below)
+void look_along_z(double m[16], double z, bool from_below)
 {
     identity(m);
     if (from_below) { // a half turn about y: (x, y, z) -> (-x, y, -z), then back off
-        m[0] = -1.0f;
-        m[10] = -1.0f;
+        m[0] = -1.0;
+        m[10] = -1.0;
     }
     m[14] = -z;
 }
@@ -127,25 +127,25 @@ void look_along_z(float m[16], float z, bool from_below)
 const double fovy_degrees = 40.0, near_plane = 1.0, far_plane = 100.0, ortho_half_height = 3.0;
 const double pi = 3.14159265358979323846;
 
-void perspective(float p[16], double aspect)
+void perspective(double p[16], double aspect)
 {
     const double f = 1.0 / std::tan(fovy_degrees * pi / 360.0);
-    std::fill(p, p + 16, 0.0f);
-    p[0] = float(f / aspect);
-    p[5] = float(f);
-    p[10] = float((far_plane + near_plane) / (near_plane - far_plane));
-    p[11] = -1.0f;
-    p[14] = float(2.0 * far_plane * near_plane / (near_plane - far_plane));
+    std::fill(p, p + 16, 0.0);
+    p[0] = f / aspect;
+    p[5] = f;
+    p[10] = (far_plane + near_plane) / (near_plane - far_plane);
+    p[11] = -1.0;
+    p[14] = 2.0 * far_plane * near_plane / (near_plane - far_plane);
 }
 
-void orthographic(float p[16], double aspect)
+void orthographic(double p[16], double aspect)
 {
-    std::fill(p, p + 16, 0.0f);
-    p[0] = float(1.0 / (ortho_half_height * aspect));
-    p[5] = float(1.0 / ortho_half_height);
-    p[10] = float(-2.0 / (far_plane - near_plane));
-    p[14] = float(-(far_plane + near_plane) / (far_plane - near_plane));
-    p[15] = 1.0f;
+    std::fill(p, p + 16, 0.0);
+    p[0] = 1.0 / (ortho_half_height * aspect);
+    p[5] = 1.0 / ortho_half_height;
+    p[10] = -2.0 / (far_plane - near_plane);
+    p[14] = -(far_plane + near_plane) / (far_plane - near_plane);
+    p[15] = 1.0;
 }
 
 // Where the pixel's ray (camera at (0, 0, 5) looking down -z) meets the plane

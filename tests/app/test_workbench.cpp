@@ -835,10 +835,12 @@ private slots:
         QVERIFY(smallest_size < 0.5f * model->radius);
         window->frame_parts({smallest});
         bounds(smallest, lo, hi);
-        QVERIFY(glm::length(window->view()->camera.target - 0.5f * (lo + hi)) < 1e-4f * model->radius);
+        // bounds are relative to the model's origin; the camera is in file coordinates
+        const glm::dvec3 origin(model->origin[0], model->origin[1], model->origin[2]);
+        QVERIFY(glm::length(window->view()->camera.target - origin - 0.5 * glm::dvec3(lo + hi)) < 1e-4 * model->radius);
         QVERIFY2(compare(whole, frame(), 8).share_over > 0.05, "framing a part changes the view");
         // standard views look along the axes (View > Standard view, Alt+1..7)
-        auto forward = [this] { return window->view()->camera.orientation * glm::vec3(0, 0, -1); };
+        auto forward = [this] { return glm::vec3(window->view()->camera.orientation * glm::dvec3(0, 0, -1)); };
         auto trigger = [this](const QString &text, const QKeySequence &key) {
             for (QAction *action : window->findChildren<QAction *>())
                 if (action->text() == text && action->shortcut() == key) {
