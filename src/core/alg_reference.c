@@ -11,13 +11,26 @@
  * (common/canonical_depth.glsl does it in float), so coincident faces tie
  * exactly and order by triangle index.
  *
- * Rasterization details chosen to match Mesa's llvmpipe:
- * - window coordinates are snapped to 1/256 pixel (llvmpipe's 8 subpixel bits) and
- *   the edge functions are evaluated exactly in 64-bit integers, so two triangles
- *   sharing an edge cover each pixel centre on it exactly once;
+ * The coverage rule is the GL's as Mesa's llvmpipe implements it (GL leaves the
+ * subpixel precision and the tie rule to the implementation), so "exact" means
+ * the same set of fragments:
+ * - window positions are snapped to the nearest 1/256 pixel (GL_SUBPIXEL_BITS is
+ *   8 on both back ends), ties to even: llvmpipe converts (x - 1/2) * 256 with
+ *   SSE's float-to-int conversion, which rounds half-way values to even (see
+ *   round_half_even; rounding them away from zero covered other pixels);
+ * - a pixel is covered when its centre is inside the snapped triangle, decided by
+ *   edge functions evaluated exactly in 64-bit integers, so two triangles sharing
+ *   an edge cover each pixel centre on it exactly once; a triangle whose snapped
+ *   area is 0 covers nothing;
  * - ties (a pixel centre exactly on an edge) follow Gallium's rule for GL
  *   framebuffer objects: in GL window coordinates (y up) a centre on a left edge or
  *   on a horizontal edge with the triangle above it is inside (see edge_is_inclusive);
+ * - the precision it assumes: the reference computes window positions in double,
+ *   llvmpipe's are float results of its float vertex stage. Where the GL's
+ *   positions are exact (tests/coverage_rule.sh:
+ *   sub-pixel triangles, snap ties and edges through pixel centres) both cover
+ *   the same fragments; elsewhere a vertex within the GL's float error of a snap
+ *   tie can snap one 1/256 step the other way (docs/algorithms.md, "reference");
  * - x/y are clipped only against a wide guard band, so ordinary triangles are never
  *   split and keep their exact edges; near/far (-w <= z <= w) are clipped as in GL.
  * - snapping decides coverage only: the perspective-correct eye position and
@@ -327,14 +340,27 @@ typedef struct window_vertex {
     const clip_vertex *attributes;
 } window_vertex;
 
+/* The nearest integer, ties to even: llvmpipe snaps with SSE's float-to-int
+ * conversion in its default rounding mode. A vertex exactly half-way between
+ * two 1/256 steps goes to the even one. (floor(value + 0.5), or llround's ties
+ * away from zero, differ from it there.) value - floor(value) is exact. */
+static int64_t round_half_even(double value)
+{
+    double below = floor(value);
+    double fraction = value - below;
+    if (fraction > 0.5 || (fraction == 0.5 && fmod(below, 2.0) != 0.0))
+        below += 1.0;
+    return (int64_t)below;
+}
+
 static void to_window(const raster_context *ctx, const clip_vertex *v, window_vertex *out)
 {
     double inv_w = 1.0 / v->clip[3];
     double ndc_x = v->clip[0] * inv_w, ndc_y = v->clip[1] * inv_w;
     out->window_x = (ndc_x * 0.5 + 0.5) * ctx->width;
     out->window_y = (ndc_y * 0.5 + 0.5) * ctx->height;
-    out->x = llround(out->window_x * SUBPIXEL_ONE);
-    out->y = llround(out->window_y * SUBPIXEL_ONE);
+    out->x = round_half_even(out->window_x * SUBPIXEL_ONE);
+    out->y = round_half_even(out->window_y * SUBPIXEL_ONE);
     out->inv_w = inv_w;
     out->attributes = v;
 }
