@@ -104,8 +104,8 @@ printf 'a %s/onion.obj\na %s/onion.obj\n' "$scenes" "$scenes" >"$work/twice.txt"
 expect_exit 2 "named twice" -- "$oit" bench --scene-list "$work/twice.txt"
 expect_exit 2 "not a bench option" -- "$oit" bench --model "$scenes/onion.obj" --algorithm ll
 expect_exit 2 "unknown option" -- "$oit" bench --model "$scenes/onion.obj" --bogus
-expect_exit 2 "--csv: cannot write" -- "$oit" bench --model "$scenes/onion.obj" --csv "$work/no/such/dir/x.csv"
-expect_exit 2 "--json: cannot write" -- "$oit" bench --model "$scenes/onion.obj" --json "$work/no/such/dir/x.json"
+expect_exit 2 "--csv .*/x.csv: the directory .*/no/such/dir does not exist" -- "$oit" bench --model "$scenes/onion.obj" --csv "$work/no/such/dir/x.csv"
+expect_exit 2 "--json .*/x.json: the directory .*/no/such/dir does not exist" -- "$oit" bench --model "$scenes/onion.obj" --json "$work/no/such/dir/x.json"
 printf 'onion %s/onion.obj --hide 0\n' "$scenes" >"$work/local.txt"
 expect_exit 2 "local.txt:1: scene 'onion': --hide applies to every scene" -- "$oit" bench --scene-list "$work/local.txt"
 echo "bench ok"

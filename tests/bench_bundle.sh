@@ -2,8 +2,9 @@
 # bench_bundle.sh OIT WORKDIR SCENES SOURCE: `oit bench --bundle DIR`: every file is there,
 # bundle.json holds the command, commit, machine, driver, scenes (model checksums, cameras
 # equal to oit render --json's), parameters and the rows of --json; a bundle replaces a
-# previous one and nothing else; bat/report.py compares two bundles (egl and osmesa: the
-# same images) and names the runs only one has; bad --bundle paths are one line, exit 2.
+# previous one and nothing else, also through a link to it, keeping its permissions;
+# bat/report.py compares two bundles (egl and osmesa: the same images) and names the
+# runs only one has; bad --bundle paths are one line, exit 2.
 source "$(dirname "$0")/lib.sh"
 oit=$1 work=$2 scenes=$3 source=$4
 rm -rf "$work"; mkdir -p "$work"
@@ -99,6 +100,27 @@ PY
 "$oit" bench "${common[@]}" --algorithms ll,blend --bundle "$work/a" || fail "bench --bundle over a previous bundle"
 ls "$work/a" | grep -q wboit && fail "the previous bundle's wboit images are still there"
 ls -d "$work"/a.tmp.* "$work"/a.old.* 2>/dev/null && fail "temporary directories left beside the bundle"
+
+# a link to a bundle stays a link: the bundle it names is replaced and keeps its permissions
+mkdir -p "$work/real"
+quick=(--model "$scenes/onion.obj" --sizes 16 --frames 1 --warmup 0 --reference-max-pixels 0 --quiet)
+"$oit" bench "${quick[@]}" --algorithms ll --bundle "$work/real/run" || fail "bench --bundle real/run"
+chmod 750 "$work/real/run"
+ln -s real/run "$work/link"
+"$oit" bench "${quick[@]}" --algorithms blend --bundle "$work/link/" || fail "bench --bundle through a link to a bundle"
+[ -L "$work/link" ] || fail "a link given as --bundle must stay a link"
+[ -f "$work/real/run/onion_blend_16x16.png" ] && [ ! -e "$work/real/run/onion_ll_16x16.png" ] \
+    || fail "the bundle the link names was not replaced: $(ls "$work/real/run")"
+[ "$(stat -c %a "$work/real/run")" = 750 ] || fail "the replaced bundle must keep its permissions (750)"
+ls -d "$work"/*.tmp.* "$work"/*.old.* "$work"/real/*.tmp.* "$work"/real/*.old.* 2>/dev/null \
+    && fail "temporary directories left beside the linked bundle"
+# a new bundle gets 0777 less the umask, as mkdir would give it
+( umask 022 && "$oit" bench "${quick[@]}" --algorithms blend --bundle "$work/fresh" ) || fail "bench --bundle fresh"
+[ "$(stat -c %a "$work/fresh")" = 755 ] || fail "a new bundle must be 0777 less the umask (755), not $(stat -c %a "$work/fresh")"
+# a link to something that is not a bundle is refused before the work, the link kept
+ln -s busy "$work/link-to-busy"
+expect_exit 2 "--bundle .*/link-to-busy: the directory is not empty and not a bundle" -- \
+    "$oit" bench "${quick[@]}" --algorithms blend --bundle "$work/link-to-busy"
 
 # the same run on the other back end, and a third bundle with other runs
 "$oit" bench "${common[@]}" --algorithms ll,blend --bundle "$work/osmesa" --backend osmesa || fail "osmesa bundle"

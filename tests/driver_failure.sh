@@ -4,7 +4,8 @@
 # and one line "oit: error: ..." naming the problem, never a crash. OSMesa would
 # crash inside OSMesaCreateContextAttribs (src/core/gl_context_osmesa.c); a probe
 # process takes that crash, and the message names the drivers that do work. A
-# driver that exists still renders through the probe.
+# driver that exists still renders through the probe. Under a tight address-space
+# limit (ulimit -v) a crash in the driver is one line, exit 3. About 5 s.
 set -u
 . "$(dirname "$0")/lib.sh"
 oit=$1 work=$2 model=$3
@@ -35,4 +36,24 @@ GALLIUM_DRIVER=llvmpipe "$oit" render --backend osmesa --model "$model" --size 1
     || fail "osmesa does not render without GALLIUM_DRIVER"
 "$oit" compare "$work/llvmpipe.png" "$work/default.png" >/dev/null \
     || fail "GALLIUM_DRIVER=llvmpipe renders a different image"
+
+# the driver out of memory: a tight address-space limit (ulimit -v) can make Mesa's
+# shader compiler crash on EGL: one line and exit 3 (or a clean error, or a frame),
+# never a bare signal. (Not under AddressSanitizer, whose shadow memory needs
+# terabytes of address space.)
+if [ -z "${ASAN_OPTIONS:-}" ]; then
+    for backend in egl osmesa; do
+        status=0
+        ( ulimit -v 300000; exec "$oit" render --backend "$backend" --model "$model" --size 64x64 \
+              --out "$work/tight-$backend.png" ) >/dev/null 2>"$work/tight.err" || status=$?
+        lines=$(wc -l <"$work/tight.err")
+        if [ "$status" -ne 0 ] && { [ "$status" -ne 3 ] || [ "$lines" -ne 1 ] || ! grep -q "^oit: error: " "$work/tight.err"; }; then
+            cat "$work/tight.err" >&2
+            fail "ulimit -v 300000, $backend: exit $status with $lines line(s), not 0 or 3 with one line"
+        fi
+        echo "ok ($status): ulimit -v 300000, $backend: $(cat "$work/tight.err")"
+    done
+else
+    echo "skipped under ASan: the tight address-space limit"
+fi
 echo "driver failures: ok"

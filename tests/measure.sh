@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # measure.sh OIT WORKDIR SCENES: `oit measure`, the source's measuring command line:
 # every task appends one result line of the documented shape; bad arguments are
-# exit 2 with one line. No timing assertions.
+# exit 2 with one line; 3 rounds of 8 runs at once keep all 24 lines. No timing
+# assertions. About 15 s.
 source "$(dirname "$0")/lib.sh"
 oit=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") work=$2 scenes=$3
 rm -rf "$work"; mkdir -p "$work"
@@ -61,6 +62,23 @@ expect_exit 2 "VIEWPORT" -- "$oit" measure --results "$results" 1 1 Onion "$mode
 expect_exit 2 "VIEWPORT" -- "$oit" measure --results "$results" 1 1 Onion "$model" $mv $p 600y600
 expect_exit 2 "missing.obj" -- "$oit" measure --results "$results" 1 1 Onion "$work/missing.obj" $mv $p 16
 expect_exit 2 "unknown option" -- "$oit" measure --bogus 1 1 Onion "$model" $mv $p
-expect_exit 2 "cannot append" -- "$oit" measure --results "$work/no/such/dir/r.txt" 1 1 Onion "$model" $mv $p 16
+expect_exit 2 "measure: results file .*/no/such/dir/r.txt: the directory .* does not exist" -- "$oit" measure --results "$work/no/such/dir/r.txt" 1 1 Onion "$model" $mv $p 16
 [ "$(wc -l <"$results")" = "$before" ] || fail "a refused measure must not append a line"
+
+# runs at once keep every line: 3 rounds of 8 concurrent runs append 24 whole lines, one header
+shared=$work/shared.txt
+for round in 1 2 3; do
+    pids=()
+    for k in 1 2 3 4 5 6 7 8; do
+        # shellcheck disable=SC2086
+        "$oit" measure --results "$shared" --frames 1 --warmup 0 1 "$round$k" Onion "$model" $mv $p 16 >/dev/null &
+        pids+=($!)
+    done
+    for pid in "${pids[@]}"; do wait "$pid" || fail "a concurrent measure failed"; done
+done
+[ "$(grep -c '^# task' "$shared")" = 1 ] || fail "concurrent runs: the header must be there once"
+counters=$(grep -v '^#' "$shared" | awk -F'\t' 'NF == 14 { print $3 }' | sort -n | tr '\n' ' ')
+expected=$(for round in 1 2 3; do for k in 1 2 3 4 5 6 7 8; do echo "$round$k"; done; done | sort -n | tr '\n' ' ')
+[ "$counters" = "$expected" ] || fail "concurrent runs lost or broke lines: kept $(grep -vc '^#' "$shared") of 24: $counters"
+[ -z "$(find "$work" -name '*.tmp.*')" ] || fail "temporary files left by concurrent runs"
 echo "measure ok"

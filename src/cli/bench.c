@@ -6,18 +6,20 @@
  * and size, warm-up frames, then N measured frames whose figures are reported
  * as median, minimum and maximum. One row per run goes to CSV and/or JSON as
  * soon as it is measured: into FILE.tmp.XXXXXX beside FILE, renamed over FILE
- * when the run ends (oit_atomic_file), so a long run that is interrupted
- * keeps its rows there and the previous FILE stays whole.
+ * when the run ends (oit_atomic_file), so the previous FILE stays whole until
+ * then; a run that fails or is interrupted removes the temporary.
  *
  * oit measure is the source's measuring command line (thesis appendix E.3):
  * TASK COUNTER NAME PATH m00..m33 p00..p33 [VIEWPORT], one result line
  * appended to a results file per run.
  */
-#define _XOPEN_SOURCE 700 /* strtok_r, strdup, fnmatch */
+#define _GNU_SOURCE /* renameat2 (RENAME_EXCHANGE), open_memstream, strtok_r, fnmatch */
 #include <dirent.h>
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <fnmatch.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -1181,13 +1183,18 @@ static void bench_output_end(bench_output *out, int failures)
 /* ------------------------------------------------------------- bundle */
 
 /* --bundle DIR: the images of every run and bundle.json, written into
- * DIR.tmp.XXXXXX beside DIR and renamed to DIR when the run ends, so that a
- * run that stops half-way leaves a previous bundle at DIR whole. DIR may be
- * new, an empty directory or a previous bundle (a directory with bundle.json
- * and regular files only); anything else is refused before any work. */
+ * DIR.tmp.XXXXXX beside DIR (oit_temporary_create: removed if the run fails
+ * or is interrupted, or by the next run if it was killed) and swapped with
+ * DIR when the run ends, so that a run that stops half-way leaves a previous
+ * bundle at DIR whole. DIR may be new, an empty directory or a previous
+ * bundle (a directory with bundle.json and regular files only), or a link to
+ * one (the link stays); anything else is refused before any work. */
 typedef struct bench_bundle {
-    char path[4096];     /* DIR, without trailing slashes */
-    char temp[4200];     /* DIR.tmp.XXXXXX: where it is written */
+    char given[4096];    /* DIR as given, without trailing slashes: for messages */
+    char path[4096];     /* DIR with its links followed: what is replaced */
+    bool replaces;       /* DIR exists (a bundle or an empty directory) */
+    unsigned mode;       /* its permissions, which the new bundle keeps */
+    oit_temporary temp;  /* DIR.tmp.XXXXXX: where it is written */
     FILE *rows, *scenes; /* open_memstream: the rows and scenes of bundle.json */
     char *rows_text, *scenes_text;
     size_t rows_size, scenes_size;
@@ -1207,15 +1214,40 @@ static void bundle_part(char *out, size_t size, const char *text)
     out[n] = '\0';
 }
 
-static oit_status bundle_check(const bench_settings *b, const scene_list *scenes, char *path, size_t size,
+/* The longest name a bundle file gets: SCENE_ALGORITHM_WxH.error.png. */
+static size_t bundle_longest_name(const bench_settings *b, const scene_list *scenes, char *longest, size_t size)
+{
+    size_t most = 0;
+    char scene_part[256], algorithm_part[64], name[512];
+    for (int i = 0; i < scenes->count; ++i) {
+        if (!scene_selected(b->scene_patterns, scenes->items[i].name))
+            continue;
+        bundle_part(scene_part, sizeof scene_part, scenes->items[i].name);
+        for (int a = 0; a < b->algorithm_count; ++a) {
+            bundle_part(algorithm_part, sizeof algorithm_part, b->algorithms[a].label);
+            for (int z = 0; z < b->size_count; ++z) {
+                int n = snprintf(name, sizeof name, "%s_%s_%dx%d.error.png", scene_part, algorithm_part,
+                                 b->widths[z], b->heights[z]);
+                if (n > 0 && (size_t)n > most) {
+                    most = (size_t)n;
+                    snprintf(longest, size, "%s", name);
+                }
+            }
+        }
+    }
+    return most;
+}
+
+static oit_status bundle_check(const bench_settings *b, const scene_list *scenes, bench_bundle *bundle,
                                oit_error *err)
 {
     const char *given = b->bundle_path;
+    char *path = bundle->given;
     if (!*given)
         return oit_fail(err, OIT_E_INPUT, "--bundle: empty directory name");
-    if (strlen(given) >= size - 32)
+    if (strlen(given) >= sizeof bundle->given)
         return oit_fail(err, OIT_E_INPUT, "--bundle: the path is too long");
-    snprintf(path, size, "%s", given);
+    snprintf(path, sizeof bundle->given, "%s", given);
     for (size_t n = strlen(path); n > 1 && path[n - 1] == '/'; --n)
         path[n - 1] = '\0';
     if (strcmp(path, "/") == 0)
@@ -1249,15 +1281,33 @@ static oit_status bundle_check(const bench_settings *b, const scene_list *scenes
             if (b->widths[i] == b->widths[j] && b->heights[i] == b->heights[j])
                 return oit_fail(err, OIT_E_INPUT, "--bundle: size %dx%d is listed twice", b->widths[i],
                                 b->heights[i]);
+    /* the name, its links, its directory, a FIFO or a file in its place: as for every output */
+    char *target = NULL;
+    oit_status status = oit_output_target(path, "--bundle", &target, err);
+    if (status != OIT_OK)
+        return status;
+    snprintf(bundle->path, sizeof bundle->path, "%s", target);
+    bool too_long = strlen(target) >= sizeof bundle->path;
+    free(target);
+    if (too_long)
+        return oit_fail(err, OIT_E_INPUT, "--bundle %s: the path is too long", path);
+    /* the names of the files in it (and their temporaries' paths) */
+    char longest[512] = "";
+    size_t longest_length = bundle_longest_name(b, scenes, longest, sizeof longest);
+    if (longest_length > NAME_MAX)
+        return oit_fail(err, OIT_E_INPUT,
+                        "--bundle %s: %s: the file name '%.60s...' would have %zu bytes (at most %d: shorten the "
+                        "scene's name)",
+                        path, strerror(ENAMETOOLONG), longest, longest_length, NAME_MAX);
+    if (oit_temporary_path_length(bundle->path) + 1 + longest_length + 16 >= PATH_MAX)
+        return oit_fail(err, OIT_E_INPUT, "--bundle %s: %s: its files' paths would pass %d bytes", path,
+                        strerror(ENAMETOOLONG), PATH_MAX - 1);
     struct stat info;
-    if (stat(path, &info) != 0) {
-        if (errno != ENOENT)
-            return oit_fail(err, OIT_E_INPUT, "--bundle %s: %s", path, strerror(errno));
-        return check_output_path("--bundle", path, err); /* its parent exists and is writable */
-    }
-    if (!S_ISDIR(info.st_mode))
-        return oit_fail(err, OIT_E_INPUT, "--bundle %s: not a directory", path);
-    DIR *directory = opendir(path);
+    if (stat(bundle->path, &info) != 0)
+        return OIT_OK; /* a new name */
+    bundle->replaces = true;
+    bundle->mode = info.st_mode & 07777;
+    DIR *directory = opendir(bundle->path);
     if (!directory)
         return oit_fail(err, OIT_E_INPUT, "--bundle %s: cannot read: %s", path, strerror(errno));
     int entries = 0;
@@ -1270,7 +1320,7 @@ static oit_status bundle_check(const bench_settings *b, const scene_list *scenes
         ++entries;
         has_json |= strcmp(entry->d_name, "bundle.json") == 0;
         char full[4400];
-        snprintf(full, sizeof full, "%s/%s", path, entry->d_name);
+        snprintf(full, sizeof full, "%s/%s", bundle->path, entry->d_name);
         struct stat item;
         if (!odd[0] && (lstat(full, &item) != 0 || !S_ISREG(item.st_mode)))
             snprintf(odd, sizeof odd, "%s", entry->d_name);
@@ -1282,51 +1332,25 @@ static oit_status bundle_check(const bench_settings *b, const scene_list *scenes
     if (odd[0])
         return oit_fail(err, OIT_E_INPUT,
                         "--bundle %s: holds '%s', which is not a regular file: not a bundle", path, odd);
-    /* it is renamed: its parent must be writable */
-    char parent[4096];
-    snprintf(parent, sizeof parent, "%s", path);
-    char *slash = strrchr(parent, '/');
-    if (!slash)
-        snprintf(parent, sizeof parent, ".");
-    else if (slash == parent)
-        parent[1] = '\0';
-    else
-        *slash = '\0';
-    if (access(parent, W_OK) != 0)
-        return oit_fail(err, OIT_E_INPUT, "--bundle %s: cannot write in %s: %s", path, parent,
-                        strerror(errno));
     return OIT_OK;
-}
-
-/* Removes the regular files of a directory (a bundle has no others), then the directory. */
-static void remove_bundle_directory(const char *path)
-{
-    DIR *directory = opendir(path);
-    if (directory) {
-        struct dirent *entry;
-        while ((entry = readdir(directory)) != NULL) {
-            if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
-                continue;
-            char full[4400];
-            snprintf(full, sizeof full, "%s/%s", path, entry->d_name);
-            unlink(full);
-        }
-        closedir(directory);
-    }
-    rmdir(path);
 }
 
 static oit_status bundle_open(const bench_settings *b, const scene_list *scenes, bench_bundle *bundle,
                               oit_error *err)
 {
     memset(bundle, 0, sizeof *bundle);
-    oit_status status = bundle_check(b, scenes, bundle->path, sizeof bundle->path, err);
+    bundle->temp.fd = bundle->temp.watch = -1;
+    oit_status status = bundle_check(b, scenes, bundle, err);
     if (status != OIT_OK)
         return status;
-    snprintf(bundle->temp, sizeof bundle->temp, "%s.tmp.XXXXXX", bundle->path);
-    if (!mkdtemp(bundle->temp))
-        return oit_fail(err, OIT_E_INPUT, "--bundle %s: cannot create %s: %s", bundle->path, bundle->temp,
-                        strerror(errno));
+    oit_error temp_err;
+    if (oit_temporary_create(bundle->path, true, &bundle->temp, &temp_err) != OIT_OK)
+        return oit_fail(err, OIT_E_INPUT, "--bundle %s: cannot create its temporary folder: %s", bundle->given,
+                        temp_err.message);
+    /* the permissions of the bundle it replaces (else 0777 less the umask, as mkdir) */
+    if (bundle->replaces && fchmod(bundle->temp.fd, (mode_t)bundle->mode) != 0)
+        return oit_fail(err, OIT_E_INPUT, "--bundle %s: cannot give %s the permissions %o: %s", bundle->given,
+                        bundle->temp.path, bundle->mode, strerror(errno));
     bundle->rows = open_memstream(&bundle->rows_text, &bundle->rows_size);
     bundle->scenes = open_memstream(&bundle->scenes_text, &bundle->scenes_size);
     if (!bundle->rows || !bundle->scenes)
@@ -1354,7 +1378,7 @@ static void bundle_png(bench_bundle *bundle, const char *name, const oit_image *
     if (bundle->status != OIT_OK)
         return;
     char path[4600];
-    snprintf(path, sizeof path, "%s/%s", bundle->temp, name);
+    snprintf(path, sizeof path, "%s/%s", bundle->temp.path, name);
     oit_error err;
     if (oit_png_write(path, image, &err) != OIT_OK) {
         bundle->status = OIT_E_RUNTIME;
@@ -1540,7 +1564,7 @@ static oit_status bundle_commit(bench_bundle *bundle, const bench_settings *b, b
     fclose(bundle->scenes);
     bundle->rows = bundle->scenes = NULL;
     char path[4600];
-    snprintf(path, sizeof path, "%s/bundle.json", bundle->temp);
+    snprintf(path, sizeof path, "%s/bundle.json", bundle->temp.path);
     oit_atomic_file *file = NULL;
     oit_status status = oit_atomic_file_open(path, "--bundle", 0, &file, err);
     if (status != OIT_OK)
@@ -1605,25 +1629,43 @@ static oit_status bundle_commit(bench_bundle *bundle, const bench_settings *b, b
     status = oit_atomic_file_commit(file, err);
     if (status != OIT_OK)
         return status;
-    /* DIR: a previous bundle or an empty directory is moved aside, then replaced */
-    char old[4200] = "";
-    struct stat info;
-    if (stat(bundle->path, &info) == 0) {
-        snprintf(old, sizeof old, "%s.old.XXXXXX", bundle->path);
-        if (!mkdtemp(old) || rename(bundle->path, old) != 0) /* a directory onto an empty one */
-            return oit_fail(err, OIT_E_RUNTIME, "--bundle %s: cannot move the previous bundle aside: %s",
-                            bundle->path, strerror(errno));
+    /* DIR: a previous bundle or an empty directory is swapped with the new
+     * one in one step, then removed from the temporary's name */
+    if (!bundle->replaces) {
+        if (rename(bundle->temp.path, bundle->path) != 0)
+            return oit_fail(err, OIT_E_RUNTIME, "--bundle %s: cannot rename %s to it: %s", bundle->given,
+                            bundle->temp.path, strerror(errno));
+        oit_temporary_release(&bundle->temp, false);
+        return OIT_OK;
     }
-    if (rename(bundle->temp, bundle->path) != 0) {
+    if (renameat2(AT_FDCWD, bundle->temp.path, AT_FDCWD, bundle->path, RENAME_EXCHANGE) == 0) {
+        oit_temporary_release(&bundle->temp, true); /* the previous bundle, now at the temporary's name */
+        return OIT_OK;
+    }
+    if (errno != EINVAL && errno != ENOSYS && errno != EOPNOTSUPP)
+        return oit_fail(err, OIT_E_RUNTIME, "--bundle %s: cannot replace it with %s: %s", bundle->given,
+                        bundle->temp.path, strerror(errno));
+    /* a file system that cannot swap: the previous one goes aside (onto an empty temporary folder) first */
+    oit_temporary old;
+    oit_error old_err;
+    if (oit_temporary_create(bundle->path, true, &old, &old_err) != OIT_OK)
+        return oit_fail(err, OIT_E_RUNTIME, "--bundle %s: cannot move the previous bundle aside: %s", bundle->given,
+                        old_err.message);
+    if (rename(bundle->path, old.path) != 0) {
         int saved = errno;
-        if (old[0])
-            rename(old, bundle->path);
-        return oit_fail(err, OIT_E_RUNTIME, "--bundle %s: cannot rename %s to it: %s", bundle->path,
-                        bundle->temp, strerror(saved));
+        oit_temporary_release(&old, true);
+        return oit_fail(err, OIT_E_RUNTIME, "--bundle %s: cannot move the previous bundle aside: %s",
+                        bundle->given, strerror(saved));
     }
-    bundle->temp[0] = '\0';
-    if (old[0])
-        remove_bundle_directory(old);
+    if (rename(bundle->temp.path, bundle->path) != 0) {
+        int saved = errno;
+        rename(old.path, bundle->path);
+        oit_temporary_release(&old, false);
+        return oit_fail(err, OIT_E_RUNTIME, "--bundle %s: cannot rename %s to it: %s", bundle->given,
+                        bundle->temp.path, strerror(saved));
+    }
+    oit_temporary_release(&bundle->temp, false);
+    oit_temporary_release(&old, true);
     return OIT_OK;
 }
 
@@ -1636,8 +1678,7 @@ static void bundle_close(bench_bundle *bundle)
         fclose(bundle->scenes);
     free(bundle->rows_text);
     free(bundle->scenes_text);
-    if (bundle->temp[0])
-        remove_bundle_directory(bundle->temp);
+    oit_temporary_release(&bundle->temp, true);
     memset(bundle, 0, sizeof *bundle);
 }
 
@@ -1791,7 +1832,14 @@ int command_bench(int argc, char **argv)
     for (int a = 0; a < b->algorithm_count; ++a)
         needs_gl |= b->algorithms[a].ops->uses_gl;
 
-    oit_status status = bench_scenes(b, &scenes, &selected, &err);
+    /* every output, before anything is read or rendered (the bundle's below, with its scenes' names) */
+    oit_status status = OIT_OK;
+    if (b->csv_path && strcmp(b->csv_path, "-") != 0)
+        status = check_output_path("--csv", b->csv_path, &err);
+    if (status == OIT_OK && b->json_path && strcmp(b->json_path, "-") != 0)
+        status = check_output_path("--json", b->json_path, &err);
+    if (status == OIT_OK)
+        status = bench_scenes(b, &scenes, &selected, &err);
     bench_bundle *use_bundle = b->bundle_path ? bundle : NULL;
     if (status == OIT_OK && use_bundle)
         status = bundle_open(b, &scenes, bundle, &err);
@@ -2016,6 +2064,10 @@ int command_measure(int argc, char **argv)
         snprintf(default_results, sizeof default_results, "measure_task%ld.txt", task_number);
         results_path = default_results;
     }
+    /* before the model is read: a FIFO would block, a long name fail after the work */
+    status = check_output_path("measure: results file", results_path, &err);
+    if (status != OIT_OK)
+        return report(status, &err);
     session s;
     status = session_open(&s, model_path, backend, false, &err);
     run_result *r = calloc(1, sizeof *r);
@@ -2023,8 +2075,8 @@ int command_measure(int argc, char **argv)
         status = oit_fail(&err, OIT_E_RUNTIME, "out of memory");
     if (status == OIT_OK)
         status = run_algorithm(&s, &o, (int)warmup, (int)frames, 0.0, r, NULL, NULL, NULL, &err);
-    /* appended atomically: the previous lines and the new one are written
-     * beside the file and renamed over it (oit_atomic_file) */
+    /* appended under an exclusive lock, in one write: concurrent runs keep
+     * every line, and a failed write leaves the lines before (oit_atomic_file) */
     oit_atomic_file *results_file = NULL;
     if (status == OIT_OK)
         status = oit_atomic_file_open(results_path, "measure", OIT_ATOMIC_APPEND, &results_file, &err);

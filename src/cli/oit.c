@@ -13,14 +13,17 @@
  * Exit status: 0 success, 1 comparison outside bounds, 2 bad usage or input,
  * 3 GL or runtime failure. Every error is one line on stderr.
  */
-#define _XOPEN_SOURCE 700 /* realpath */
+#define _XOPEN_SOURCE 700 /* realpath, sigaction */
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "bench.h"
 #include "local_options.h"
@@ -236,15 +239,20 @@ static int command_render(int argc, char **argv)
         oit_image_free(&reference.image);
     }
     if (status == OIT_OK) {
+        /* an image written to stdout (--out /dev/stdout) is not followed by text there */
+        FILE *summary = oit_output_standard_stream(o.out_path) == 1 ||
+                                oit_output_standard_stream(error_map_path) == 1
+                            ? stderr
+                            : stdout;
         if (o.json)
-            print_render_json(stdout, &o, &s, &result, has_error ? &error : NULL);
+            print_render_json(summary, &o, &s, &result, has_error ? &error : NULL);
         else {
-            fprintf(stdout, "%s: %dx%d, gpu %.3f ms, cpu %.3f ms, memory %.2f MB%s%s\n",
+            fprintf(summary, "%s: %dx%d, gpu %.3f ms, cpu %.3f ms, memory %.2f MB%s%s\n",
                     o.algorithm->name, o.width, o.height, stages_total(&result.stats),
                     result.stats.cpu_ms, result.stats.memory_bytes / (1024.0 * 1024.0),
                     o.out_path ? ", wrote " : "", o.out_path ? o.out_path : "");
             if (has_error)
-                fprintf(stdout, "error vs reference: rmse %.3f, psnr %.2f dB, ssim %.5f, max %d, %.3f%% of pixels "
+                fprintf(summary, "error vs reference: rmse %.3f, psnr %.2f dB, ssim %.5f, max %d, %.3f%% of pixels "
                                 "over 2\n",
                         error.rmse, error.psnr_db, error.ssim, error.max, error.share_over_2);
         }
@@ -296,7 +304,9 @@ static int command_compare(int argc, char **argv)
     oit_error err = {{0}};
     oit_image a = {0}, b = {0};
     oit_image_diff diff;
-    oit_status status = oit_png_read(paths[0], &a, &err);
+    oit_status status = diff_path ? check_output_path("--diff", diff_path, &err) : OIT_OK;
+    if (status == OIT_OK)
+        status = oit_png_read(paths[0], &a, &err);
     if (status == OIT_OK)
         status = oit_png_read(paths[1], &b, &err);
     if (status == OIT_OK)
@@ -528,13 +538,21 @@ static int command_demo(int argc, char **argv)
         fprintf(stderr, "oit: error: cannot create the output directory %s: %s\n", out_dir, strerror(errno));
         return EXIT_USAGE;
     }
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    /* every image's name, before anything renders */
+    for (size_t i = 0; i < count; ++i) {
+        char path[4400];
+        snprintf(path, sizeof path, "%s/%s.png", out_dir, list[i]->name);
+        status = check_output_path("--out", path, &err);
+        if (status != OIT_OK)
+            return report(status, &err);
+    }
     session s;
     status = session_open(&s, o.model_path, o.backend, o.config.debug, &err);
     if (status != OIT_OK)
         return report(status, &err);
 
-    size_t count;
-    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
     render_result reference;
     render_options ref_options = o;
     ref_options.algorithm = oit_algorithm_find("reference");
@@ -591,12 +609,100 @@ static const char main_help[] =
     "  algorithms  list the algorithms\n"
     "exit status: 0 success, 1 comparison outside bounds, 2 bad usage or input, 3 GL or runtime failure\n";
 
+/* ------------------------------------------------------------ signals */
+
+/* SIGINT, SIGTERM, SIGHUP: the temporaries go (no TARGET.tmp.* is left, the
+ * previous outputs stay as they were), then the signal does what it would
+ * have done. */
+static void on_interrupt(int signal_number)
+{
+    oit_temporaries_remove_all();
+    signal(signal_number, SIG_DFL);
+    raise(signal_number); /* delivered when the handler returns */
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+#define ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define ADDRESS_SANITIZER 1
+#endif
+#endif
+
+#ifndef ADDRESS_SANITIZER
+static char crash_limit_note[160]; /* composed at start: the handler only copies */
+
+/* A crash (in practice inside the GL driver, e.g. Mesa's shader compiler
+ * under a tight `ulimit -v`) is one line and exit 3 like any runtime
+ * failure, not a bare "Segmentation fault"; only async-signal-safe calls. */
+static void on_crash(int signal_number)
+{
+    oit_temporaries_remove_all();
+    char line[320] = "oit: error: the program crashed (signal ";
+    size_t n = strlen(line);
+    char digits[8];
+    int d = 0;
+    for (int v = signal_number; v > 0 && d < 7; v /= 10)
+        digits[d++] = (char)('0' + v % 10);
+    while (d > 0 && n < sizeof line - 1)
+        line[n++] = digits[--d];
+    const char *name = signal_number == SIGSEGV   ? ", Segmentation fault)"
+                       : signal_number == SIGBUS  ? ", Bus error)"
+                       : signal_number == SIGABRT ? ", Aborted)"
+                       : signal_number == SIGILL  ? ", Illegal instruction)"
+                       : signal_number == SIGFPE  ? ", Floating point exception)"
+                                                  : ")";
+    for (const char *c = name; *c && n < sizeof line - 1; ++c)
+        line[n++] = *c;
+    for (const char *c = crash_limit_note; *c && n < sizeof line - 1; ++c)
+        line[n++] = *c;
+    line[n++] = '\n';
+    (void)!write(STDERR_FILENO, line, n);
+    _exit(EXIT_RUNTIME);
+}
+#endif
+
+static void install_signal_handlers(void)
+{
+    const int interrupts[] = {SIGINT, SIGTERM, SIGHUP};
+    for (size_t k = 0; k < sizeof interrupts / sizeof interrupts[0]; ++k) {
+        struct sigaction action, previous;
+        memset(&action, 0, sizeof action);
+        action.sa_handler = on_interrupt;
+        sigemptyset(&action.sa_mask);
+        for (size_t j = 0; j < sizeof interrupts / sizeof interrupts[0]; ++j)
+            sigaddset(&action.sa_mask, interrupts[j]); /* one cleanup at a time */
+        /* an ignored signal stays ignored (nohup, a background job) */
+        if (sigaction(interrupts[k], NULL, &previous) == 0 && previous.sa_handler != SIG_IGN)
+            sigaction(interrupts[k], &action, NULL);
+    }
+#ifndef ADDRESS_SANITIZER /* (ASan reports a crash itself, with its stack) */
+    struct rlimit address_space;
+    if (getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY)
+        snprintf(crash_limit_note, sizeof crash_limit_note,
+                 "; the address space is limited to %llu MiB (ulimit -v %llu), which the GL driver may need "
+                 "more than",
+                 (unsigned long long)(address_space.rlim_cur >> 20),
+                 (unsigned long long)(address_space.rlim_cur >> 10));
+    const int crashes[] = {SIGSEGV, SIGBUS, SIGABRT, SIGILL, SIGFPE};
+    for (size_t k = 0; k < sizeof crashes / sizeof crashes[0]; ++k) {
+        struct sigaction action;
+        memset(&action, 0, sizeof action);
+        action.sa_handler = on_crash;
+        action.sa_flags = SA_RESETHAND; /* a second crash inside ends the process */
+        sigemptyset(&action.sa_mask);
+        sigaction(crashes[k], &action, NULL);
+    }
+#endif
+}
+
 int main(int argc, char **argv)
 {
     /* models are imported by this program run again as a contained worker */
     if (oit_import_worker_requested(argc, argv))
         return oit_import_worker_main(argc, argv);
     program_path = argv[0];
+    install_signal_handlers();
     if (argc < 2)
         return usage_error("missing command%s", "");
     const char *command = argv[1];

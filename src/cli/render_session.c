@@ -567,32 +567,9 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
 
 oit_status check_output_path(const char *flag, const char *path, oit_error *err)
 {
-    if (!*path)
-        return oit_fail(err, OIT_E_INPUT, "%s: empty file name", flag);
-    char directory[4096];
-    const char *slash = strrchr(path, '/');
-    if (!slash)
-        snprintf(directory, sizeof directory, ".");
-    else if (slash == path)
-        snprintf(directory, sizeof directory, "/");
-    else
-        snprintf(directory, sizeof directory, "%.*s", (int)(slash - path), path);
-    struct stat info;
-    if (stat(directory, &info) != 0)
-        return oit_fail(err, OIT_E_INPUT, "%s %s: the directory %s does not exist", flag, path,
-                        directory);
-    if (!S_ISDIR(info.st_mode))
-        return oit_fail(err, OIT_E_INPUT, "%s %s: %s is not a directory", flag, path, directory);
-    if (access(directory, W_OK) != 0)
-        return oit_fail(err, OIT_E_INPUT, "%s %s: cannot write in %s: %s", flag, path, directory,
-                        strerror(errno));
-    if (stat(path, &info) == 0) {
-        if (S_ISDIR(info.st_mode))
-            return oit_fail(err, OIT_E_INPUT, "%s %s: is a directory", flag, path);
-        if (access(path, W_OK) != 0)
-            return oit_fail(err, OIT_E_INPUT, "%s %s: cannot write: %s", flag, path, strerror(errno));
-    }
-    return OIT_OK;
+    /* a FIFO, a device, a directory, a name too long or a missing directory
+     * is refused now, not after the work (oit.h, "files") */
+    return oit_check_output_file(path, flag, err);
 }
 
 /* --------------------------------------------------------------- JSON */

@@ -118,8 +118,9 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
 
 /* --------------------------------------------------------------- output */
 
-/* Checks, before any work, that the file flag names can be written: its
- * directory exists and is writable, and it is not a directory. */
+/* Checks, before any work, that the file flag names can be written: a
+ * regular file or a new name in a writable directory, its name within
+ * NAME_MAX, or /dev/null or the standard output (oit_check_output_file). */
 oit_status check_output_path(const char *flag, const char *path, oit_error *err);
 /* A JSON string of text; bytes that are not well-formed UTF-8 become U+FFFD. */
 void json_string(FILE *out, const char *text);

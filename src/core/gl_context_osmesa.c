@@ -76,6 +76,11 @@ static probe_result probe_driver(const int *attributes, const char *driver, int 
     if (child < 0)
         return PROBE_UNDECIDED;
     if (child == 0) {
+        /* the program's handlers are not the probe's: a crash must end it by
+         * its signal, and an interrupt must not remove the parent's files */
+        const int defaults[] = {SIGSEGV, SIGBUS, SIGABRT, SIGILL, SIGFPE, SIGINT, SIGTERM, SIGHUP};
+        for (size_t k = 0; k < sizeof defaults / sizeof defaults[0]; ++k)
+            signal(defaults[k], SIG_DFL);
         struct rlimit no_core = {0, 0};
         setrlimit(RLIMIT_CORE, &no_core);
         int null_fd = open("/dev/null", O_WRONLY);

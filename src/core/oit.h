@@ -225,23 +225,51 @@ oit_status oit_check_regular_file(const char *path, const char *what, oit_error 
 /* The same check, and the open file for reading ("rb", blocking again) in *out. */
 oit_status oit_open_regular_file(const char *path, const char *what, FILE **out, oit_error *err);
 
-/* Outputs are replaced atomically: written to PATH.tmp.XXXXXX beside PATH
- * (beside a symbolic link's target), flushed, fsync'ed, closed and renamed
- * over PATH, so a failed write (a full disk) leaves the previous PATH byte
- * for byte and no temporary file. A PATH that exists and is not a regular
- * file (/dev/null, /dev/full, a pipe) is written in place. The file keeps
- * the previous file's permissions, else 0666 less the umask; a read-only
- * PATH is refused, not replaced. Failing to create is OIT_E_INPUT, failing to
- * write OIT_E_RUNTIME; both say "WHAT: cannot write PATH: <strerror of the
- * first failed write>" (without WHAT "PATH: cannot write: ..."; with
- * OIT_ATOMIC_APPEND "cannot append to PATH"). */
+/* Outputs must be regular files or new names, and are checked before any
+ * work (oit_check_output_file) as well as when opened:
+ * - a symbolic link stays a link: its target is written (also a dangling
+ *   link's: the file it names is created), beside it;
+ * - a directory, a FIFO (which would block the open), a device or a socket
+ *   is OIT_E_INPUT "WHAT PATH: not a regular file or a new name (a FIFO)",
+ *   except two files that have nothing to replace and are written in place:
+ *   /dev/null (the output is dropped; to time a run without keeping it) and
+ *   the process's own standard output or error (/dev/stdout, /dev/stderr,
+ *   /proc/self/fd/1, or a path to the same file), written through that
+ *   stream where it stands (a pipe, a terminal, the shell's file);
+ * - a name longer than NAME_MAX, a path of PATH_MAX or more, a missing or
+ *   read-only directory, a read-only file: OIT_E_INPUT, "WHAT PATH: File name
+ *   too long (a name has at most 255 bytes, this one 300)", "WHAT PATH: the
+ *   directory D does not exist", "WHAT PATH: cannot write in D: <strerror>",
+ *   "WHAT PATH: cannot write: <strerror>" (without WHAT "PATH: ...").
+ * A replaced file is written to a temporary (oit_temporary_create), flushed,
+ * fsync'ed, closed and renamed over the target, so a failed write (a full
+ * disk) leaves the previous file byte for byte and no temporary file. The
+ * file keeps the previous file's permissions, else 0666 less the umask.
+ * Failing to create is OIT_E_INPUT, failing to write OIT_E_RUNTIME; both
+ * say "WHAT: cannot write PATH: <strerror of the first failed write>"
+ * (without WHAT "PATH: cannot write: ..."; with OIT_ATOMIC_APPEND "cannot
+ * append to PATH").
+ * OIT_ATOMIC_APPEND appends in place, safely across processes: the file
+ * (created if new) is locked with flock(LOCK_EX) (other appenders wait),
+ * the stream's bytes are written with one write() at finish, fsync'ed, and
+ * on any failure (or a signal, see oit_temporaries_remove_all) the file is
+ * cut back to its size before, so it is the old file or the old file plus
+ * the whole new lines; a new file that could not be written is removed. */
 typedef struct oit_atomic_file oit_atomic_file;
-#define OIT_ATOMIC_APPEND 1 /* start with a copy of the previous contents */
+#define OIT_ATOMIC_APPEND 1 /* append in place under an exclusive lock */
+oit_status oit_check_output_file(const char *path, const char *what, oit_error *err);
+/* The check for an output that is a folder (oit bench --bundle): a new name
+ * or a directory (which is replaced: it must be readable and writable); a
+ * regular file is "WHAT PATH: not a directory", anything else refused as
+ * above. The target, its links followed, goes to *target (free it). */
+oit_status oit_output_target(const char *path, const char *what, char **target, oit_error *err);
+/* 1 or 2 when path is the very file of the standard output or error, else 0. */
+int oit_output_standard_stream(const char *path);
 oit_status oit_atomic_file_open(const char *path, const char *what, int flags, oit_atomic_file **out,
                                 oit_error *err);
 /* Where to write; every write's error is kept (the first errno is reported). */
 FILE *oit_atomic_file_stream(oit_atomic_file *file);
-/* OIT_ATOMIC_APPEND: the bytes of previous contents copied (0 for a new file). */
+/* OIT_ATOMIC_APPEND: the file's size when it was locked (0 for a new file). */
 long long oit_atomic_file_kept_bytes(const oit_atomic_file *file);
 /* True once a write failed. */
 bool oit_atomic_file_failed(const oit_atomic_file *file);
@@ -257,6 +285,34 @@ oit_status oit_atomic_file_commit(oit_atomic_file *file, oit_error *err);
  * NULL, err is left as it is. */
 oit_status oit_atomic_file_abort(oit_atomic_file *file, oit_status status, const char *reason,
                                  oit_error *err);
+
+/* Temporaries (temporaries.c): TARGET.tmp.XXXXXX beside TARGET (for a name
+ * longer than NAME_MAX - 11 bytes, .oit.tmp.XXXXXX), a file (0666) or a
+ * folder (0777, less the umask), created and locked with flock(LOCK_EX) for
+ * as long as it is open. Creating one first removes the orphans of TARGET's
+ * name: temporaries nobody holds a lock on, left by a run that was killed
+ * (SIGKILL); a live run's are kept. Each live temporary is listed in a
+ * fixed table until released, for oit_temporaries_remove_all. */
+typedef struct oit_temporary {
+    char *path; /* NULL when released */
+    int fd;     /* the file, open for writing, or the folder; holds the lock */
+    int watch;  /* its entry in the table, -1 if the table was full */
+} oit_temporary;
+oit_status oit_temporary_create(const char *target, bool directory, oit_temporary *out, oit_error *err);
+/* Closes it (and its lock) and takes it off the table; with remove, removes
+ * it first (a folder with its regular files). After a rename, remove false. */
+void oit_temporary_release(oit_temporary *temporary, bool remove);
+/* The length the path of a temporary of target has. */
+size_t oit_temporary_path_length(const char *target);
+/* Removes every live temporary (folders with their regular files) and cuts
+ * every unfinished OIT_ATOMIC_APPEND back to its size before. Async-signal-
+ * safe: for a program's SIGINT, SIGTERM and SIGHUP handlers, before the
+ * signal is raised again. */
+void oit_temporaries_remove_all(void);
+/* The table, for those who manage a temporary themselves: an append to cut
+ * back to size on a signal; -1 if the table is full. Unwatch takes it off. */
+int oit_temporaries_watch_append(int fd, long long size);
+void oit_temporaries_unwatch(int watch);
 
 /* ---------------------------------------------------------- frame settings */
 
