@@ -5,7 +5,8 @@
 # crash inside OSMesaCreateContextAttribs (src/core/gl_context_osmesa.c); a probe
 # process takes that crash, and the message names the drivers that do work. A
 # driver that exists still renders through the probe. Under a tight address-space
-# limit (ulimit -v) a crash in the driver is one line, exit 3. About 5 s.
+# limit (ulimit -v) a crash in the driver or a framebuffer it cannot allocate is
+# one line, exit 3. About 5 s.
 set -u
 . "$(dirname "$0")/lib.sh"
 oit=$1 work=$2 model=$3
@@ -55,5 +56,15 @@ if [ -z "${ASAN_OPTIONS:-}" ]; then
     done
 else
     echo "skipped under ASan: the tight address-space limit"
+fi
+# a frame whose targets the driver cannot allocate: the error names the framebuffer, the
+# size and the memory it needed, not only "incomplete (0x8cd6)"
+if [ -z "${ASAN_OPTIONS:-}" ]; then
+    expect_exit 3 "^oit: error: blend: the RGBA32F target is incomplete \(GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT, 0x8cd6\): the driver could not allocate its textures at 16384x16384, the frame's textures and buffers needing 5.00 GiB in all" -- \
+        bash -c 'ulimit -v 2000000; exec "$@"' _ "$oit" render --algorithm blend --model "$model" --size 16384x16384 \
+        --out "$work/huge.png"
+    [ ! -e "$work/huge.png" ] || fail "an image was written for a frame without targets"
+else
+    echo "skipped under ASan: the 16384x16384 frame under ulimit -v"
 fi
 echo "driver failures: ok"

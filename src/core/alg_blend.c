@@ -70,11 +70,10 @@ static oit_status blend_resize(oit_algorithm *alg, int width, int height, oit_er
     glBindFramebuffer(GL_FRAMEBUFFER, alg->accumulation_framebuffer);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                            alg->accumulation, 0);
-    GLenum framebuffer_status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    status = oit_gl_check_framebuffer("blend: the RGBA32F target", width, height, &alg->memory, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (framebuffer_status != GL_FRAMEBUFFER_COMPLETE)
-        return oit_fail(err, OIT_E_RUNTIME, "blend: the RGBA32F target is incomplete (0x%04x)",
-                        (unsigned)framebuffer_status);
+    if (status != OIT_OK)
+        return status;
     alg->stats.memory_bytes = oit_gl_memory_total(&alg->memory);
     return oit_gl_check("blend: resize", err);
 }

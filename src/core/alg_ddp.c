@@ -119,13 +119,12 @@ static void ddp_release_targets(ddp_state *s)
     s->width = s->height = 0;
 }
 
-static oit_status ddp_check_framebuffer(const char *what, oit_error *err)
+static oit_status ddp_check_framebuffer(const ddp_state *s, const char *what, int width, int height,
+                                        oit_error *err)
 {
-    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        return oit_fail(err, OIT_E_RUNTIME, "ddp: %s framebuffer incomplete (0x%x)", what,
-                        (unsigned)status);
-    return OIT_OK;
+    char name[64];
+    snprintf(name, sizeof name, "ddp: the %s framebuffer", what);
+    return oit_gl_check_framebuffer(name, width, height, &s->memory, err);
 }
 
 /* With config.debug, check for GL errors after each stage. */
@@ -214,13 +213,13 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
                                s->back_layer, 0);
         glDrawBuffers(3, peel_buffers);
-        status = ddp_check_framebuffer("peel", err);
+        status = ddp_check_framebuffer(s, "peel", width, height, err);
     }
     if (status == OIT_OK) {
         glGenFramebuffers(1, &s->back_framebuffer);
         glBindFramebuffer(GL_FRAMEBUFFER, s->back_framebuffer);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->back, 0);
-        status = ddp_check_framebuffer("back", err);
+        status = ddp_check_framebuffer(s, "back", width, height, err);
     }
     if (status == OIT_OK && s->distance_targets) {
         s->front_layer = ddp_target(s, GL_RGBA32F, width, height);
@@ -237,7 +236,7 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
                                    s->back_layer, 0);
             glDrawBuffers(3, peel_buffers);
-            status = ddp_check_framebuffer("distance peel", err);
+            status = ddp_check_framebuffer(s, "distance peel", width, height, err);
             if (status != OIT_OK)
                 break;
             glGenFramebuffers(1, &s->distance_blend_framebuffer[i]);
@@ -247,7 +246,7 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
                                    s->previous_far[i], 0);
             glDrawBuffers(3, peel_buffers);
-            status = ddp_check_framebuffer("distance blend", err);
+            status = ddp_check_framebuffer(s, "distance blend", width, height, err);
             if (status != OIT_OK)
                 break;
             glGenFramebuffers(1, &s->distance_max_framebuffer[i]);
@@ -257,7 +256,7 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
                                    s->previous_far[i], 0);
             glDrawBuffers(2, two);
-            status = ddp_check_framebuffer("distance maximum", err);
+            status = ddp_check_framebuffer(s, "distance maximum", width, height, err);
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -141,13 +141,12 @@ static void dp_release_targets(dp_state *s)
     s->width = s->height = 0;
 }
 
-static oit_status dp_check_framebuffer(const char *what, oit_error *err)
+static oit_status dp_check_framebuffer(const dp_state *s, const char *what, int width, int height,
+                                       oit_error *err)
 {
-    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        return oit_fail(err, OIT_E_RUNTIME, "dp: %s framebuffer incomplete (0x%x)", what,
-                        (unsigned)status);
-    return OIT_OK;
+    char name[64];
+    snprintf(name, sizeof name, "dp: the %s framebuffer", what);
+    return oit_gl_check_framebuffer(name, width, height, &s->memory, err);
 }
 
 /* With config.debug, check for GL errors after each stage. */
@@ -243,7 +242,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
         glDrawBuffers(3, colour_and_tie);
-        status = dp_check_framebuffer("peel", err);
+        status = dp_check_framebuffer(s, "peel", width, height, err);
         if (status != OIT_OK)
             break;
     }
@@ -253,7 +252,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                                s->accumulation, 0);
-        status = dp_check_framebuffer("accumulation", err);
+        status = dp_check_framebuffer(s, "accumulation", width, height, err);
     }
     for (int i = 0; status == OIT_OK && s->distance_targets && i < 2; ++i) {
         s->distance_colour[i] = dp_target(s, GL_RGBA32F, width, height);
@@ -264,7 +263,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
         glDrawBuffers(3, colour_and_tie);
-        status = dp_check_framebuffer("distance peel", err);
+        status = dp_check_framebuffer(s, "distance peel", width, height, err);
     }
     if (status == OIT_OK && s->distance_targets) {
         s->distance_max = dp_target(s, GL_R32F, width, height);
@@ -272,7 +271,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                                s->distance_max, 0);
-        status = dp_check_framebuffer("distance maximum", err);
+        status = dp_check_framebuffer(s, "distance maximum", width, height, err);
     }
     for (int i = 0; status == OIT_OK && s->normal_targets && i < 2; ++i) {
         s->layer_normal[i] = dp_target(s, GL_RG32UI, width, height);
@@ -285,7 +284,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
         glDrawBuffers(3, three_targets);
-        status = dp_check_framebuffer("curvature peel", err);
+        status = dp_check_framebuffer(s, "curvature peel", width, height, err);
         if (status != OIT_OK || !s->distance_targets)
             continue;
         glGenFramebuffers(1, &s->dist_curv_peel_framebuffer[i]);
@@ -297,7 +296,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
         glDrawBuffers(3, three_targets);
-        status = dp_check_framebuffer("dist-curv peel", err);
+        status = dp_check_framebuffer(s, "dist-curv peel", width, height, err);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status == OIT_OK)

@@ -128,8 +128,8 @@ static oit_status mboit_create(const oit_algorithm_config *config, oit_algorithm
 }
 
 /* A framebuffer over count colour textures (attachment i = textures[i]). */
-static oit_status mboit_framebuffer(GLuint *framebuffer, const GLuint *textures, int count,
-                                    const char *name, oit_error *err)
+static oit_status mboit_framebuffer(const mboit_state *s, GLuint *framebuffer, const GLuint *textures, int count,
+                                    const char *name, int width, int height, oit_error *err)
 {
     static const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                       GL_COLOR_ATTACHMENT2};
@@ -138,12 +138,11 @@ static oit_status mboit_framebuffer(GLuint *framebuffer, const GLuint *textures,
     for (int i = 0; i < count; ++i)
         glFramebufferTexture2D(GL_FRAMEBUFFER, buffers[i], GL_TEXTURE_2D, textures[i], 0);
     glDrawBuffers(count, buffers);
-    GLenum complete = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    char what[64];
+    snprintf(what, sizeof what, "mboit: the %s framebuffer", name);
+    oit_status status = oit_gl_check_framebuffer(what, width, height, &s->memory, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (complete != GL_FRAMEBUFFER_COMPLETE)
-        return oit_fail(err, OIT_E_RUNTIME, "mboit: %s framebuffer incomplete (0x%x)", name,
-                        (unsigned)complete);
-    return OIT_OK;
+    return status;
 }
 
 static oit_status mboit_resize(oit_algorithm *alg, int width, int height, oit_error *err)
@@ -167,11 +166,11 @@ static oit_status mboit_resize(oit_algorithm *alg, int width, int height, oit_er
     targets[OIT_MBOIT_TARGET_B0] = s->b0;
     targets[OIT_MBOIT_TARGET_MOMENTS] = s->moment_sums;
     targets[OIT_MBOIT_TARGET_EXTRA] = s->extra_sums;
-    status = mboit_framebuffer(&s->moments_framebuffer, targets,
-                               mboit_has_extra(s->moments) ? 3 : 2, "moments", err);
+    status = mboit_framebuffer(s, &s->moments_framebuffer, targets, mboit_has_extra(s->moments) ? 3 : 2,
+                               "moments", width, height, err);
     if (status == OIT_OK)
-        status = mboit_framebuffer(&s->transmittance_framebuffer, &s->accumulation, 1,
-                                   "transmittance", err);
+        status = mboit_framebuffer(s, &s->transmittance_framebuffer, &s->accumulation, 1, "transmittance",
+                                   width, height, err);
     if (status == OIT_OK)
         status = oit_gl_check("mboit: resize", err);
     if (status != OIT_OK) {

@@ -101,11 +101,8 @@ static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_er
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, s->revealage, 0);
     static const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, buffers);
-    GLenum complete = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    status = oit_gl_check_framebuffer("wboit: the accumulation framebuffer", width, height, &s->memory, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (complete != GL_FRAMEBUFFER_COMPLETE)
-        status = oit_fail(err, OIT_E_RUNTIME, "wboit: accumulation framebuffer incomplete (0x%x)",
-                          (unsigned)complete);
     if (status == OIT_OK)
         status = oit_gl_check("wboit: resize", err);
     if (status != OIT_OK) {

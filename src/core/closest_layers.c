@@ -233,11 +233,10 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
         draw_buffers[t] = GL_COLOR_ATTACHMENT0 + (GLenum)t;
     }
     glDrawBuffers(s->tail->target_count, draw_buffers);
-    GLenum complete = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    char what[64];
+    snprintf(what, sizeof what, "%s: the tail framebuffer", name);
+    status = oit_gl_check_framebuffer(what, width, height, &s->memory, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (complete != GL_FRAMEBUFFER_COMPLETE)
-        status = oit_fail(err, OIT_E_RUNTIME, "%s: tail framebuffer incomplete (0x%x)", name,
-                          (unsigned)complete);
     if (status == OIT_OK) {
         char where[64];
         snprintf(where, sizeof where, "%s: resize", name);

@@ -290,6 +290,41 @@ oit_status oit_gl_check(const char *where, oit_error *err)
     return OIT_OK;
 }
 
+static const char *framebuffer_status_name(GLenum status)
+{
+    switch (status) {
+    case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
+    case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
+    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+    default: return "incomplete";
+    }
+}
+
+oit_status oit_gl_check_framebuffer(const char *what, int width, int height, const oit_gl_memory *memory,
+                                    oit_error *err)
+{
+    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status == GL_FRAMEBUFFER_COMPLETE)
+        return OIT_OK;
+    GLenum error = glGetError();
+    for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i)
+        ;
+    double total = memory ? (double)oit_gl_memory_total(memory) : 0.0;
+    char amount[64] = "";
+    if (memory)
+        snprintf(amount, sizeof amount, total >= 1024.0 * 1024.0 * 1024.0 ? "%.2f GiB" : "%.1f MiB",
+                 total / (total >= 1024.0 * 1024.0 * 1024.0 ? 1024.0 * 1024.0 * 1024.0 : 1024.0 * 1024.0));
+    /* an attachment whose storage the driver could not allocate is the usual cause */
+    bool allocation = error == GL_OUT_OF_MEMORY || status == GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT;
+    return oit_fail(err, OIT_E_RUNTIME, "%s is incomplete (%s, 0x%04x)%s at %dx%d%s%s%s%s", what,
+                    framebuffer_status_name(status), (unsigned)status,
+                    allocation ? ": the driver could not allocate its textures" : "", width, height,
+                    memory ? ", the frame's textures and buffers needing " : "", amount,
+                    memory ? " in all" : "", error == GL_OUT_OF_MEMORY ? " (GL_OUT_OF_MEMORY)" : "");
+}
+
 /* ---------------------------------------------------------- stage timing */
 
 double oit_now_ms(void)
@@ -738,13 +773,12 @@ oit_status oit_gl_output_resize(oit_gl_output *output, int width, int height, oi
         oit_gl_memory_texture_2d(output->memory, OIT_GL_MEMORY_PIXELS, GL_RGBA8, width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, output->framebuffer);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, output->colour, 0);
-    GLenum framebuffer_status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    oit_status status = oit_gl_check_framebuffer("the RGBA8 output", width, height, output->memory, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     output->width = width;
     output->height = height;
-    if (framebuffer_status != GL_FRAMEBUFFER_COMPLETE)
-        return oit_fail(err, OIT_E_RUNTIME, "the %dx%d RGBA8 output is incomplete (0x%04x)",
-                        width, height, (unsigned)framebuffer_status);
+    if (status != OIT_OK)
+        return status;
     return oit_gl_check("creating the output", err);
 }
 

@@ -156,6 +156,14 @@ typedef struct oit_gl_output {
 } oit_gl_output;
 
 oit_status oit_gl_output_resize(oit_gl_output *output, int width, int height, oit_error *err);
+/* glCheckFramebufferStatus of the bound GL_FRAMEBUFFER; when incomplete,
+ * OIT_E_RUNTIME naming WHAT, the status, the image size and what the
+ * algorithm's textures and buffers (memory, may be NULL) needed in all: e.g.
+ * "blend: the RGBA32F target is incomplete (GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT,
+ * 0x8cd6): the driver could not allocate its textures at 16384x16384, the
+ * frame's textures and buffers needing 5.00 GiB in all". */
+oit_status oit_gl_check_framebuffer(const char *what, int width, int height, const oit_gl_memory *memory,
+                                    oit_error *err);
 void oit_gl_output_release(oit_gl_output *output);
 /* glReadPixels into a new image, flipped to top-row-first. */
 oit_status oit_gl_output_read(const oit_gl_output *output, oit_image *out, oit_error *err);
