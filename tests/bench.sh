@@ -78,6 +78,25 @@ assert [r["scene"] for r in rows] == ["onion-front", "onion-side"], rows
 assert rows[1]["view"] == "--orbit 90,30" and rows[0]["ref_max_diff"] == "", rows
 print("scene list ok")
 PY
+# a model path relative to the list's folder (whatever the working directory), a quoted path
+# with a blank, a quoted name, a UTF-8 byte order mark before the first line
+mkdir -p "$work/lists/my models"
+cp "$scenes/onion.obj" "$scenes/onion.mtl" "$work/lists/my models/"
+printf '\xef\xbb\xbfbom-first "my models/onion.obj" --alpha 0.3\nrelative '"'"'my models/onion.obj'"'"'  # a comment\n"with blank" "my models/onion.obj" --orbit "30,20"\n' \
+    >"$work/lists/quoted.txt"
+oit_path=$(realpath "$oit")
+( cd / && "$oit_path" bench --scene-list "$work/lists/quoted.txt" --algorithms ll --sizes 16 --frames 1 --warmup 0 \
+      --quiet --reference-max-pixels 0 ) >"$work/quoted.csv" || fail "bench with a quoted, relative scene list"
+python3 - "$work/quoted.csv" "$work/lists/my models/onion.obj" <<'PY' || fail "quoted, relative scene list rows"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [r["scene"] for r in rows] == ["bom-first", "relative", "with blank"], [r["scene"] for r in rows]
+assert all(r["model"] == sys.argv[2] and r["error"] == "" for r in rows), rows
+assert [r["view"] for r in rows] == ["--alpha 0.3", "", "--orbit 30,20"], [r["view"] for r in rows]
+print("quoted, relative scene list ok")
+PY
+printf 'open "my models/onion.obj\n' >"$work/lists/open.txt"
+expect_exit 2 "open.txt:1: a quote is not closed" -- "$oit" bench --scene-list "$work/lists/open.txt"
 printf 'missing %s/missing.obj\nonion %s/onion.obj\n' "$work" "$scenes" >"$work/failing.txt"
 expect_exit 3 "1 run\(s\) failed" -- "$oit" bench --scene-list "$work/failing.txt" --algorithms ll --sizes 16 \
     --frames 1 --warmup 0 --quiet --csv "$work/failing.csv"

@@ -166,8 +166,20 @@ static oit_status scene_add(scene_list *list, const render_options *base, int to
         if (!owned)
             return oit_fail(err, OIT_E_RUNTIME, "out of memory reading scenes");
         tokens[t] = owned;
+        /* the options as a scene line would give them: a word with blanks or quotes quoted */
+        bool plain = owned[0] && !strpbrk(owned, " \t\"'\\#");
         if (t >= 2 && used < sizeof view)
-            used += (size_t)snprintf(view + used, sizeof view - used, "%s%s", t > 2 ? " " : "", owned);
+            used += (size_t)snprintf(view + used, sizeof view - used, "%s%s", t > 2 ? " " : "", plain ? owned : "\"");
+        for (const char *c = owned; t >= 2 && !plain && *c && used + 2 < sizeof view; ++c) {
+            if (*c == '"' || *c == '\\')
+                view[used++] = '\\';
+            view[used++] = *c;
+            view[used] = '\0';
+        }
+        if (t >= 2 && !plain && used + 1 < sizeof view) {
+            view[used++] = '"';
+            view[used] = '\0';
+        }
     }
     scene->name = tokens[0];
     scene->options.model_path = tokens[1];
@@ -203,8 +215,50 @@ static oit_status scene_add(scene_list *list, const render_options *base, int to
     return OIT_OK;
 }
 
+/* Splits a scene-list line into words, in place: blanks separate words;
+ * '...' keeps what it holds as it is, "..." too except that \" and \\ stand
+ * for " and \ (a path with blanks: "my models/a b.obj"); a '#' that starts a
+ * word starts a comment. The count, or -1 (too many words) or -2 (a quote
+ * left open). */
+static int split_words(char *line, char **words, int capacity)
+{
+    int count = 0;
+    char *in = line, *out = line;
+    for (;;) {
+        while (*in == ' ' || *in == '\t' || *in == '\r' || *in == '\n')
+            ++in;
+        if (!*in || *in == '#')
+            return count;
+        if (count == capacity)
+            return -1;
+        words[count++] = out;
+        while (*in && *in != ' ' && *in != '\t' && *in != '\r' && *in != '\n') {
+            char quote = *in == '\'' || *in == '"' ? *in : 0;
+            if (!quote) {
+                *out++ = *in++;
+                continue;
+            }
+            for (++in; *in != quote; ++in) {
+                if (!*in)
+                    return -2;
+                if (quote == '"' && *in == '\\' && (in[1] == '"' || in[1] == '\\'))
+                    ++in;
+                *out++ = *in;
+            }
+            ++in; /* the closing quote */
+        }
+        char *end = out;
+        if (*in)
+            ++in; /* the blank after the word (out never passes in) */
+        *end = '\0';
+        out = end + 1;
+    }
+}
+
 /* A scene list: one scene per line, NAME MODEL [render options], words
- * separated by blanks; '#' starts a comment. */
+ * separated by blanks and quoted where they hold blanks (split_words); '#'
+ * starts a comment. A model path that is not absolute is relative to the
+ * list's folder; a UTF-8 byte order mark before the first line is skipped. */
 static oit_status scene_list_read(scene_list *list, const render_options *base, const char *path,
                                   oit_error *err)
 {
@@ -227,24 +281,33 @@ static oit_status scene_list_read(scene_list *list, const render_options *base, 
             status = oit_fail(err, OIT_E_INPUT, "%s: the line holds a NUL byte", where);
             break;
         }
-        char *hash = strchr(line, '#');
-        if (hash)
-            *hash = '\0';
+        char *text = line;
+        if (line_number == 1 && strncmp(text, "\xef\xbb\xbf", 3) == 0)
+            text += 3; /* a byte order mark, as some editors write it */
         char *tokens[BENCH_MAX_TOKENS];
-        int count = 0;
-        char *save = NULL;
-        for (char *token = strtok_r(line, " \t\r\n", &save); token;
-             token = strtok_r(NULL, " \t\r\n", &save)) {
-            if (count == BENCH_MAX_TOKENS) {
-                status = oit_fail(err, OIT_E_INPUT, "%s: more than %d words on the line", where,
-                                  BENCH_MAX_TOKENS);
-                break;
-            }
-            tokens[count++] = token;
-        }
+        int count = split_words(text, tokens, BENCH_MAX_TOKENS);
+        if (count == -1)
+            status = oit_fail(err, OIT_E_INPUT, "%s: more than %d words on the line", where, BENCH_MAX_TOKENS);
+        else if (count == -2)
+            status = oit_fail(err, OIT_E_INPUT, "%s: a quote is not closed", where);
         if (status != OIT_OK || count == 0)
             continue;
-        status = scene_add(list, base, count, tokens, where, err);
+        /* a relative model path is the list's, not the working directory's */
+        char *model = NULL;
+        const char *slash = strrchr(path, '/');
+        if (count >= 2 && tokens[1][0] != '/' && slash) {
+            size_t folder = (size_t)(slash - path) + 1;
+            model = malloc(folder + strlen(tokens[1]) + 1);
+            if (!model) {
+                status = oit_fail(err, OIT_E_RUNTIME, "out of memory reading scenes");
+                break;
+            }
+            memcpy(model, path, folder);
+            strcpy(model + folder, tokens[1]);
+            tokens[1] = model;
+        }
+        status = scene_add(list, base, count, tokens, where, err); /* copies the words */
+        free(model);
     }
     free(line);
     fclose(file);
