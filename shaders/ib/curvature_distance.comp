@@ -5,9 +5,13 @@
 // (skip, or the last one) or to the last one (far end); the last fragment's
 // distance is 0. Stored in ib_core[].w; the frame's largest distance goes to
 // a counter (atomicMax on the float bits: they order like the values, >= 0).
-// Compute pass, one invocation per pixel.
+// distance_only: only that largest distance, for the first sweep of a frame
+// drawn in bands (alg_ib.c), before the neighbour links exist.
+// Compute pass, one invocation per pixel of the band's rows of tiles.
 #include "common/oit_shared.h"
 #include "ib/ib_common.glsl"
+
+layout(location = OIT_UNIFORM_IB_PASS) uniform int distance_only;
 
 const ivec2 DIAGONALS[4] = ivec2[4](ivec2(0, 2), ivec2(0, 3), ivec2(1, 2), ivec2(1, 3));
 
@@ -15,7 +19,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = ib_band_pixel(gl_GlobalInvocationID);
     if (!ib_inside(pixel))
         return;
     vec2 centre = vec2(pixel) + 0.5;
@@ -28,19 +32,21 @@ void main()
         vec3 n = oit_unpack_normal(core.z);
         float sum = 0.0;
         int count = 0;
-        for (int d = 0; d < 4; ++d) {
-            ib_fragment g;
-            if (ib_neighbour(f, d, g)) {
-                sum += length(n - oit_unpack_normal(ib_core[g.slot].z));
-                ++count;
-            }
-        }
-        if (ib_curvature_neighbours == 8) {
-            for (int k = 0; k < 4; ++k) {
+        if (distance_only == 0) {
+            for (int d = 0; d < 4; ++d) {
                 ib_fragment g;
-                if (ib_diagonal(f, DIAGONALS[k].x, DIAGONALS[k].y, g)) {
+                if (ib_neighbour(f, d, g)) {
                     sum += length(n - oit_unpack_normal(ib_core[g.slot].z));
                     ++count;
+                }
+            }
+            if (ib_curvature_neighbours == 8) {
+                for (int k = 0; k < 4; ++k) {
+                    ib_fragment g;
+                    if (ib_diagonal(f, DIAGONALS[k].x, DIAGONALS[k].y, g)) {
+                        sum += length(n - oit_unpack_normal(ib_core[g.slot].z));
+                        ++count;
+                    }
                 }
             }
         }
