@@ -32,14 +32,20 @@ oit_status oit_bands_begin(oit_band_walk *walk, const oit_band_plan *last, int h
             band_push(walk, last->bands[2 * band], last->bands[2 * band + 1]);
         return OIT_OK;
     }
-    /* equal shares of the count, with a quarter of headroom: `rows` stored rows
-     * each at the frame's mean density, of which the overlap takes 2 x overlap */
-    if (capacity == 0)
-        capacity = 1;
-    uint64_t shares = (frame_needed + frame_needed / 4) / capacity + 1;
-    int rows = (int)(((uint64_t)height + shares - 1) / shares) - 2 * overlap;
-    if (rows < 1)
-        rows = 1;
+    /* Equal shares of the count, with a quarter of headroom: the fewest bands B
+     * whose stored rows, H / B and the overlap either side, hold at the frame's
+     * mean density q / H fewer fragments than the pool: (H / B + 2 overlap) q / H
+     * < capacity, i.e. H q < B (H capacity - 2 overlap q), with q the count and
+     * its headroom. Without overlap B = q / capacity + 1. Where even a row and
+     * its overlap would not fit, bands of one row (which may still fit where the
+     * frame is shallow). */
+    const uint64_t q = frame_needed + frame_needed / 4, h = (uint64_t)height;
+    const uint64_t room = h * capacity, overlap_need = 2u * (uint64_t)overlap * q;
+    int rows = 1;
+    if (room > overlap_need) {
+        const uint64_t shares = h * q / (room - overlap_need) + 1;
+        rows = (int)((h + shares - 1) / shares);
+    }
     for (int first = ((height - 1) / rows) * rows; first >= 0; first -= rows) {
         if (walk->depth == OIT_MAX_BANDS) {
             /* no room: the rows below join the lowest band (which then cannot be halved) */
