@@ -4,14 +4,11 @@
 // along the ray in linear eye depth: to the next fragment (adjacent), k on
 // (skip, or the last one) or to the last one (far end); the last fragment's
 // distance is 0. Stored in ib_core[].w; the frame's largest distance goes to
-// a counter (atomicMax on the float bits: they order like the values, >= 0).
-// distance_only: only that largest distance, for the first sweep of a frame
-// drawn in bands (alg_ib.c), before the neighbour links exist.
+// a counter (atomicMax on the float bits: they order like the values, >= 0;
+// distance_max.comp finds only that, for the first sweep of a banded frame).
 // Compute pass, one invocation per pixel of the band's rows of tiles.
 #include "common/oit_shared.h"
 #include "ib/ib_common.glsl"
-
-layout(location = OIT_UNIFORM_IB_PASS) uniform int distance_only;
 
 const ivec2 DIAGONALS[4] = ivec2[4](ivec2(0, 2), ivec2(0, 3), ivec2(1, 2), ivec2(1, 3));
 
@@ -32,37 +29,29 @@ void main()
         vec3 n = oit_unpack_normal(core.z);
         float sum = 0.0;
         int count = 0;
-        if (distance_only == 0) {
-            for (int d = 0; d < 4; ++d) {
+        for (int d = 0; d < 4; ++d) {
+            ib_fragment g;
+            if (ib_neighbour(f, d, g)) {
+                sum += length(n - oit_unpack_normal(ib_core[g.slot].z));
+                ++count;
+            }
+        }
+        if (ib_curvature_neighbours == 8) {
+            for (int k = 0; k < 4; ++k) {
                 ib_fragment g;
-                if (ib_neighbour(f, d, g)) {
+                if (ib_diagonal(f, DIAGONALS[k].x, DIAGONALS[k].y, g)) {
                     sum += length(n - oit_unpack_normal(ib_core[g.slot].z));
                     ++count;
-                }
-            }
-            if (ib_curvature_neighbours == 8) {
-                for (int k = 0; k < 4; ++k) {
-                    ib_fragment g;
-                    if (ib_diagonal(f, DIAGONALS[k].x, DIAGONALS[k].y, g)) {
-                        sum += length(n - oit_unpack_normal(ib_core[g.slot].z));
-                        ++count;
-                    }
                 }
             }
         }
         float curvature = count > 0 ? clamp(sum / (2.0 * float(count)), 0.0, 1.0) : 0.0;
 
-        uint target = i;
-        if (ib_distance_mode == OIT_IB_DISTANCE_ADJACENT)
-            target = min(i + 1u, run_length - 1u);
-        else if (ib_distance_mode == OIT_IB_DISTANCE_SKIP)
-            target = min(i + uint(max(ib_distance_skip, 1)), run_length - 1u);
-        else
-            target = run_length - 1u;
+        uint target = ib_distance_target(i, run_length);
         float distance = 0.0;
         if (target != i)
-            distance = abs(ib_eye_depth(centre, uintBitsToFloat(ib_core[start + target].x)) -
-                           ib_eye_depth(centre, uintBitsToFloat(core.x)));
+            distance = ib_depth_distance(centre, uintBitsToFloat(core.x),
+                                         uintBitsToFloat(ib_core[start + target].x));
         largest = max(largest, distance);
         uint packed_distance = packHalf2x16(vec2(distance, 0.0)) & 0xFFFFu;
         ib_core[f.slot].w = uint(round(curvature * 65535.0)) | (packed_distance << 16);

@@ -174,6 +174,25 @@ float ib_eye_depth(vec2 pixel_centre, float depth)
     return -ib_eye_position(pixel_centre, depth).z;
 }
 
+// ---- distance along the ray (curvature_distance.comp, distance_max.comp)
+
+// The layer fragment i of a run of run_length measures its distance to: the
+// next (adjacent), k on (skip) or the last (far end); i itself for the last.
+uint ib_distance_target(uint i, uint run_length)
+{
+    if (ib_distance_mode == OIT_IB_DISTANCE_ADJACENT)
+        return min(i + 1u, run_length - 1u);
+    if (ib_distance_mode == OIT_IB_DISTANCE_SKIP)
+        return min(i + uint(max(ib_distance_skip, 1)), run_length - 1u);
+    return run_length - 1u;
+}
+
+// The distance in linear eye depth between two canonical depths on a pixel's ray.
+float ib_depth_distance(vec2 pixel_centre, float depth, float target_depth)
+{
+    return abs(ib_eye_depth(pixel_centre, target_depth) - ib_eye_depth(pixel_centre, depth));
+}
+
 // ---- the depth order: window depth, then triangle index
 
 bool ib_in_front(uvec2 a, uvec2 b)

@@ -99,6 +99,7 @@ enum ib_program {
     IB_DIFFUSION,
     IB_BLUR,
     IB_CURVATURE_DISTANCE,
+    IB_DISTANCE_MAX,  /* the first sweep of a banded frame: the largest distance only */
     IB_COMPOSE,       /* every view and modulation */
     IB_COMPOSE_PLAIN, /* the colour image without modulation (common/variants.glsl) */
     IB_PROGRAM_COUNT
@@ -112,7 +113,8 @@ static const char *const ib_shaders[IB_PROGRAM_COUNT] = {
     "ib/fill.frag",      "ib/sort.comp",      "ib/triangles.comp", "ib/neighbours.comp",
     "ib/neighbours_epsilon.comp", "ib/epsilon_dispatch.comp", "ib/tiles_dispatch.comp",
     "ib/neighbour_stats.comp", "ib/fields_init.comp", "ib/diffusion.comp",
-    "ib/blur.comp",      "ib/curvature_distance.comp", "ib/compose.frag", "ib/compose.frag",
+    "ib/blur.comp",      "ib/curvature_distance.comp", "ib/distance_max.comp",
+    "ib/compose.frag",   "ib/compose.frag",
 };
 
 typedef struct ib_state {
@@ -660,10 +662,9 @@ static void ib_pass(ib_state *s, enum ib_program p, const oit_frame_settings *fr
 {
     ib_barrier();
     ib_use_program(s, p, frame);
-    if (glGetUniformLocation(s->programs[p], p == IB_BLUR                  ? "pass_parameter"
-                                             : p == IB_DIFFUSION           ? "source_copy"
-                                             : p == IB_CURVATURE_DISTANCE  ? "distance_only"
-                                                                           : "fields_copy") ==
+    if (glGetUniformLocation(s->programs[p], p == IB_BLUR         ? "pass_parameter"
+                                             : p == IB_DIFFUSION  ? "source_copy"
+                                                                  : "fields_copy") ==
         OIT_UNIFORM_IB_PASS)
         glUniform1i(OIT_UNIFORM_IB_PASS, pass_parameter);
     if (p == IB_COMPOSE || p == IB_COMPOSE_PLAIN) {
@@ -960,15 +961,21 @@ static int ib_band_overlap(const ib_plan *plan)
     return rows;
 }
 
-/* The frame's compose reads its longest list (the heat map) or its largest
- * distance (the distance modulation or view with the automatic region). */
-static bool ib_needs_frame_figures(const ib_plan *plan)
+/* The frame's compose reads its largest distance: the distance modulation
+ * or view with the automatic region. */
+static bool ib_needs_largest_distance(const ib_plan *plan)
 {
     const ib_params *p = &plan->params;
-    const bool auto_region = !(p->focus_region > 0.0f) &&
-                             (p->mode == OIT_MODULATE_DISTANCE ||
-                              p->mode == OIT_MODULATE_DIST_CURV || p->view == OIT_VIEW_DISTANCE);
-    return p->view == OIT_VIEW_HEATMAP || auto_region;
+    return !(p->focus_region > 0.0f) &&
+           (p->mode == OIT_MODULATE_DISTANCE || p->mode == OIT_MODULATE_DIST_CURV ||
+            p->view == OIT_VIEW_DISTANCE);
+}
+
+/* The frame's compose reads a figure of the whole frame: its longest list
+ * (the heat map) or its largest distance. */
+static bool ib_needs_frame_figures(const ib_plan *plan)
+{
+    return plan->params.view == OIT_VIEW_HEATMAP || ib_needs_largest_distance(plan);
 }
 
 /* The first sweep of a banded frame whose compose needs the whole frame's
@@ -1001,9 +1008,9 @@ static oit_status ib_sweep(ib_state *s, const oit_scene *scene, const oit_frame_
         }
         ib_stage(s, "sweep_", "sort");
         ib_pass(s, IB_SORT, frame, 0);
-        if (plan->curvature_distance) {
+        if (ib_needs_largest_distance(plan)) {
             ib_stage(s, "sweep_", "distance");
-            ib_pass(s, IB_CURVATURE_DISTANCE, frame, 1);
+            ib_pass(s, IB_DISTANCE_MAX, frame, 0);
         }
         oit_timer_stage_end(&s->timer);
         ib_counts unused;
