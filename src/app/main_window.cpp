@@ -1470,7 +1470,7 @@ void MainWindow::update_stats()
                    .arg(qlonglong(st.overflow_retries))
                    .arg(view_->total_overflow_retries());
     if (st.bands > 1)
-        out << QString("bands of rows       %1 (more fragments than one GL buffer addresses)\n").arg(qlonglong(st.bands));
+        out << QString("bands of rows       %1 (more fragments than one pool holds)\n").arg(qlonglong(st.bands));
     if (st.bytes_per_fragment > 0)
         out << QString("bytes / fragment    %1\n").arg(st.bytes_per_fragment, 0, 'f', 1);
     if (st.neighbours_four_share >= 0)
