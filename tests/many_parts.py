@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""many_parts.py OUT.obj|OUT.gltf [PARTS]: a model with many parts (tests/many_parts.sh,
+"""many_parts.py OUT.obj|OUT.gltf [PARTS [MATERIALS]]: a model with many parts (tests/many_parts.sh,
 the assembly benchmark in docs/cli.md). PARTS (default 1331) squares, one component each
 (OBJ: g/usemtl part_I; glTF: node, mesh and material part_I; component index I), on a
 grid ceil(sqrt(PARTS)) wide; each square overlaps its neighbours and sits at its own
@@ -8,7 +8,9 @@ depth (I mod 5), so neighbours overlap at distinct depths. Parts PARTS-131 and P
 grid: changing their opacity changes a large share of the image, so a GPU that ignored
 the last parts fails the comparison with the reference by far. The OBJ and the glTF of
 one PARTS hold the same parts, names and colours; the glTF (a .gltf and its .bin) hangs
-the parts in groups of 1000 under one root node."""
+the parts in groups of 1000 under one root node; with MATERIALS, its parts share that
+many materials (part I has material I mod MATERIALS, the two front parts their own), as
+the parts of a real assembly do."""
 import json
 import math
 import os
@@ -17,6 +19,7 @@ import sys
 
 out = sys.argv[1]
 parts = int(sys.argv[2]) if len(sys.argv) > 2 else 1331
+shared = int(sys.argv[3]) if len(sys.argv) > 3 else 0
 columns = max(1, math.ceil(math.sqrt(parts)))
 scale = columns / 37.0  # 1331 parts: the grid and squares of the original test
 front = {parts - 131: (2.0, 2.0, 22.0, 1.5), parts - 31: (14.0, 12.0, 34.0, 2.5)}  # x0, y0, x1, z
@@ -89,11 +92,17 @@ def write_gltf():
                           "type": "VEC3", "min": [min(xs), min(ys), zr], "max": [max(xs), max(ys), zr]})
         accessors.append({"bufferView": 1, "byteOffset": i * 24, "componentType": 5125, "count": 6,
                           "type": "SCALAR"})
+        material = i
+        if shared and i not in front:
+            material = i % shared
+        elif shared:
+            material = shared + (i == parts - 31)
         meshes.append({"name": f"part_{i}", "primitives": [
-            {"attributes": {"POSITION": 2 * i}, "indices": 2 * i + 1, "material": i}]})
-        r, g, b = colour(i)
-        materials.append({"name": f"part_{i}", "pbrMetallicRoughness": {
-            "baseColorFactor": [round(r, 4), round(g, 4), round(b, 4), 1.0], "metallicFactor": 0.0}})
+            {"attributes": {"POSITION": 2 * i}, "indices": 2 * i + 1, "material": material}]})
+        if not shared or i < shared or i in front:
+            r, g, b = colour(i)
+            materials.append({"name": f"part_{i}", "pbrMetallicRoughness": {
+                "baseColorFactor": [round(r, 4), round(g, 4), round(b, 4), 1.0], "metallicFactor": 0.0}})
         nodes.append({"name": f"part_{i}", "mesh": i})
     gltf = {
         "asset": {"version": "2.0", "generator": "tests/many_parts.py"},
