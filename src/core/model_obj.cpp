@@ -13,8 +13,9 @@
  * meshes, names, materials, warnings and errors, and bit for bit the same
  * coordinates, read by Assimp's own number reader (its public fast_atof.h) --
  * with hash maps where Assimp searched lists. What it does not keep: polygons
- * of more than four corners are fanned from their first corner (Assimp cuts
- * ears), and texture and option statements of MTL files are not read.
+ * of more than four corners are cut into ears by our own code (the same
+ * outline, other triangles than Assimp's), and texture and option statements
+ * of MTL files are not read.
  */
 #include <algorithm>
 #include <cmath>
@@ -634,6 +635,68 @@ void Reader::read_materials(const std::string &text)
     }
 }
 
+// A polygon of n > 4 corners (vertices first .. first + n - 1) cut into n - 2
+// triangles by ear clipping in the plane its Newell normal is most nearly
+// perpendicular to, so that concave ones stay inside their outline. Writes
+// from triangle t on; returns the next triangle.
+uint64_t cut_ears(const float *positions, uint64_t first, uint32_t n, uint32_t *indices, uint64_t t)
+{
+    double normal[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < n; ++i) {
+        const float *a = positions + (first + i) * 3, *b = positions + (first + (i + 1) % n) * 3;
+        normal[0] += (double(a[1]) - b[1]) * (double(a[2]) + b[2]);
+        normal[1] += (double(a[2]) - b[2]) * (double(a[0]) + b[0]);
+        normal[2] += (double(a[0]) - b[0]) * (double(a[1]) + b[1]);
+    }
+    int drop = 2;
+    if (std::fabs(normal[0]) > std::fabs(normal[1]) && std::fabs(normal[0]) > std::fabs(normal[2]))
+        drop = 0;
+    else if (std::fabs(normal[1]) > std::fabs(normal[2]))
+        drop = 1;
+    int u = (drop + 1) % 3, v = (drop + 2) % 3;
+    if (normal[drop] < 0.0)
+        std::swap(u, v); // counter-clockwise in (u, v)
+    std::vector<uint32_t> left(n);
+    for (uint32_t i = 0; i < n; ++i)
+        left[i] = i;
+    auto at = [&](uint32_t i, int axis) { return double(positions[(first + i) * 3 + axis]); };
+    auto cross = [&](uint32_t a, uint32_t b, uint32_t c) {
+        return (at(b, u) - at(a, u)) * (at(c, v) - at(a, v)) - (at(b, v) - at(a, v)) * (at(c, u) - at(a, u));
+    };
+    auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
+        uint32_t *tri = indices + t++ * 3;
+        tri[0] = uint32_t(first + a);
+        tri[1] = uint32_t(first + b);
+        tri[2] = uint32_t(first + c);
+    };
+    while (left.size() > 3) {
+        size_t m = left.size(), ear = m;
+        for (size_t i = 0; i < m && ear == m; ++i) {
+            uint32_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
+            if (cross(a, b, c) <= 0.0)
+                continue; // not convex
+            bool empty = true;
+            for (size_t k = 0; k < m && empty; ++k) {
+                uint32_t p = left[k];
+                if (p == a || p == b || p == c)
+                    continue;
+                empty = !(cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0);
+            }
+            if (empty)
+                ear = i;
+        }
+        if (ear == m) { // nothing is an ear (a degenerate outline): fan the rest
+            for (size_t k = 1; k + 1 < m; ++k)
+                emit(left[0], left[k], left[k + 1]);
+            return t;
+        }
+        emit(left[(ear + m - 1) % m], left[ear], left[(ear + 1) % m]);
+        left.erase(left.begin() + long(ear));
+    }
+    emit(left[0], left[1], left[2]);
+    return t;
+}
+
 void Reader::convert(obj_data *out)
 {
     // what Assimp's validation and SortByPType make of the meshes: faces of 1
@@ -735,8 +798,7 @@ void Reader::convert(obj_data *out)
                     }
                 }
                 // triangles: a quad is cut from its concave corner if it has one
-                // (its angle is over 180 degrees), else from corner 0; larger
-                // polygons are fanned from corner 0
+                // (its angle is over 180 degrees), else from corner 0, as Assimp did
                 uint32_t start = 0, n = face.vertex_count;
                 if (n == 4) {
                     for (uint32_t i = 0; i < 4; ++i) {
@@ -756,6 +818,10 @@ void Reader::convert(obj_data *out)
                             break;
                         }
                     }
+                }
+                if (n > 4) {
+                    t = cut_ears(out->positions, first, n, out->indices, t);
+                    continue;
                 }
                 for (uint32_t k = 1; k + 1 < n; ++k, ++t) {
                     uint32_t *tri = out->indices + t * 3;
