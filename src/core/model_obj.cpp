@@ -768,7 +768,7 @@ void Reader::convert(obj_data *out)
     for (const Object &object : objects_)
         for (size_t m : object.meshes) {
             const Mesh &mesh = meshes_[m];
-            obj_mesh &o = out->meshes[out->mesh_count];
+            obj_mesh o = {}; // kept only if it has triangles
             o.first_vertex = uint32_t(out->vertex_count);
             o.first_triangle = uint32_t(out->triangle_count);
             bool normals_ok = !normals_.empty() && mesh.has_normals;
@@ -859,7 +859,7 @@ void Reader::convert(obj_data *out)
             o.invented_material = material.name == default_material;
             memcpy(o.colour, material.diffuse, sizeof o.colour);
             o.opacity = material.alpha;
-            ++out->mesh_count;
+            out->meshes[out->mesh_count++] = o;
         }
     for (const Material &material : materials_)
         if (material.name != default_material && (material.illumination < 0 || material.illumination > 2))
