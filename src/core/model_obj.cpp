@@ -12,10 +12,11 @@
  * would change. This reader keeps what Assimp 5.2 made of a file -- the same
  * meshes, names, materials, warnings and errors, and bit for bit the same
  * coordinates, read by Assimp's own number reader (its public fast_atof.h) --
- * with hash maps where Assimp searched lists. What it does not keep: polygons
- * of more than four corners are cut into ears by our own code (the same
- * outline, other triangles than Assimp's), and texture and option statements
- * of MTL files are not read.
+ * with hash maps where Assimp searched lists. Polygons of more than four
+ * corners are cut into ears by our own code (on Assimp's test files, the same
+ * triangles). What it does not keep: texture and option statements of MTL
+ * files are not read, and where Assimp read past the end of a malformed face
+ * line (a fourth index in one corner), the face ends there.
  */
 #include <algorithm>
 #include <cmath>
@@ -135,6 +136,7 @@ private:
 
     std::vector<float> vertices_, normals_, uvs_; // 3 each
     unsigned uv_dimensions_ = 0;                  // the most numbers a vt line gave
+    size_t colours_ = 0;                          // vertices given with a colour
     std::vector<Material> materials_;             // Assimp's material list, "DefaultMaterial" first
     std::unordered_map<std::string, unsigned> material_index_;
     std::vector<Object> objects_;
@@ -199,30 +201,31 @@ void Reader::read()
         throw ImportError{"Failed to open file " + path_ + "."};
     if (text.size() < 16)
         throw ImportError{"OBJ-file is too small."};
-    // Lines end at \n, \r, \0 or \f; a backslash before the end joins the next line.
+    // Lines end at \n, \r, \0 or \f, each line end one character. A backslash
+    // before a line end skips to the next \n and takes the character after it
+    // whatever it is, as Assimp's line reader did.
     std::string line_text;
     bool in_cstype = false;
     size_t i = 0;
-    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0)
-        i = 3;
-    while (i < text.size()) {
+    const size_t size = text.size();
+    while (i < size) {
         line_text.clear();
-        while (i < text.size()) {
-            char c = text[i];
-            if (c == '\\' && i + 1 < text.size() && line_end(text[i + 1])) {
-                i += 1;
-                while (i < text.size() && text[i] != '\n')
+        for (;;) {
+            if (text[i] == '\\' && (i + 1 >= size || line_end(text[i + 1]))) {
+                ++i;
+                while (i < size && text[i] != '\n')
                     ++i;
                 ++i;
-                continue;
-            }
-            if (line_end(c))
+                if (i >= size)
+                    break;
+            } else if (line_end(text[i])) {
                 break;
-            line_text += c;
-            ++i;
+            }
+            line_text += text[i];
+            if (++i >= size)
+                break;
         }
-        while (i < text.size() && line_end(text[i]))
-            ++i;
+        ++i;
         line_text += '\n';
         const char *p = line_text.c_str();
         if (in_cstype) { // a free-form curve section, up to "end"
@@ -322,9 +325,11 @@ void Reader::vertex(const char *p)
     } else if (numbers == 3 || numbers == 6) { // x y z (r g b: colours, not read)
         for (int k = 0; k < 3; ++k)
             v[k] = read_number(next_word(p));
-        if (numbers == 6)
+        if (numbers == 6) {
             for (int k = 0; k < 3; ++k)
                 read_number(next_word(p));
+            ++colours_;
+        }
         vertices_.insert(vertices_.end(), v, v + 3);
     } else if (numbers == 4) { // homogeneous
         for (int k = 0; k < 4; ++k)
@@ -386,6 +391,8 @@ void Reader::face(const char *p, FaceType type)
                 ++f.normal_count;
                 has_normal = true;
             } else {
+                // (Assimp went on reading past the end of the line here, with
+                // results that depend on what was there before: we end the face)
                 say("OBJ: Not supported token in face description detected");
                 break;
             }
@@ -603,6 +610,7 @@ void Reader::read_materials(const std::string &text)
                         meshes_[size_t(current_mesh_)].material = unsigned(found);
                 }
                 current = found;
+                current_material_ = found; // Assimp's MTL reader left its last material current
             }
             break;
         case 'P':
@@ -639,7 +647,8 @@ void Reader::read_materials(const std::string &text)
 // triangles by ear clipping in the plane its Newell normal is most nearly
 // perpendicular to, so that concave ones stay inside their outline. Writes
 // from triangle t on; returns the next triangle.
-uint64_t cut_ears(const float *positions, uint64_t first, uint32_t n, uint32_t *indices, uint64_t t)
+uint64_t cut_ears(const float *positions, uint64_t first, uint32_t n, uint32_t *indices, uint64_t t,
+                  bool *not_simple)
 {
     double normal[3] = {0, 0, 0};
     for (uint32_t i = 0; i < n; ++i) {
@@ -673,12 +682,16 @@ uint64_t cut_ears(const float *positions, uint64_t first, uint32_t n, uint32_t *
         size_t m = left.size(), ear = m;
         for (size_t i = 0; i < m && ear == m; ++i) {
             uint32_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
-            if (cross(a, b, c) <= 0.0)
-                continue; // not convex
+            if (cross(a, b, c) < 0.0)
+                continue; // reflex (a flat corner may go: it leaves no gap)
             bool empty = true;
             for (size_t k = 0; k < m && empty; ++k) {
                 uint32_t p = left[k];
                 if (p == a || p == b || p == c)
+                    continue;
+                // a corner repeated at the same place does not block the ear
+                auto same = [&](uint32_t q) { return at(p, u) == at(q, u) && at(p, v) == at(q, v); };
+                if (same(a) || same(b) || same(c))
                     continue;
                 empty = !(cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0);
             }
@@ -686,6 +699,7 @@ uint64_t cut_ears(const float *positions, uint64_t first, uint32_t n, uint32_t *
                 ear = i;
         }
         if (ear == m) { // nothing is an ear (a degenerate outline): fan the rest
+            *not_simple = true;
             for (size_t k = 1; k + 1 < m; ++k)
                 emit(left[0], left[k], left[k + 1]);
             return t;
@@ -748,6 +762,11 @@ void Reader::convert(obj_data *out)
             vertex_total += corners;
             triangle_total += triangles;
         }
+    // without faces, Assimp made one mesh of all the points (and then found no faces in it)
+    if (objects_.empty() && !vertices_.empty() && !normals_.empty() && normals_.size() < vertices_.size())
+        throw ImportError{"OBJ: vertex normal index out of range"};
+    if (objects_.empty() && colours_ > 0 && colours_ < vertices_.size() / 3)
+        throw ImportError{"OBJ: vertex color index out of range"};
     if (objects_.empty() || scene_meshes == 0)
         throw ImportError{!objects_.empty() || vertices_.empty()
                               ? "Validation failed: aiScene::mNumMeshes is 0. At least one mesh must be there"
@@ -820,7 +839,10 @@ void Reader::convert(obj_data *out)
                     }
                 }
                 if (n > 4) {
-                    t = cut_ears(out->positions, first, n, out->indices, t);
+                    bool not_simple = false;
+                    t = cut_ears(out->positions, first, n, out->indices, t, &not_simple);
+                    if (not_simple) // Assimp's words when its ear cutting gave up
+                        say("Failed to triangulate polygon (no ear found). Probably not a simple polygon?");
                     continue;
                 }
                 for (uint32_t k = 1; k + 1 < n; ++k, ++t) {
