@@ -1176,7 +1176,15 @@ private slots:
         }
         frame();
         qInfo("100,000 parts: %d posted events, the longest wait %.1f ms", probe.handled, probe.worst_ms);
-        QVERIFY2(probe.worst_ms < 100.0, qPrintable(QString("an event waited %1 ms").arg(probe.worst_ms)));
+        // The load's one long event (the model installed, 100,000 rows made, the
+        // settings written) takes 20-40 ms here; AddressSanitizer's checks make it
+        // 3-4 times slower (75-120 ms measured), so that build gets 3 times the budget.
+#if defined(__SANITIZE_ADDRESS__)
+        const double budget_ms = 300.0;
+#else
+        const double budget_ms = 100.0;
+#endif
+        QVERIFY2(probe.worst_ms < budget_ms, qPrintable(QString("an event waited %1 ms").arg(probe.worst_ms)));
         // a part past the GPU's per-part limit is picked and selected as any other
         window->parts_panel()->select_part(99999);
         QCOMPARE(window->parts_panel()->selected_parts(), std::vector<int>{99999});
