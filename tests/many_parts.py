@@ -117,7 +117,7 @@ def write_gltf():
         "buffers": [{"byteLength": len(positions) + len(indices), "uri": bin_name}],
     }
     with open(out, "w") as f:
-        json.dump(gltf, f, separators=(",", ":"))
+        f.write(json.dumps(gltf, separators=(",", ":")))  # dumps: the C encoder, dump is not
 
 
 if out.endswith(".gltf"):
