@@ -46,6 +46,8 @@ struct ModelDeleter {
 // while the window already holds the next one
 using ModelPointer = std::shared_ptr<const oit_model>;
 
+class QSettings;
+
 class MainWindow : public QMainWindow {
     Q_OBJECT
 public:
@@ -132,7 +134,7 @@ private:
     void rebuild_parts();
     void update_stats();
     void load_finished();
-    void add_recent(const QString &path);
+    void add_recent(const QString &path, QSettings &settings);
     void rebuild_recent_menu();
     void show_error(const QString &title, const QString &message);
     void open_model_dialog();
