@@ -79,3 +79,14 @@ expect_exit 2 "--moments must be one of power4, power6, trig3, got 'power5'" -- 
 expect_exit 2 "--error-map needs a value" -- "$oit" render --model "$model" --error-map
 expect_exit 2 "--error-map" -- "$oit" render --model "$model" --error-map "$work/no/such/dir/map.png"
 expect_exit 2 "algorithms: unknown option '--jsn'" -- "$oit" algorithms --jsn
+
+# environment values: a CPU limit that is no number of seconds in (0, 1e6] is refused naming it
+# (inf and 1e30 overflowed the limit and made every import "time out" at once)
+for value in inf 1e30 -1 0 abc; do
+    OIT_IMPORT_CPU_SECONDS=$value expect_exit 2 \
+        "^oit: error: OIT_IMPORT_CPU_SECONDS=$value: must be a number of seconds greater than 0 and at most 1000000" \
+        -- "$oit" info --model "$model"
+done
+OIT_IMPORT_CPU_SECONDS=0.5 "$oit" info --model "$model" >/dev/null || fail "OIT_IMPORT_CPU_SECONDS=0.5 must import"
+OIT_IMPORT_CPU_SECONDS=1000000 "$oit" info --model "$model" >/dev/null || fail "OIT_IMPORT_CPU_SECONDS=1000000 must import"
+echo "environment values refused"

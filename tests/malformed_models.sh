@@ -23,12 +23,47 @@ done
 [ ! -e "$work/never.png" ] || fail "an image was written for a model that did not load"
 # the same files in the calling process: the importer really does crash and
 # hang there (else these inputs prove nothing); bounded by timeout
-set +e
-OIT_IMPORT=in-process timeout 10 "$oit" info --model "$data/ply_triangulate_abort.ply" >/dev/null 2>&1
+OIT_IMPORT=in-process timeout 10 "$oit" info --model "$data/ply_triangulate_abort.ply" >/dev/null 2>"$work/abort.err"
 status=$?
-[ "$status" -ge 128 ] || fail "in-process import of ply_triangulate_abort.ply exited $status, not by a signal"
+# (the program's crash handler turns the abort into one line and exit 3)
+[ "$status" -ge 128 ] || { [ "$status" -eq 3 ] && grep -q "crashed (signal 6, Aborted)" "$work/abort.err"; } \
+    || fail "in-process import of ply_triangulate_abort.ply exited $status, not by a signal"
 OIT_IMPORT=in-process timeout 5 "$oit" info --model "$data/ply_parser_spins.ply" >/dev/null 2>&1
 status=$?
 [ "$status" -eq 124 ] || fail "in-process import of ply_parser_spins.ply ended ($status) instead of spinning"
-set -e
+
+# files a model refers to must be regular files too: a glTF whose .bin and an OBJ whose MTL
+# is a FIFO are refused at once, naming the file (the worker waited out the 20 s wall limit)
+mkdir -p "$work/refers"
+printf '{"asset": {"version": "2.0"}, "buffers": [{"uri": "data.bin", "byteLength": 36}], "bufferViews": [{"buffer": 0, "byteLength": 36}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}\n' \
+    >"$work/refers/triangle.gltf"
+mkfifo "$work/refers/data.bin" "$work/refers/parts.mtl"
+printf 'mtllib parts.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$work/refers/triangle.obj"
+expect_exit 2 "triangle.gltf: cannot import: the file it refers to, data.bin: not a regular file \(a FIFO\)" -- \
+    timeout 10 "$oit" info --model "$work/refers/triangle.gltf"
+expect_exit 2 "triangle.obj: cannot import: material library parts.mtl: not a regular file \(a FIFO\)" -- \
+    timeout 10 "$oit" info --model "$work/refers/triangle.obj"
+
+# the worker dies with its parent: killed (SIGKILL, no handler runs) while the worker spins
+# on a file, the worker is gone within 3 s, not at its CPU limit (30 s here)
+OIT_IMPORT_CPU_SECONDS=30 "$oit" info --model "$data/ply_parser_spins.ply" >/dev/null 2>&1 &
+parent=$!
+worker=
+for _ in $(seq 200); do
+    worker=$(ps -o pid= --ppid "$parent" | tr -d ' ')
+    [ -n "$worker" ] && break
+    sleep 0.05
+done
+[ -n "$worker" ] || fail "no import worker appeared"
+kill -KILL "$parent"
+wait "$parent" 2>/dev/null
+for _ in $(seq 60); do
+    kill -0 "$worker" 2>/dev/null || break
+    sleep 0.05
+done
+if kill -0 "$worker" 2>/dev/null; then
+    kill -KILL "$worker"
+    fail "the import worker $worker outlived its killed parent"
+fi
+echo "ok: the import worker ended with its parent"
 echo "malformed models: ok"

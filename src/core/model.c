@@ -1141,6 +1141,7 @@ typedef struct import_files {
     const char *model_path;
     bool refuse_others;
     char first_other[4096]; /* the first other file opened, "" if none */
+    char not_regular[OIT_ERROR_MESSAGE_SIZE]; /* "NAME: not a regular file (a FIFO)" for the first such, or "" */
 } import_files;
 
 static FILE *io_stream(struct aiFile *file) { return (FILE *)(void *)file->UserData; }
@@ -1192,7 +1193,17 @@ static struct aiFile *io_open(struct aiFileIO *io, const char *path, const char 
             return NULL;
     }
     struct aiFile *file = calloc(1, sizeof *file);
-    FILE *stream = file ? fopen(path, mode) : NULL;
+    /* a file the model refers to (a glTF's .bin) must be a regular file too:
+     * a FIFO would block the import until the wall limit */
+    FILE *stream = NULL;
+    oit_error refused;
+    if (file && mode[0] == 'r' && oit_open_regular_file(path, NULL, &stream, &refused) != OIT_OK) {
+        const char *kind = strstr(refused.message, "not a regular file");
+        if (kind && !files->not_regular[0])
+            snprintf(files->not_regular, sizeof files->not_regular, "%.200s: %s", path_basename(path), kind);
+    } else if (file && mode[0] != 'r') {
+        stream = fopen(path, mode);
+    }
     if (!stream) {
         free(file);
         return NULL;
@@ -1430,7 +1441,9 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
     if (!scene) {
         const char *assimp_why = aiGetErrorString();
         snprintf(why_text, sizeof why_text, "%s", assimp_why ? assimp_why : "");
-        if (why_text[0])
+        if (files.not_regular[0])
+            snprintf(why_text, sizeof why_text, "the file it refers to, %.480s", files.not_regular);
+        else if (why_text[0])
             name_failing_file(path, flags, props, &files, why_text, sizeof why_text);
     }
     aiDetachLogStream(&log);

@@ -26,6 +26,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <math.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -58,17 +60,35 @@ static double monotonic_ms(void)
     return (double)now.tv_sec * 1e3 + (double)now.tv_nsec * 1e-6;
 }
 
+/* OIT_IMPORT_CPU_SECONDS: 0 when unset, 1 with *seconds, -1 when it is no
+ * number of seconds in (0, OIT_IMPORT_CPU_SECONDS_MAX] ("inf" or 1e30 would
+ * overflow the limit's rlim_t and stop every import at once). */
+static int cpu_seconds_override(double *seconds)
+{
+    const char *text = getenv("OIT_IMPORT_CPU_SECONDS");
+    if (!text || !*text)
+        return 0;
+    char *end = NULL;
+    errno = 0;
+    double value = strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE || !(value > 0.0 && value <= OIT_IMPORT_CPU_SECONDS_MAX))
+        return -1;
+    *seconds = value;
+    return 1;
+}
+
 void oit_import_limits_for_file(long long file_bytes, oit_import_limits *limits)
 {
     double megabytes = file_bytes > 0 ? (double)file_bytes / (1024.0 * 1024.0) : 0.0;
     /* the import of a real model costs well under 1 s of CPU per MB (docs/cli.md,
      * "Contained import"); 5 s plus 4 s per MB leaves room for slower machines
      * and the sanitizer build, and stops a parser spinning on a small file soon.
-     * OIT_IMPORT_CPU_SECONDS overrides it (the fuzzing test uses 2). */
+     * OIT_IMPORT_CPU_SECONDS overrides it (the fuzzing test uses 1); a bad
+     * value is refused by oit_model_load_contained. */
     limits->cpu_seconds = 5.0 + 4.0 * megabytes;
-    const char *override = getenv("OIT_IMPORT_CPU_SECONDS");
-    if (override && atof(override) > 0.0)
-        limits->cpu_seconds = atof(override);
+    double override;
+    if (cpu_seconds_override(&override) > 0)
+        limits->cpu_seconds = override;
     /* a model in memory is at most tens of times its file; 200x plus 2 GiB
      * lets real models load and stops a header that claims 2^40 elements */
     limits->memory_bytes = (uint64_t)2 << 30;
@@ -106,15 +126,27 @@ bool oit_import_worker_requested(int argc, char **argv)
 
 int oit_import_worker_main(int argc, char **argv)
 {
-    /* argv: program, flag, path, cpu seconds, memory bytes; the result goes to stdout */
-    if (argc != 5)
+    /* argv: program, flag, path, cpu seconds, memory bytes, wall seconds, the
+     * parent's pid; the result goes to stdout */
+    if (argc != 7)
         return 2;
     const char *path = argv[2];
     double cpu_seconds = atof(argv[3]);
     unsigned long long memory_bytes = strtoull(argv[4], NULL, 10);
+    double wall_seconds = atof(argv[5]);
+    pid_t parent = (pid_t)atol(argv[6]);
+    /* the worker dies with its parent: killed meanwhile, it would wait for ever
+     * on a file that never ends without using CPU time, the one limit it has */
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent)
+        return 3; /* the parent died before the line above */
+    /* and a wall limit of its own, past the parent's (which reports it), for a
+     * parent that is alive but no longer reading (stopped) */
+    if (wall_seconds > 0 && wall_seconds < 1e6)
+        alarm((unsigned)ceil(wall_seconds) + 5);
     struct rlimit no_core = {0, 0};
     setrlimit(RLIMIT_CORE, &no_core); /* a crash is reported, not dumped */
-    if (cpu_seconds > 0) {
+    if (cpu_seconds > 0 && cpu_seconds <= OIT_IMPORT_CPU_SECONDS_MAX) {
         rlim_t seconds = (rlim_t)(cpu_seconds + 0.999);
         struct rlimit cpu = {seconds, seconds + 2}; /* SIGXCPU, then SIGKILL */
         setrlimit(RLIMIT_CPU, &cpu);
@@ -273,6 +305,11 @@ oit_status oit_model_load_contained(const char *path, const oit_import_limits *l
     memset(out, 0, sizeof *out);
     if (!path || !*path)
         return oit_fail(err, OIT_E_INPUT, "no model file given");
+    double ignored;
+    if (cpu_seconds_override(&ignored) < 0)
+        return oit_fail(err, OIT_E_INPUT,
+                        "OIT_IMPORT_CPU_SECONDS=%.40s: must be a number of seconds greater than 0 and at most %.0f",
+                        getenv("OIT_IMPORT_CPU_SECONDS"), OIT_IMPORT_CPU_SECONDS_MAX);
     if (in_process_requested())
         return oit_model_load(path, out, err);
     const char *name = base_name(path);
@@ -301,10 +338,12 @@ oit_status oit_model_load_contained(const char *path, const oit_import_limits *l
     int pipe_fds[2];
     if (pipe2(pipe_fds, O_CLOEXEC) != 0)
         return oit_fail(err, OIT_E_RUNTIME, "%s: cannot start the import worker: pipe: %s", name, strerror(errno));
-    char cpu[32], memory[32];
-    snprintf(cpu, sizeof cpu, "%.0f", limits.cpu_seconds);
+    char cpu[32], memory[32], wall[32], parent[32];
+    snprintf(cpu, sizeof cpu, "%.17g", limits.cpu_seconds); /* (not %.0f: 0.4 s would be 0, no limit) */
     snprintf(memory, sizeof memory, "%llu", (unsigned long long)limits.memory_bytes);
-    char *const argv[] = {self, (char *)OIT_IMPORT_WORKER_FLAG, (char *)path, cpu, memory, NULL};
+    snprintf(wall, sizeof wall, "%.17g", limits.wall_seconds);
+    snprintf(parent, sizeof parent, "%ld", (long)getpid());
+    char *const argv[] = {self, (char *)OIT_IMPORT_WORKER_FLAG, (char *)path, cpu, memory, wall, parent, NULL};
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], 1);
@@ -345,6 +384,9 @@ oit_status oit_model_load_contained(const char *path, const oit_import_limits *l
                         limits.wall_seconds, (long long)info.st_size);
     if (WIFSIGNALED(wait_status)) {
         int signal_number = WTERMSIG(wait_status);
+        if (signal_number == SIGALRM) /* its own wall limit */
+            return oit_fail(err, OIT_E_INPUT, "%s: the importer timed out (no result after %.0f s; the limit for a "
+                            "%lld-byte file)", name, limits.wall_seconds, (long long)info.st_size);
         if (signal_number == SIGXCPU || (signal_number == SIGKILL && limits.cpu_seconds > 0))
             return oit_fail(err, OIT_E_INPUT,
                             "%s: the importer timed out (more than %.0f s of CPU time, the limit for a %lld-byte "

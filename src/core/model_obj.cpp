@@ -181,11 +181,18 @@ private:
     void read_materials(const std::string &text);
 };
 
-bool read_file(const std::string &path, std::string &text)
+// A regular file only (a FIFO would block the import until the wall limit):
+// false if it cannot be read; refused says why when it exists but is no file.
+bool read_file(const std::string &path, std::string &text, std::string *refused = nullptr)
 {
-    FILE *file = fopen(path.c_str(), "rb");
-    if (!file)
+    FILE *file = nullptr;
+    oit_error err;
+    if (oit_open_regular_file(path.c_str(), nullptr, &file, &err) != OIT_OK) {
+        const char *kind = strstr(err.message, "not a regular file");
+        if (kind && refused)
+            *refused = kind;
         return false;
+    }
     char buffer[1 << 16];
     size_t got;
     while ((got = fread(buffer, 1, sizeof buffer, file)) > 0)
@@ -503,8 +510,10 @@ void Reader::material_library(const char *p)
     }
     size_t slash = path_.find_last_of('/');
     std::string full = slash != std::string::npos && slash > 0 ? path_.substr(0, slash + 1) + name : name;
-    std::string text;
-    if (!read_file(full, text)) {
+    std::string text, refused;
+    if (!read_file(full, text, &refused)) {
+        if (!refused.empty())
+            throw ImportError{"material library " + name + ": " + refused};
         say("OBJ: Unable to locate material file " + name);
         std::string fallback = path_.substr(0, path_.size() - 3) + "mtl";
         if (!read_file(fallback, text)) {

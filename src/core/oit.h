@@ -147,6 +147,11 @@ void oit_model_free(oit_model *model);
  * OIT_IMPORT=in-process imports in the calling process instead (to measure
  * the overhead); OIT_IMPORT_WORKER_STDERR=1 lets the worker's stderr through. */
 #define OIT_IMPORT_WORKER_FLAG "--oit-import-worker"
+/* OIT_IMPORT_CPU_SECONDS may set the CPU limit up to this (a value that is not
+ * a number of seconds in (0, max], "inf" or 1e30, fails the import: OIT_E_INPUT
+ * naming the variable). The worker dies with its caller (PR_SET_PDEATHSIG) and
+ * ends itself a few seconds past the wall limit. */
+#define OIT_IMPORT_CPU_SECONDS_MAX 1e6
 typedef struct oit_import_limits {
     double cpu_seconds;    /* CPU time of the worker */
     uint64_t memory_bytes; /* its address space (not under AddressSanitizer) */
