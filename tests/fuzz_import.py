@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """fuzz_import.py OIT WORK [--count N] [--seed S] [--keep DIR]: a seeded mutation
-fuzzer over small OBJ, PLY, STL and GLB files.
+fuzzer over small OBJ, PLY, STL, glTF (text, with its .bin beside), GLB,
+COLLADA, FBX, 3DS and IFC files.
 
 Every mutant goes through `oit info --model MUTANT`, which imports it in a
 contained worker process (src/core/model_contained.c). Each run must end in
@@ -30,8 +31,14 @@ SEEDS = [
     "STL/triangle.stl",
     "STL/triangle_with_two_solids.stl",
     "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
+    "glTF2/BoxTextured-glTF/BoxTextured.gltf",
+    "Collada/cube_triangulate.dae",
+    "FBX/box.fbx",
+    "3DS/cube_with_diffuse_texture.3DS",
     "OBJ/box.obj",
 ]
+# files a seed refers to, copied once beside the mutants (a mutant's reference may break)
+COMPANIONS = ["glTF2/BoxTextured-glTF/BoxTextured0.bin"]
 # an OBJ of our own: groups, a material library that is missing, faces with normals
 OWN_OBJ = b"""# two parts
 mtllib parts.mtl
@@ -49,6 +56,41 @@ f 1//1 3//1 4//1
 o side
 f 2 6 3
 f 5 6 2 1
+"""
+# an IFC of our own (Debian's one IFC is a 4 MB house): one extruded box in a site
+OWN_IFC = b"""ISO-10303-21;
+HEADER;
+FILE_DESCRIPTION(('ViewDefinition [CoordinationView]'),'2;1');
+FILE_NAME('box.ifc','2024-01-01T00:00:00',(''),(''),'','','');
+FILE_SCHEMA(('IFC2X3'));
+ENDSEC;
+DATA;
+#2=IFCPERSON($,'A',$,$,$,$,$,$);
+#3=IFCORGANIZATION($,'O',$,$,$);
+#4=IFCPERSONANDORGANIZATION(#2,#3,$);
+#5=IFCAPPLICATION(#3,'1','oit','oit');
+#6=IFCOWNERHISTORY(#4,#5,$,.ADDED.,$,$,$,0);
+#1=IFCPROJECT('0YvctVUKr0kugbFTf53O9L',#6,'Project',$,$,$,$,(#20),#10);
+#10=IFCUNITASSIGNMENT((#11));
+#11=IFCSIUNIT(*,.LENGTHUNIT.,$,.METRE.);
+#20=IFCGEOMETRICREPRESENTATIONCONTEXT($,'Model',3,1.E-05,#21,$);
+#21=IFCAXIS2PLACEMENT3D(#22,$,$);
+#22=IFCCARTESIANPOINT((0.,0.,0.));
+#23=IFCLOCALPLACEMENT($,#21);
+#24=IFCSITE('1YvctVUKr0kugbFTf53O9L',#6,'Site',$,$,#23,$,$,.ELEMENT.,$,$,$,$,$);
+#25=IFCRELAGGREGATES('2YvctVUKr0kugbFTf53O9L',#6,$,$,#1,(#24));
+#30=IFCBUILDINGELEMENTPROXY('3YvctVUKr0kugbFTf53O9L',#6,'Box',$,$,#31,#40,$,$);
+#31=IFCLOCALPLACEMENT(#23,#21);
+#40=IFCPRODUCTDEFINITIONSHAPE($,$,(#41));
+#41=IFCSHAPEREPRESENTATION(#20,'Body','SweptSolid',(#42));
+#42=IFCEXTRUDEDAREASOLID(#43,#21,#46,1.);
+#43=IFCRECTANGLEPROFILEDEF(.AREA.,$,#44,2.,1.);
+#44=IFCAXIS2PLACEMENT2D(#45,$);
+#45=IFCCARTESIANPOINT((0.,0.));
+#46=IFCDIRECTION((0.,0.,1.));
+#47=IFCRELCONTAINEDINSPATIALSTRUCTURE('4YvctVUKr0kugbFTf53O9L',#6,$,$,(#30),#24);
+ENDSEC;
+END-ISO-10303-21;
 """
 NUMBER = re.compile(rb"-?\d+(\.\d+)?")
 HUGE = [b"99999999999", b"4294967295", b"2147483648", b"-1", b"-2147483649", b"nan", b"1e39", b"0", b"x"]
@@ -89,7 +131,7 @@ def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("oit")
     parser.add_argument("work")
-    parser.add_argument("--count", type=int, default=240)
+    parser.add_argument("--count", type=int, default=280)
     parser.add_argument("--seed", type=int, default=20261201)
     parser.add_argument("--keep")
     parser.add_argument("--timeout", type=float, default=60.0)
@@ -102,12 +144,17 @@ def main() -> int:
             with open(path, "rb") as f:
                 seeds.append((os.path.splitext(path)[1].lower(), f.read()))
     seeds.append((".obj", OWN_OBJ))
+    seeds.append((".ifc", OWN_IFC))
     if len(seeds) < 4:
         print(f"fuzz_import: too few seed files under {ASSIMP_MODELS} (Debian: assimp-testmodels)", file=sys.stderr)
         return 1
 
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
+    for relative in COMPANIONS:
+        path = os.path.join(ASSIMP_MODELS, relative)
+        if os.path.isfile(path):
+            shutil.copy(path, args.work)
     # the mutants are made in order (the seed decides them), then run in parallel
     rng = random.Random(args.seed)
     mutants = []
