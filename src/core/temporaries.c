@@ -130,7 +130,7 @@ static const char letters[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVW
 #define RANDOM_LENGTH 6
 /* a name longer than this gets a short temporary (".oit.tmp.XXXXXX"): NAME
  * plus the suffix would pass NAME_MAX */
-#define LONG_NAME (NAME_MAX - (int)sizeof SUFFIX - RANDOM_LENGTH)
+#define LONG_NAME (NAME_MAX - ((int)sizeof SUFFIX - 1) - RANDOM_LENGTH)
 
 /* The stem of TARGET's temporaries: the directory part + "/" + the name, or
  * ".oit" for a long name. */
