@@ -247,9 +247,13 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
 
 MainWindow::~MainWindow()
 {
-    if (loader_->isRunning()) {
+    if (load_unclaimed_) {
+        // a load that load_finished never took (still running, or its signal
+        // not delivered yet): its model is freed here
         loader_->waitForFinished();
-        delete loader_->result();
+        std::unique_ptr<LoadResult> result(loader_->result());
+        if (result->ok)
+            oit_model_free(&result->model);
     }
     delete view_; // its GL resources go before the model they came from
     view_ = nullptr;
@@ -1574,6 +1578,7 @@ void MainWindow::load_model(const QString &path)
     status_label_->setText("loading " + loading_path_ + "…");
     log_message("load", "reading " + loading_path_);
     QString target = loading_path_;
+    load_unclaimed_ = true;
     loader_->setFuture(QtConcurrent::run([target] {
         auto *result = new LoadResult;
         result->path = target;
@@ -1591,6 +1596,7 @@ void MainWindow::load_finished()
     progress_->hide();
     progress_label_->hide();
     std::unique_ptr<LoadResult> result(loader_->result());
+    load_unclaimed_ = false;
     if (!result->ok) {
         show_error("Cannot open model", result->error);
         emit model_failed(result->error);

@@ -152,6 +152,7 @@ private:
     QStringList model_warnings_;
     QFutureWatcher<LoadResult *> *loader_ = nullptr;
     QString loading_path_;
+    bool load_unclaimed_ = false; // a load's result that load_finished has not taken
     std::string pending_preset_; // applied again once the next model is loaded
     QString pending_preset_name_;
 
