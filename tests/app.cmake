@@ -38,3 +38,12 @@ set_tests_properties(app_workbench PROPERTIES RUN_SERIAL TRUE)
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/parts_panel.cmake)
 # The window manager's ping answered while loading and rendering (tests/app/wm_ping.cmake).
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/wm_ping.cmake)
+
+# The start on a broken installation (tests/app/startup.sh): no usable shader
+# folder (exit 3, or a dialog, found with the ping probe).
+if(TARGET wm_ping)
+  add_test(NAME app_startup
+    COMMAND ${APP_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/app/startup.sh $<TARGET_FILE:oit-workbench>
+            $<TARGET_FILE:wm_ping> ${PROJECT_SOURCE_DIR}/shaders ${APP_WORK}/startup)
+  set_tests_properties(app_startup PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 300)
+endif()

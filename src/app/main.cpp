@@ -108,6 +108,13 @@ int main(int argc, char **argv)
         model_path = MainWindow::default_model_path();
 
     MainWindow window(restore);
+    if (!window.startup_error().isEmpty()) {
+        // no shaders: exit 3 with the command line's one line, or its dialog
+        if (!automated)
+            return MainWindow::refuse_to_start(window.startup_error());
+        fail(window.startup_error());
+        return 3;
+    }
     if (parser.isSet(preset)) {
         QString error;
         if (!window.load_preset(parser.value(preset), error))

@@ -202,12 +202,15 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
     });
 
     // which algorithm can express which option: measured by the worker when idle
-    connect(view_->worker(), &RenderWorker::capabilities_ready, this, [this](const CapabilityTable &table) {
-        capabilities_ = table;
-        apply_capabilities();
-    });
+    // (no worker without shaders: the window is not shown then, see startup_error)
+    if (RenderWorker *worker = view_->worker()) {
+        connect(worker, &RenderWorker::capabilities_ready, this, [this](const CapabilityTable &table) {
+            capabilities_ = table;
+            apply_capabilities();
+        });
+        worker->request_capabilities();
+    }
     sync_actions_.push_back([this] { apply_capabilities(); });
-    view_->worker()->request_capabilities();
     coalesce_timer_ = new QTimer(this);
     coalesce_timer_->setSingleShot(true);
     coalesce_timer_->setInterval(kUndoCoalesceMs);
@@ -269,6 +272,18 @@ void MainWindow::closeEvent(QCloseEvent *event)
         settings.setValue("last_model", model_path_);
     settings.setValue("settings", QString::fromStdString(preset_to_json(view_->settings, view_->camera, model_.get())));
     QMainWindow::closeEvent(event);
+}
+
+int MainWindow::refuse_to_start(const QString &problem)
+{
+    // the command line's one line, and where the shaders are looked for
+    QMessageBox box(QMessageBox::Critical, "oit-workbench cannot start", problem, QMessageBox::Ok);
+    box.setObjectName("cannot_start");
+    box.setInformativeText("The workbench renders with the shaders of its installation "
+                           "(PREFIX/share/oit-workbench/shaders, or the source tree's shaders/ "
+                           "for a build); OIT_SHADER_DIR names another folder.");
+    box.exec();
+    return 3;
 }
 
 void MainWindow::render_now()

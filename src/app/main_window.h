@@ -53,6 +53,13 @@ public:
     explicit MainWindow(bool restore_state = true, QWidget *parent = nullptr);
     ~MainWindow() override;
 
+    // Why the workbench cannot run (no usable shader folder: the core's one
+    // line, as `oit` says it); empty when it can. The window then renders
+    // nothing and must not be shown: main() says it and exits with status 3.
+    QString startup_error() const { return QString::fromStdString(view_->startup_error()); }
+    // Say startup_error() in a modal dialog; returns the exit status, 3.
+    static int refuse_to_start(const QString &problem);
+
     RenderView *view() const { return view_; }
     const oit_model *model() const { return model_.get(); }
     QString model_path() const { return model_path_; }
