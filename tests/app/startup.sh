@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # startup.sh WORKBENCH WM_PING SHADERS WORK: the workbench's start on a broken
-# installation, run inside one xvfb-run (tests/app.cmake).
+# installation or a broken saved state, run inside one xvfb-run (tests/app.cmake).
 #  - no usable shader folder (missing, empty, one holding a FIFO): --screenshot
 #    exits 3 with one line naming the problem; without it a dialog says it
 #    (found by its title and answering the window manager's ping: shown, not
 #    crashed, not hung);
+#  - a settings file that is a FIFO: neither --screenshot nor a normal start
+#    waits for it, and it stays a FIFO;
+#  - --screenshot into a FIFO: refused at once (exit 2), the FIFO stays.
 # The saved state lives in XDG_CONFIG_HOME, which this script points into WORK.
 set -uo pipefail # not -e: expect_exit looks at failing commands' status
 workbench=$1 probe=$2 shaders=$3 work=$4
@@ -52,5 +55,22 @@ done
 OIT_SHADER_DIR=$work/missing "$workbench" > "$work/dialog.log" 2>&1 &
 workbench_pid=$!
 window "oit-workbench cannot start" "$work/dialog.log"
+[ ! -e "$XDG_CONFIG_HOME/oit-workbench" ] || fail "the refused start wrote the saved state"
 
+# --- the settings file is a FIFO
+settings=$XDG_CONFIG_HOME/oit-workbench/settings.json
+mkdir -p "$XDG_CONFIG_HOME/oit-workbench" && mkfifo "$settings" || fail "cannot make the settings FIFO"
+expect_exit 0 "" -- "$workbench" --size 64x64 --screenshot "$work/fifo-settings.png"
+[ -s "$work/fifo-settings.png" ] || fail "no screenshot with a FIFO for settings"
+"$workbench" --size 64x64 > "$work/fifo-settings.log" 2>&1 &
+workbench_pid=$!
+window "oit-workbench" "$work/fifo-settings.log"
+[ -p "$settings" ] || fail "the settings FIFO was replaced"
+[ "$(ls "$XDG_CONFIG_HOME/oit-workbench")" = settings.json ] || fail "files beside the settings FIFO: $(ls "$XDG_CONFIG_HOME/oit-workbench")"
+
+# --- a screenshot into a FIFO: refused before anything waits for a reader
+mkfifo "$work/shot.png" || fail "cannot make the screenshot FIFO"
+expect_exit 2 "^oit-workbench: error: --screenshot $work/shot.png: not a regular file \(a FIFO\)" -- \
+  "$workbench" --size 64x64 --screenshot "$work/shot.png"
+[ -p "$work/shot.png" ] || fail "the screenshot FIFO was replaced"
 echo "startup: ok"
