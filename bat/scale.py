@@ -3,9 +3,10 @@
 more than ten million triangles; time and memory, or the message of a refusal.
 
 Two runs of `oit bench`, each row a frame time (median of the measured frames),
-the memory the algorithm holds, the fragments and, for ll, the bands of rows the
-frame was drawn in (a frame whose fragments exceed what one GL buffer can address,
-128 MiB on llvmpipe, is drawn in bands; docs/algorithms.md, Limits):
+the memory the algorithm holds, the fragments and, for ll and ib, the bands of rows
+the frame was drawn in (a frame whose fragments exceed what one GL buffer can
+address, 128 MiB on llvmpipe, is drawn in bands, and ib's also past the --max-memory
+budget; docs/algorithms.md, Limits):
 
     screens   the deepest benchmark scenes (the longest mean lists at 600x600:
               menger4, spheres11, engine) at 1920x1080 and 3840x2160
@@ -110,8 +111,10 @@ def section(report, results, table, fmt):
                 "algorithms beside blend and wboit. "
                 "Frame time is the median of the measured frames; memory is what the algorithm holds "
                 "(the scene's own buffers not included). A frame whose fragments exceed what one buffer "
-                "can address on this GL is drawn by `ll` in bands of rows (each band draws the whole "
-                "scene again); a row that fails shows its one-line error.", "")
+                "can address on this GL is drawn by `ll` and `ib` in bands of rows (each band draws the "
+                "whole scene again; `ib`'s also when it exceeds the memory budget, and its bands "
+                "store the rows either side that their neighbour passes read); a row that fails "
+                "shows its one-line error.", "")
     for run in data["runs"]:
         rows = []
         blend = {(r["scene"], r["width"], r["height"]): r["gpu_ms"]["median"] for r in run["results"]

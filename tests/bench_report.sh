@@ -70,8 +70,8 @@ done
 for text in "no GPU" "llvmpipe runs" "two cores" "AMD EPYC"; do
     ! grep -qF -- "$text" "$other" || fail "the other machine's page still says '$text'"
 done
-# ... the scale section comes from scale.json (bat/scale.py): figures, ll's bands and a refusal ...
-"$oit" bench --model "$scenes/onion.obj" --name onion-bands --algorithms blend,ll --sizes 48 --frames 1 --warmup 0 \
+# ... the scale section comes from scale.json (bat/scale.py): figures, ll's and ib's bands and a refusal ...
+"$oit" bench --model "$scenes/onion.obj" --name onion-bands --algorithms blend,ll,ib --sizes 48 --frames 1 --warmup 0 \
     --quiet --reference-max-pixels 0 --buffer-fragment-limit 1000 --json "$work/scale-run.json" || fail "scale bench"
 cp -r "$work/results" "$work/scaled"
 python3 - "$work/scale-run.json" "$work/scaled/scale.json" <<'PY' || fail "could not write scale.json"
@@ -89,12 +89,13 @@ python3 - "$work/scale-run.json" "$work/scaled-docs/benchmarks.md" <<'PY' || fai
 import json, sys
 run, page = json.load(open(sys.argv[1])), open(sys.argv[2]).read()
 assert "## Scale: screen sizes and a large model" in page, "no scale section"
-ll = next(r for r in run["results"] if r["algorithm"] == "ll")
-assert ll["bands"] > 1, ll
-row = f"| onion-bands | 48×48 | `ll` | "
-lines = [l for l in page.splitlines() if l.startswith(row)]
-assert len(lines) == 2, lines  # one per run
-assert lines[0].endswith(f"| {ll['fragments']:,} | {ll['max_list']} | {ll['bands']} |"), lines[0]
+for name in ("ll", "ib"):
+    banded = next(r for r in run["results"] if r["algorithm"] == name)
+    assert banded["bands"] > 1, banded
+    row = f"| onion-bands | 48×48 | `{name}` | "
+    lines = [l for l in page.splitlines() if l.startswith(row) and "refused" not in l]
+    assert len(lines) == 2, lines  # one per run
+    assert lines[0].endswith(f"| {banded['fragments']:,} | {banded['max_list']} | {banded['bands']} |"), lines[0]
 assert "| onion-bands | 48×48 | `ib` | refused |" in page and "more than this GL can address in one shader storage buffer (8)" in page
 PY
 ! grep -qF "## Scale" "$page" || fail "a page without scale.json has a scale section"

@@ -52,6 +52,12 @@ foreach(scene ${IB_MODULATION_MODELS})
   set_tests_properties(ib_modulations_${scene} PROPERTIES FIXTURES_REQUIRED scenes)
 endforeach()
 
+# A frame past one buffer's reach is drawn in bands of rows and comes out as
+# the whole frame (--buffer-fragment-limit lowers the reach).
+add_test(NAME ib_bands
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/ib_bands.sh ${OIT} ${WORK}/ib/bands ${SCENES})
+set_tests_properties(ib_bands PROPERTIES FIXTURES_REQUIRED scenes)
+
 # The epsilon search's bounds (the fallback queue, the mutual check's limit)
 # change no link: the same images and figures as a shader copy without them.
 add_test(NAME ib_epsilon_bounds

@@ -104,6 +104,12 @@ set_tests_properties(modulation_cli PROPERTIES FIXTURES_REQUIRED scenes)
 add_test(NAME modulation_many_parts
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/many_parts.sh ${OIT} ${WORK}/modulation/many_parts
           ${EXACT_TOLERANCE} ${EXACT_MISMATCH})
+# The same at assembly scale (docs/cli.md, "Assemblies"): 60,000 parts, parts
+# 59,969 and 59,869 hidden and faded, in the OBJ (our reader) and in a glTF of
+# the same parts (Assimp), with three of the exact algorithms.
+add_test(NAME modulation_many_parts_60k
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/many_parts.sh ${OIT} ${WORK}/modulation/many_parts_60k
+          ${EXACT_TOLERANCE} ${EXACT_MISMATCH} 60000 "ll:egl dp:egl ib:egl")
 
 # Distance along the ray (--modulation distance): the reference is the oracle;
 # dp and ddp do the adjacent distance (delayed blending), ll and ib every mode.

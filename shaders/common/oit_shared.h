@@ -322,6 +322,12 @@
 #define OIT_IB_COUNTER_TILES 83
 #define OIT_IB_COUNTER_TILE_DISPATCH 84
 #define OIT_IB_COUNTER_COUNT 87
+/* frames drawn in bands of rows (alg_ib.c): the pixels whose run is in the
+ * histogram's open last bin, by length, one uint for each length up to
+ * OIT_IB_MAX_RUN_LENGTH, counted by ib/sort.comp; with them the frame's
+ * fragments and psi, summed over the bands, stay exact */
+#define OIT_SSBO_IB_LONG_RUNS 15
+#define OIT_IB_LONG_RUN_LENGTHS 65536
 /* a neighbour slot without a neighbour */
 #define OIT_IB_NO_NEIGHBOUR 65535
 /* the longest run (a pixel's list) whose layers a 16-bit link addresses:
@@ -331,6 +337,9 @@
  * ping-pong source copy, blur direction) */
 #define OIT_UNIFORM_IB_POOL_CAPACITY 16
 #define OIT_UNIFORM_IB_PASS 17
+/* ib compute passes: the band of rows (ivec4): the rows stored [x, y), the rows
+ * composed and counted [z, w); the whole image in a frame drawn whole */
+#define OIT_UNIFORM_IB_BAND 18
 
 /* ib modulation modes and views, the numbers of oit_modulation_mode and oit_view in oit.h */
 #define OIT_IB_MODE_NONE 0

@@ -2,7 +2,8 @@
 // neighbours (sigma 0.85, 5 taps: the fragment and two neighbours each side,
 // reached through the links; weights renormalised over the taps that exist).
 // ib_pass: bit 0 = source copy, bit 1 = direction (0 left/right, 1 bottom/top).
-// Fixed values stay. Compute pass, one invocation per pixel.
+// Fixed values stay. Compute pass, one invocation per pixel of the band's rows
+// of tiles.
 #include "common/oit_shared.h"
 #include "ib/ib_common.glsl"
 
@@ -16,7 +17,7 @@ void main()
     int axis = (pass_parameter >> 1) & 1;
     // exp(-x^2 / (2 * 0.85^2)) for x = 0, 1, 2
     const float weights[3] = float[3](1.0, 0.500574, 0.062785);
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = ib_band_pixel(gl_GlobalInvocationID);
     if (!ib_inside(pixel))
         return;
     uint start = ib_run_start(pixel);

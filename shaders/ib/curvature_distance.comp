@@ -4,8 +4,9 @@
 // along the ray in linear eye depth: to the next fragment (adjacent), k on
 // (skip, or the last one) or to the last one (far end); the last fragment's
 // distance is 0. Stored in ib_core[].w; the frame's largest distance goes to
-// a counter (atomicMax on the float bits: they order like the values, >= 0).
-// Compute pass, one invocation per pixel.
+// a counter (atomicMax on the float bits: they order like the values, >= 0;
+// distance_max.comp finds only that, for the first sweep of a banded frame).
+// Compute pass, one invocation per pixel of the band's rows of tiles.
 #include "common/oit_shared.h"
 #include "ib/ib_common.glsl"
 
@@ -15,7 +16,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = ib_band_pixel(gl_GlobalInvocationID);
     if (!ib_inside(pixel))
         return;
     vec2 centre = vec2(pixel) + 0.5;
@@ -46,17 +47,11 @@ void main()
         }
         float curvature = count > 0 ? clamp(sum / (2.0 * float(count)), 0.0, 1.0) : 0.0;
 
-        uint target = i;
-        if (ib_distance_mode == OIT_IB_DISTANCE_ADJACENT)
-            target = min(i + 1u, run_length - 1u);
-        else if (ib_distance_mode == OIT_IB_DISTANCE_SKIP)
-            target = min(i + uint(max(ib_distance_skip, 1)), run_length - 1u);
-        else
-            target = run_length - 1u;
+        uint target = ib_distance_target(i, run_length);
         float distance = 0.0;
         if (target != i)
-            distance = abs(ib_eye_depth(centre, uintBitsToFloat(ib_core[start + target].x)) -
-                           ib_eye_depth(centre, uintBitsToFloat(core.x)));
+            distance = ib_depth_distance(centre, uintBitsToFloat(core.x),
+                                         uintBitsToFloat(ib_core[start + target].x));
         largest = max(largest, distance);
         uint packed_distance = packHalf2x16(vec2(distance, 0.0)) & 0xFFFFu;
         ib_core[f.slot].w = uint(round(curvature * 65535.0)) | (packed_distance << 16);

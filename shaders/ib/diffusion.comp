@@ -5,7 +5,7 @@
 //          (a missing neighbour counts as equal to the centre);
 //   beta, gamma: non-physical, x = max(x, max over the 4 neighbours - lambda)
 //          (thesis eq. 3.3 / 3.4: subtract, not the multiply of its listing).
-// Compute pass, one invocation per pixel.
+// Compute pass, one invocation per pixel of the band's rows of tiles.
 #include "common/oit_shared.h"
 #include "ib/ib_common.glsl"
 
@@ -17,7 +17,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = ib_band_pixel(gl_GlobalInvocationID);
     if (!ib_inside(pixel))
         return;
     uint start = ib_run_start(pixel);

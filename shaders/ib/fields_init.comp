@@ -7,7 +7,7 @@
 //   under:    beta = 0, fixed
 //   beside:   gamma = 1, fixed
 //   else 0 and free to change. Written to copy 0.
-// Compute pass, one invocation per pixel.
+// Compute pass, one invocation per pixel of the band's rows of tiles.
 #include "common/oit_shared.h"
 #include "ib/ib_common.glsl"
 
@@ -15,7 +15,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = ib_band_pixel(gl_GlobalInvocationID);
     if (!ib_inside(pixel))
         return;
     uint start = ib_run_start(pixel);

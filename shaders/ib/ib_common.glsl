@@ -122,7 +122,25 @@ layout(std430, binding = OIT_SSBO_IB_PARAMS) readonly buffer ib_param_buffer {
     // from f in eye depth (see alg_ib.c).
     float ib_edge_scale;
     float ib_window_margin;
+    int ib_banded; // the frame is drawn in bands of rows (sort.comp counts its long runs)
 };
+
+// The band of rows the compute passes work on (alg_ib.c; docs/illustration-buffer.md,
+// "Bands"): x..y the rows stored, the only ones the fill drew (the others count as
+// outside the image), z..w the rows the band composes, the only ones counted in the
+// statistics. The whole image in a frame drawn whole.
+layout(location = OIT_UNIFORM_IB_BAND) uniform ivec4 ib_band;
+
+// The first row of tiles (OIT_IB_TILE_SIZE squared pixels) the per-pixel passes
+// are dispatched from: the one holding the band's first stored row.
+int ib_band_tile_row() { return ib_band.x / OIT_IB_TILE_SIZE; }
+// The pixel of invocation global_id of a per-pixel pass (work groups of a tile).
+ivec2 ib_band_pixel(uvec3 global_id)
+{
+    return ivec2(global_id.xy) + ivec2(0, ib_band_tile_row() * OIT_IB_TILE_SIZE);
+}
+// The pixel is in a row the band composes: its figures count.
+bool ib_counted(ivec2 pixel) { return pixel.y >= ib_band.z && pixel.y < ib_band.w; }
 
 // Per pixel: during the fill the list head, afterwards the run's first slot.
 layout(binding = OIT_IMAGE_LIST_HEAD, r32ui) uniform uimage2D ib_heads;
@@ -154,6 +172,25 @@ vec3 ib_eye_position(vec2 pixel_centre, float depth)
 float ib_eye_depth(vec2 pixel_centre, float depth)
 {
     return -ib_eye_position(pixel_centre, depth).z;
+}
+
+// ---- distance along the ray (curvature_distance.comp, distance_max.comp)
+
+// The layer fragment i of a run of run_length measures its distance to: the
+// next (adjacent), k on (skip) or the last (far end); i itself for the last.
+uint ib_distance_target(uint i, uint run_length)
+{
+    if (ib_distance_mode == OIT_IB_DISTANCE_ADJACENT)
+        return min(i + 1u, run_length - 1u);
+    if (ib_distance_mode == OIT_IB_DISTANCE_SKIP)
+        return min(i + uint(max(ib_distance_skip, 1)), run_length - 1u);
+    return run_length - 1u;
+}
+
+// The distance in linear eye depth between two canonical depths on a pixel's ray.
+float ib_depth_distance(vec2 pixel_centre, float depth, float target_depth)
+{
+    return abs(ib_eye_depth(pixel_centre, target_depth) - ib_eye_depth(pixel_centre, depth));
 }
 
 // ---- the depth order: window depth, then triangle index
@@ -198,9 +235,11 @@ vec3 ib_vertex_eye(uint v)
 uint ib_run_start(ivec2 pixel) { return imageLoad(ib_heads, pixel).x; }
 uint ib_run_length(ivec2 pixel) { return imageLoad(ib_counts, pixel).x; }
 
+// In the image, and in a row the band stores.
 bool ib_inside(ivec2 pixel)
 {
-    return all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, u_viewport));
+    return all(greaterThanEqual(pixel, ivec2(0, ib_band.x))) &&
+           all(lessThan(pixel, ivec2(u_viewport.x, ib_band.y)));
 }
 
 // Layer index of fragment `slot`'s neighbour in direction d, or IB_NONE.

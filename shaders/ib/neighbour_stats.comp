@@ -6,7 +6,8 @@
 // counted by compose.frag).
 // Compute pass, one invocation per pixel of the tiles with fragments
 // (ib/tiles.glsl); reads through the buffer textures, the neighbouring runs'
-// starts are loaded once per pixel.
+// starts are loaded once per pixel. In a band of rows, only the rows it composes
+// are counted (their neighbours are in the rows it stores).
 #include "common/oit_shared.h"
 #include "ib/tiles.glsl"
 
@@ -23,7 +24,7 @@ void add64(int low, int high, uint value)
 void main()
 {
     ivec2 pixel;
-    if (!ib_tile_pixel(pixel) || !ib_inside(pixel))
+    if (!ib_tile_pixel(pixel) || !ib_inside(pixel) || !ib_counted(pixel))
         return;
     uint run_length = ib_run_length(pixel);
     if (run_length == 0u)

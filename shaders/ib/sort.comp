@@ -8,19 +8,27 @@
 // (ib/tiles.glsl). Also counts the list statistics with one atomic per
 // non-empty pixel (a histogram bin; the longest list only when this run is
 // longer than the longest read so far): non-empty pixels are the histogram's
-// sum, empty ones the rest (alg_ib.c).
-// Compute pass, one invocation per pixel.
+// sum, empty ones the rest (alg_ib.c). In a band of rows only the rows it
+// composes are counted, and in a frame drawn in bands the runs of the open
+// last bin are counted by length too.
+// Compute pass, one invocation per pixel of the band's rows of tiles.
 #include "common/oit_shared.h"
 #include "ib/tiles.glsl"
 
 layout(local_size_x = OIT_IB_TILE_SIZE, local_size_y = OIT_IB_TILE_SIZE) in;
+
+// frames drawn in bands: pixels by the length of their run, lengths in the open
+// last bin only (OIT_SSBO_IB_LONG_RUNS in oit_shared.h)
+layout(std430, binding = OIT_SSBO_IB_LONG_RUNS) buffer ib_long_run_buffer {
+    uint ib_long_runs[];
+};
 
 shared uint tile_fragments; // the tile's fragments counted so far: each run's offset in the block
 shared uint tile_start;     // the tile's block in the run buffer
 
 void main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = ib_band_pixel(gl_GlobalInvocationID);
     bool inside = ib_inside(pixel);
     if (gl_LocalInvocationIndex == 0u)
         tile_fragments = 0u;
@@ -46,7 +54,7 @@ void main()
     if (gl_LocalInvocationIndex == 0u && tile_fragments > 0u) {
         tile_start = atomicAdd(ib_counters[OIT_IB_COUNTER_RUN_ALLOCATOR], tile_fragments);
         ib_tiles[atomicAdd(ib_counters[OIT_IB_COUNTER_TILES], 1u)] =
-            gl_WorkGroupID.x | (gl_WorkGroupID.y << 16);
+            gl_WorkGroupID.x | ((gl_WorkGroupID.y + uint(ib_band_tile_row())) << 16);
     }
     memoryBarrierShared();
     barrier();
@@ -80,9 +88,11 @@ void main()
     }
     imageStore(ib_heads, pixel, uvec4(start, 0u, 0u, 0u));
     imageStore(ib_counts, pixel, uvec4(run_length, 0u, 0u, 0u));
-    if (run_length > 0u) {
+    if (run_length > 0u && ib_counted(pixel)) {
         atomicAdd(ib_counters[OIT_IB_COUNTER_HISTOGRAM + int(min(run_length, uint(OIT_IB_HISTOGRAM_BINS - 1)))], 1u);
         if (run_length > ib_counters[OIT_FRAME_COUNTER_MAX_LIST])
             atomicMax(ib_counters[OIT_FRAME_COUNTER_MAX_LIST], run_length);
+        if (ib_banded != 0 && run_length >= uint(OIT_IB_HISTOGRAM_BINS - 1))
+            atomicAdd(ib_long_runs[min(run_length, uint(OIT_IB_LONG_RUN_LENGTHS - 1))], 1u);
     }
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <QAbstractTableModel>
+#include <QByteArray>
 #include <QColor>
 #include <QHash>
 #include <QIcon>
@@ -44,7 +45,11 @@ public:
 
     const std::vector<float> &alpha() const { return alpha_; }
     const std::vector<char> &visible() const { return visible_; }
-    const QString &name(int part) const { return parts_[size_t(part)].name; }
+    QString name(int part) const
+    {
+        const Part &p = parts_[size_t(part)];
+        return QString::fromUtf8(names_.constData() + p.name_offset, int(p.name_length));
+    }
     int part_count() const { return int(parts_.size()); }
     // the slider's value: alpha as an integer percent
     static int percent(float alpha);
@@ -62,7 +67,7 @@ signals:
 
 private:
     struct Part {
-        QString name;
+        uint32_t name_offset, name_length; // in names_
         float colour[3];
         float material_opacity;
         uint32_t triangle_count;
@@ -72,6 +77,7 @@ private:
     QIcon swatch(const float colour[3]) const;
 
     std::vector<Part> parts_;
+    QByteArray names_; // every part's name, UTF-8, one after the other
     mutable QHash<QRgb, QIcon> swatches_; // by colour, made when first shown
     std::vector<float> alpha_;
     std::vector<char> visible_;

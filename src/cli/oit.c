@@ -139,7 +139,7 @@ static const char render_help[] =
     "                         as needed\n"
     "  --fragment-counter-start N  ll, ib (tests): start the fill's 32-bit fragment counter at N,\n"
     "                         0..4294967295 (default 0), to reach its limit without 2^32 fragments\n"
-    "  --buffer-fragment-limit N  ll (tests): address at most N fragments in one buffer, as if\n"
+    "  --buffer-fragment-limit N  ll, ib (tests): address at most N fragments in one buffer, as if\n"
     "                         the GL's limit were that low, so the frame is drawn in bands of rows\n"
     "  --max-layers N         dp, ddp: peel at most N layers, 1..1000000 (default: no cap, peel\n"
     "                         until nothing is left); a frame the cap cuts short gets a warning\n"

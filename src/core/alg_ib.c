@@ -30,12 +30,22 @@
  *   fields, diffusion, blur   transparency fields (modulation fields / view fields)
  *   curvature_distance        (curvature, distance, dist-curv / their views)
  *   compose     composite front to back in float, or show a view
+ *
+ * A frame whose fragments exceed what one pool holds (what one storage buffer
+ * addresses, or the --max-memory budget) is drawn in bands of rows (bands.h),
+ * each storing its rows and the rows either side that its neighbour passes
+ * read (ib_band_overlap) and composing only its own; a first sweep finds the
+ * whole frame's longest list and largest distance where a view or the
+ * distance modulation needs them (ib_render_bands; docs/illustration-buffer.md,
+ * "Bands").
  */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "bands.h"
 #include "gl_util.h"
 
 /* Pool bytes per fragment, for sizing the pool within the budget; the
@@ -73,6 +83,7 @@ typedef struct ib_params {
     float epsilon_max, radius_eye;
     int32_t needs_fields;
     float edge_scale, window_margin; /* the id search's depth window (ib_common.glsl) */
+    int32_t banded; /* the frame is drawn in bands: the sort counts its long runs */
 } ib_params;
 
 enum ib_program {
@@ -88,6 +99,7 @@ enum ib_program {
     IB_DIFFUSION,
     IB_BLUR,
     IB_CURVATURE_DISTANCE,
+    IB_DISTANCE_MAX,  /* the first sweep of a banded frame: the largest distance only */
     IB_COMPOSE,       /* every view and modulation */
     IB_COMPOSE_PLAIN, /* the colour image without modulation (common/variants.glsl) */
     IB_PROGRAM_COUNT
@@ -101,7 +113,8 @@ static const char *const ib_shaders[IB_PROGRAM_COUNT] = {
     "ib/fill.frag",      "ib/sort.comp",      "ib/triangles.comp", "ib/neighbours.comp",
     "ib/neighbours_epsilon.comp", "ib/epsilon_dispatch.comp", "ib/tiles_dispatch.comp",
     "ib/neighbour_stats.comp", "ib/fields_init.comp", "ib/diffusion.comp",
-    "ib/blur.comp",      "ib/curvature_distance.comp", "ib/compose.frag", "ib/compose.frag",
+    "ib/blur.comp",      "ib/curvature_distance.comp", "ib/distance_max.comp",
+    "ib/compose.frag",   "ib/compose.frag",
 };
 
 typedef struct ib_state {
@@ -128,6 +141,16 @@ typedef struct ib_state {
     uint64_t pool_capacity;
     uint64_t gl_fragment_limit;
     uint64_t gl_texel_limit; /* GL_MAX_TEXTURE_BUFFER_SIZE */
+    /* frames drawn in bands: the runs of the histogram's open bin by length
+     * (OIT_SSBO_IB_LONG_RUNS), allocated with the first such frame */
+    GLuint long_run_buffer;
+    /* the band of rows the passes work on: stored [0], [1), composed [2], [3)
+     * (ib_band in ib_common.glsl); the whole image in a frame drawn whole */
+    GLint band[4];
+    /* the bands the last frame was drawn in, and the overlap they had: the next
+     * frame at the size with the same overlap starts from them (bands.h) */
+    oit_band_plan band_plan;
+    int band_plan_overlap;
     oit_stats last_stats;
 } ib_state;
 
@@ -218,9 +241,11 @@ static void ib_destroy(oit_algorithm *alg)
                          s->triangle_texture, s->core_words_texture, s->nodes_texture,
                          s->components_texture, s->triangle_reach_texture};
     oit_gl_memory_delete_textures(&s->memory, 9, textures);
-    GLuint buffers[] = {s->node_buffer,  s->core_buffer,     s->links_buffer, s->counter_buffer,
-                        s->param_buffer, s->triangle_buffer, s->tile_buffer};
-    oit_gl_memory_delete_buffers(&s->memory, 7, buffers);
+    GLuint buffers[] = {s->node_buffer,     s->core_buffer,  s->links_buffer,
+                        s->counter_buffer,  s->param_buffer, s->triangle_buffer,
+                        s->tile_buffer,     s->long_run_buffer};
+    oit_gl_memory_delete_buffers(&s->memory, 8, buffers);
+    oit_band_plan_free(&s->band_plan);
     oit_gl_output_release(&s->output);
     oit_timer_destroy(&s->timer);
     free(s->shader_dir);
@@ -280,6 +305,8 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     s->gl_texel_limit = max_texels > 0 ? (uint64_t)max_texels : 0;
     if (s->gl_fragment_limit > s->gl_texel_limit / 4u)
         s->gl_fragment_limit = s->gl_texel_limit / 4u;
+    if (config->buffer_fragment_limit && s->gl_fragment_limit > config->buffer_fragment_limit)
+        s->gl_fragment_limit = config->buffer_fragment_limit; /* tests: bands without 8M fragments */
 
     GLuint buffers[7];
     glGenBuffers(7, buffers);
@@ -320,6 +347,7 @@ static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error
     oit_status status = oit_gl_output_resize(&s->output, width, height, err);
     if (status != OIT_OK)
         return status;
+    s->band_plan.count = 0; /* bands of the old size */
     oit_gl_memory_delete_textures(&s->memory, 1, &s->head_image);
     oit_gl_memory_delete_textures(&s->memory, 1, &s->count_image);
     s->head_image =
@@ -566,6 +594,25 @@ static void ib_barrier(void)
                     GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+/* glUseProgram(p) with the frame uniforms and the band of rows (ib_band). */
+static void ib_use_program(ib_state *s, enum ib_program p, const oit_frame_settings *frame)
+{
+    glUseProgram(s->programs[p]);
+    oit_gl_set_frame_uniforms(frame);
+    if (glGetUniformLocation(s->programs[p], "ib_band") == OIT_UNIFORM_IB_BAND)
+        glUniform4iv(OIT_UNIFORM_IB_BAND, 1, s->band);
+}
+
+/* The passes work on the rows [stored_first, stored_end) (the fill drew those
+ * only) and count the figures of [first, end) only. */
+static void ib_set_band(ib_state *s, int stored_first, int stored_end, int first, int end)
+{
+    s->band[0] = stored_first;
+    s->band[1] = stored_end;
+    s->band[2] = first;
+    s->band[3] = end;
+}
+
 /* A pass of program p with one invocation per item (work groups of
  * OIT_IB_ITEMS_PER_GROUP, in rows past the work-group count limit); the shader
  * skips those past the end. */
@@ -579,8 +626,7 @@ static void ib_item_pass(ib_state *s, enum ib_program p, const oit_frame_setting
         rows *= 2u;
     }
     ib_barrier();
-    glUseProgram(s->programs[p]);
-    oit_gl_set_frame_uniforms(frame);
+    ib_use_program(s, p, frame);
     if (glGetUniformLocation(s->programs[p], "item_count") == OIT_UNIFORM_IB_PASS)
         glUniform1i(OIT_UNIFORM_IB_PASS, (GLint)items);
     if (items > 0)
@@ -603,46 +649,78 @@ static void ib_indirect_pass(ib_state *s, enum ib_program p, int slot,
 {
     ib_barrier();
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
-    glUseProgram(s->programs[p]);
-    oit_gl_set_frame_uniforms(frame);
+    ib_use_program(s, p, frame);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counter_buffer);
     glDispatchComputeIndirect((GLintptr)(slot * sizeof(GLuint)));
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 }
 
-/* One per-pixel pass of program p (compute, or the full-screen compose), with
- * the frame uniforms and the pass parameter. */
+/* One per-pixel pass of program p (compute over the rows of tiles that hold the
+ * band's stored rows, or the full-screen compose), with the frame uniforms and
+ * the pass parameter. */
 static void ib_pass(ib_state *s, enum ib_program p, const oit_frame_settings *frame,
                     int pass_parameter)
 {
     ib_barrier();
-    glUseProgram(s->programs[p]);
-    oit_gl_set_frame_uniforms(frame);
+    ib_use_program(s, p, frame);
     if (glGetUniformLocation(s->programs[p], p == IB_BLUR         ? "pass_parameter"
                                              : p == IB_DIFFUSION  ? "source_copy"
                                                                   : "fields_copy") ==
         OIT_UNIFORM_IB_PASS)
         glUniform1i(OIT_UNIFORM_IB_PASS, pass_parameter);
-    if (p == IB_COMPOSE || p == IB_COMPOSE_PLAIN)
+    if (p == IB_COMPOSE || p == IB_COMPOSE_PLAIN) {
         oit_gl_draw_fullscreen(&s->output);
-    else
-        glDispatchCompute((GLuint)(s->output.width + 7) / 8, (GLuint)(s->output.height + 7) / 8, 1);
+    } else {
+        /* the work groups are tiles (ib_band_pixel in ib_common.glsl) */
+        const int first_tile_row = s->band[0] / OIT_IB_TILE_SIZE;
+        const int end_tile_row = (s->band[1] + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE;
+        glDispatchCompute((GLuint)(s->output.width + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE,
+                          (GLuint)(end_tile_row - first_tile_row), 1);
+    }
 }
 
-static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_frame_settings *frame,
-                              int retry)
+/* A stage of the frame; a band's are named as the whole frame's with "band_"
+ * in front (as ll's), the first sweep's with "sweep_". */
+static void ib_stage(ib_state *s, const char *prefix, const char *name)
 {
-    oit_timer_stage_begin(&s->timer, retry ? "clear_retry" : "clear");
+    char full[OIT_STAGE_NAME_SIZE];
+    snprintf(full, sizeof full, "%s%s", prefix, name);
+    oit_timer_stage_begin(&s->timer, full);
+}
+
+/* The whole frame's figures a banded frame's compose reads before every band
+ * has been drawn: its longest list (the heat map) and its largest distance
+ * (the distance modulation's automatic region), as float bits. Zero: not
+ * known, the band's own. */
+typedef struct ib_frame_figures {
+    GLuint longest, largest_distance;
+} ib_frame_figures;
+
+/* Clear the heads of the band's stored rows and the counters (with the frame's
+ * figures in place, if known), then draw every fragment of those rows (the
+ * scissor lets only them through in a band) into the lists. */
+static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_frame_settings *frame,
+                              const char *prefix, int retry, const ib_frame_figures *figures)
+{
+    ib_stage(s, prefix, retry ? "clear_retry" : "clear");
     const GLuint list_end = OIT_LIST_END;
-    glClearTexImage(s->head_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
+    if (s->band[0] == 0 && s->band[1] == s->output.height)
+        glClearTexImage(s->head_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
+    else /* the passes read no row outside the band (ib_inside) */
+        glClearTexSubImage(s->head_image, 0, 0, s->band[0], 0, s->output.width,
+                           s->band[1] - s->band[0], 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
     GLuint zeros[OIT_IB_COUNTER_COUNT] = {0};
     zeros[OIT_FRAME_COUNTER_FRAGMENTS] = s->config.fragment_counter_start; /* 0 but in tests */
+    if (figures) { /* the passes only raise these with atomicMax */
+        zeros[OIT_FRAME_COUNTER_MAX_LIST] = figures->longest;
+        zeros[OIT_IB_COUNTER_MAX_DISTANCE] = figures->largest_distance;
+    }
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zeros, zeros);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     ib_barrier();
 
-    oit_timer_stage_begin(&s->timer, retry ? "fill_retry" : "fill");
+    ib_stage(s, prefix, retry ? "fill_retry" : "fill");
     glUseProgram(s->programs[IB_FILL]);
     oit_gl_set_frame_uniforms(frame);
     glUniform1ui(OIT_UNIFORM_IB_POOL_CAPACITY, (GLuint)s->pool_capacity);
@@ -651,11 +729,159 @@ static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_fra
     oit_timer_stage_end(&s->timer);
 }
 
-static void ib_fill_stats(const ib_state *s, const GLuint *counters, int retries, oit_stats *stats)
+/* Clear, fill and read the fill's 64-bit count (the counter and its wraps). */
+static oit_status ib_fill_and_count(ib_state *s, const oit_scene *scene,
+                                    const oit_frame_settings *frame, const char *prefix, int retry,
+                                    const ib_frame_figures *figures, uint64_t *needed,
+                                    oit_error *err)
 {
-    stats->fragments = counters[OIT_FRAME_COUNTER_FRAGMENTS];
-    stats->max_list = counters[OIT_FRAME_COUNTER_MAX_LIST];
+    ib_clear_and_fill(s, scene, frame, prefix, retry, figures);
+    *needed = oit_gl_read_frame_fragments(s->counter_buffer, OIT_IB_COUNTER_FRAGMENTS_WRAPS);
+    oit_status status = ib_check(s, "ib fill", err);
+    if (status != OIT_OK)
+        return status;
+    return oit_gl_check_frame_fragments("ib", *needed, s->config.fragment_counter_start, err);
+}
+
+/* Sort through compose, on the band's rows (the whole image in a frame drawn
+ * whole): the runs, the triangle table (`triangles`: once a frame), the
+ * neighbours, the modulation's passes and the compose. A band composes its own
+ * rows only (the scissor) on an output cleared once for the frame. */
+static oit_status ib_resolve(ib_state *s, const oit_scene *scene, const oit_frame_settings *frame,
+                             const ib_plan *plan, bool band, bool triangles, oit_error *err)
+{
+    const char *prefix = band ? "band_" : "";
+    ib_stage(s, prefix, "sort");
+    ib_pass(s, IB_SORT, frame, 0);
+    ib_count_groups(s, IB_TILES_DISPATCH); /* for the passes over the tile list */
+    /* the triangle table, the index / welded search, then epsilon for the
+     * fragments the first search queued (at most all of them) */
+    ib_stage(s, prefix, "neighbours");
+    if (triangles)
+        ib_item_pass(s, IB_TRIANGLES, frame, scene->index_count / 3u);
+    ib_indirect_pass(s, IB_NEIGHBOURS, OIT_IB_COUNTER_TILE_DISPATCH, frame);
+    if (plan->params.search != OIT_NEIGHBOURS_INDEX) {
+        /* a stage of its own: how much of the search the fallback costs is worth seeing */
+        ib_stage(s, prefix, "neighbours_epsilon");
+        ib_count_groups(s, IB_EPSILON_DISPATCH);
+        ib_indirect_pass(s, IB_NEIGHBOURS_EPSILON, OIT_IB_COUNTER_EPSILON_DISPATCH, frame);
+    }
+    if (s->config.neighbour_quality) {
+        /* diagnostics, not part of the frame: oit bench and oit measure turn it off */
+        ib_stage(s, prefix, "neighbour_stats");
+        ib_indirect_pass(s, IB_NEIGHBOUR_STATS, OIT_IB_COUNTER_TILE_DISPATCH, frame);
+    }
+    oit_status status = ib_check(s, "ib neighbours", err);
+    if (status != OIT_OK)
+        return status;
+
+    int fields_copy = 0;
+    if (plan->fields) {
+        ib_stage(s, prefix, "fields");
+        ib_pass(s, IB_FIELDS, frame, 0);
+        if (plan->diffusion_iterations > 0) {
+            ib_stage(s, prefix, "diffusion");
+            for (int k = 0; k < plan->diffusion_iterations; ++k) {
+                ib_pass(s, IB_DIFFUSION, frame, fields_copy);
+                fields_copy = 1 - fields_copy;
+            }
+        }
+        if (plan->blur_iterations > 0 && (plan->params.fields & OIT_FIELD_BETA)) {
+            ib_stage(s, prefix, "blur");
+            for (int k = 0; k < plan->blur_iterations; ++k)
+                for (int axis = 0; axis < 2; ++axis) {
+                    ib_pass(s, IB_BLUR, frame, fields_copy | (axis << 1));
+                    fields_copy = 1 - fields_copy;
+                }
+        }
+        status = ib_check(s, "ib fields", err);
+        if (status != OIT_OK)
+            return status;
+    }
+    if (plan->curvature_distance) {
+        ib_stage(s, prefix, "curvature_distance");
+        ib_pass(s, IB_CURVATURE_DISTANCE, frame, 0);
+        status = ib_check(s, "ib curvature_distance", err);
+        if (status != OIT_OK)
+            return status;
+    }
+
+    ib_stage(s, prefix, "compose");
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    if (band) {
+        glScissor(0, s->band[2], s->output.width, s->band[3] - s->band[2]);
+    } else {
+        /* compose discards the empty pixels: they keep this */
+        glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+    }
+    ib_pass(s,
+            plan->params.mode == OIT_MODULATE_NONE && plan->params.view == OIT_VIEW_COLOUR
+                ? IB_COMPOSE_PLAIN
+                : IB_COMPOSE,
+            frame, fields_copy);
+    oit_timer_stage_end(&s->timer);
+    return ib_check(s, "ib compose", err);
+}
+
+/* The figures of a frame's counters, summed over its bands. */
+typedef struct ib_counts {
+    uint64_t longest;
+    uint64_t histogram[OIT_HISTOGRAM_BINS]; /* bin 0 unused: empty pixels are the rest */
+    uint64_t four, links, symmetric, same_component; /* neighbour_stats */
+} ib_counts;
+
+/* Read the counters after a compose, check them (the runs hold every fragment
+ * the fill stored, none longer than a link addresses) and add them to `sum`.
+ * `counters` receives them. */
+static oit_status ib_add_counts(ib_state *s, uint64_t needed, ib_counts *sum,
+                                GLuint counters[OIT_IB_COUNTER_COUNT], oit_error *err)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, OIT_IB_COUNTER_COUNT * sizeof(GLuint), counters);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    /* the runs hold what the sort walked; the fill stored nodes
+     * fragment_counter_start..needed - 1 (0 but in tests) */
+    oit_status status = oit_gl_check_sorted_fragments("ib", needed - s->config.fragment_counter_start,
+                                                      counters[OIT_IB_COUNTER_RUN_ALLOCATOR], err);
+    if (status != OIT_OK)
+        return status;
+    /* A run longer than a 16-bit link can address: its layers past 65534 had
+     * no neighbour links and the search ignored them, so the frame is refused.
+     * Checked here, where the counters are read anyway: the passes in between
+     * stay inside the runs (a link is below min(length, 65535)). */
+    if (counters[OIT_FRAME_COUNTER_MAX_LIST] > OIT_IB_MAX_RUN_LENGTH)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ib: a pixel's list has %u fragments, more than the %d a neighbour link "
+                        "can address (16-bit layer indices)",
+                        (unsigned)counters[OIT_FRAME_COUNTER_MAX_LIST], OIT_IB_MAX_RUN_LENGTH);
+    if (counters[OIT_FRAME_COUNTER_MAX_LIST] > sum->longest)
+        sum->longest = counters[OIT_FRAME_COUNTER_MAX_LIST];
+    for (int b = 1; b < OIT_HISTOGRAM_BINS; ++b)
+        sum->histogram[b] += counters[OIT_IB_COUNTER_HISTOGRAM + b];
+    /* up to 4 links per fragment: 64-bit counts (neighbour_stats.comp) */
+#define IB_COUNT64(low, high) ((uint64_t)counters[high] << 32 | counters[low])
+    sum->four += counters[OIT_IB_COUNTER_FOUR_NEIGHBOURS];
+    sum->links += IB_COUNT64(OIT_IB_COUNTER_LINKS, OIT_IB_COUNTER_LINKS_WRAPS);
+    sum->symmetric +=
+        IB_COUNT64(OIT_IB_COUNTER_SYMMETRIC_LINKS, OIT_IB_COUNTER_SYMMETRIC_LINKS_WRAPS);
+    sum->same_component += IB_COUNT64(OIT_IB_COUNTER_SAME_COMPONENT_LINKS,
+                                      OIT_IB_COUNTER_SAME_COMPONENT_LINKS_WRAPS);
+#undef IB_COUNT64
+    return OIT_OK;
+}
+
+/* The frame's statistics from its summed counts: `fragments` stored, and
+ * `psi_pixels`, the non-empty pixels whose list is longer than 2/3 of the
+ * longest. */
+static void ib_frame_stats(const ib_state *s, const ib_counts *sum, uint64_t fragments,
+                           uint64_t psi_pixels, int retries, int bands, oit_stats *stats)
+{
+    stats->fragments = (int64_t)fragments;
+    stats->max_list = (int64_t)sum->longest;
     stats->overflow_retries = retries;
+    stats->bands = bands;
     uint64_t pixels = (uint64_t)s->output.width * (uint64_t)s->output.height;
     /* as allocated (oit_stats in oit.h defines the figures): the pool at its
      * capacity, head, count and output images, counters, parameters and the
@@ -668,28 +894,277 @@ static void ib_fill_stats(const ib_state *s, const GLuint *counters, int retries
     /* the sort counts non-empty pixels only (sort.comp): bin 0 is the rest */
     uint64_t nonempty = 0;
     for (int b = 1; b < OIT_HISTOGRAM_BINS; ++b)
-        nonempty += counters[OIT_IB_COUNTER_HISTOGRAM + b];
+        nonempty += sum->histogram[b];
     stats->mean_list = nonempty ? (double)stats->fragments / (double)nonempty : 0.0;
-    stats->psi = nonempty ? (double)counters[OIT_IB_COUNTER_PSI_PIXELS] / (double)nonempty : 0.0;
+    stats->psi = nonempty ? (double)psi_pixels / (double)nonempty : 0.0;
     stats->histogram_bins = OIT_HISTOGRAM_BINS;
     stats->list_histogram[0] = pixels - nonempty;
     for (int b = 1; b < OIT_HISTOGRAM_BINS; ++b)
-        stats->list_histogram[b] = counters[OIT_IB_COUNTER_HISTOGRAM + b];
+        stats->list_histogram[b] = sum->histogram[b];
     if (!s->config.neighbour_quality)
         return; /* the neighbours_* figures stay n/a */
-    GLuint fragments = counters[OIT_FRAME_COUNTER_FRAGMENTS];
-    /* up to 4 links per fragment: 64-bit counts (neighbour_stats.comp) */
-#define IB_COUNT64(low, high) ((uint64_t)counters[high] << 32 | counters[low])
-    uint64_t links = IB_COUNT64(OIT_IB_COUNTER_LINKS, OIT_IB_COUNTER_LINKS_WRAPS);
-    uint64_t symmetric =
-        IB_COUNT64(OIT_IB_COUNTER_SYMMETRIC_LINKS, OIT_IB_COUNTER_SYMMETRIC_LINKS_WRAPS);
-    uint64_t same_component = IB_COUNT64(OIT_IB_COUNTER_SAME_COMPONENT_LINKS,
-                                         OIT_IB_COUNTER_SAME_COMPONENT_LINKS_WRAPS);
-#undef IB_COUNT64
-    stats->neighbours_four_share =
-        fragments ? (double)counters[OIT_IB_COUNTER_FOUR_NEIGHBOURS] / fragments : 0.0;
-    stats->neighbours_symmetric_share = links ? (double)symmetric / (double)links : 0.0;
-    stats->neighbours_same_component_share = links ? (double)same_component / (double)links : 0.0;
+    stats->neighbours_four_share = fragments ? (double)sum->four / (double)fragments : 0.0;
+    stats->neighbours_symmetric_share =
+        sum->links ? (double)sum->symmetric / (double)sum->links : 0.0;
+    stats->neighbours_same_component_share =
+        sum->links ? (double)sum->same_component / (double)sum->links : 0.0;
+}
+
+/* "<what holds the pool> (<fragments>)" for the messages of a frame or a row
+ * that one pool cannot hold: the GL's reach or the memory budget. */
+static void ib_pool_limit_text(const ib_state *s, char *out, size_t size)
+{
+    if (ib_budget_fragments(s) < s->gl_fragment_limit)
+        snprintf(out, size, "the --max-memory budget of %.1f MB holds (%llu)",
+                 (double)s->config.max_memory_bytes / IB_MEGABYTE,
+                 (unsigned long long)ib_budget_fragments(s));
+    else
+        snprintf(out, size, "this GL can address in one shader storage buffer (%llu)",
+                 (unsigned long long)s->gl_fragment_limit);
+}
+
+static oit_status ib_row_error(const ib_state *s, int row, int overlap, uint64_t needed,
+                               oit_error *err)
+{
+    char limit[128];
+    ib_pool_limit_text(s, limit, sizeof limit);
+    if (overlap == 0)
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "ib: row %d of the image alone needs %llu fragments, more than %s", row,
+                        (unsigned long long)needed, limit);
+    return oit_fail(err, OIT_E_RUNTIME,
+                    "ib: row %d of the image, with the %d row%s either side that its neighbour "
+                    "passes read, needs %llu fragments, more than %s",
+                    row, overlap, overlap == 1 ? "" : "s", (unsigned long long)needed, limit);
+}
+
+/* The rows either side of a band that the results of its composed rows read,
+ * so that a band's image and figures are the whole frame's (each pass's reach
+ * in rows; docs/illustration-buffer.md, "Bands"):
+ *   1  the neighbour links: the search (index, welded and epsilon with its
+ *      mutual check) reads the runs one row up and down. Curvature (4 or 8
+ *      neighbours: a diagonal is a link of a neighbour, in the rows a link
+ *      reaches), edges, the neighbour view and neighbour_stats read the links
+ *      of their own row and their partners' in the next;
+ *   + diffusion iterations: the fields' initial values come from the links,
+ *      and every iteration reads the neighbours one row away (diagonals too);
+ *   + 2 x blur iterations: the vertical pass reads two taps up and down (the
+ *      horizontal one stays in the row). Only where beta is blurred.
+ * Distances and everything else read their own pixel's run. */
+static int ib_band_overlap(const ib_plan *plan)
+{
+    int rows = 1;
+    if (plan->fields) {
+        rows += plan->diffusion_iterations;
+        if (plan->blur_iterations > 0 && (plan->params.fields & OIT_FIELD_BETA))
+            rows += 2 * plan->blur_iterations;
+    }
+    return rows;
+}
+
+/* The frame's compose reads its largest distance: the distance modulation
+ * or view with the automatic region. */
+static bool ib_needs_largest_distance(const ib_plan *plan)
+{
+    const ib_params *p = &plan->params;
+    return !(p->focus_region > 0.0f) &&
+           (p->mode == OIT_MODULATE_DISTANCE || p->mode == OIT_MODULATE_DIST_CURV ||
+            p->view == OIT_VIEW_DISTANCE);
+}
+
+/* The frame's compose reads a figure of the whole frame: its longest list
+ * (the heat map) or its largest distance. */
+static bool ib_needs_frame_figures(const ib_plan *plan)
+{
+    return plan->params.view == OIT_VIEW_HEATMAP || ib_needs_largest_distance(plan);
+}
+
+/* The first sweep of a banded frame whose compose needs the whole frame's
+ * figures: bands without overlap (a run and its distances are the pixel's
+ * own), each filled and sorted and, for the distances, the distance pass;
+ * the largest of the bands' longest lists and distances. */
+static oit_status ib_sweep(ib_state *s, const oit_scene *scene, const oit_frame_settings *frame,
+                           const ib_plan *plan, uint64_t frame_needed, ib_frame_figures *figures,
+                           oit_error *err)
+{
+    const int width = s->output.width, height = s->output.height;
+    oit_band_walk walk;
+    oit_status status = oit_bands_begin(&walk, &s->band_plan, height, 0, frame_needed,
+                                        s->pool_capacity, "ib", err);
+    if (status != OIT_OK)
+        return status;
+    figures->longest = figures->largest_distance = 0;
+    oit_band band;
+    while (status == OIT_OK && oit_bands_next(&walk, &band)) {
+        ib_set_band(s, band.first, band.first + band.rows, band.first, band.first + band.rows);
+        glScissor(0, band.first, width, band.rows);
+        uint64_t needed = 0;
+        status = ib_fill_and_count(s, scene, frame, "sweep_", 0, NULL, &needed, err);
+        if (status != OIT_OK)
+            break;
+        if (needed > s->pool_capacity) {
+            if (!oit_bands_halve(&walk, &band))
+                status = ib_row_error(s, band.first, 0, needed, err);
+            continue;
+        }
+        ib_stage(s, "sweep_", "sort");
+        ib_pass(s, IB_SORT, frame, 0);
+        if (ib_needs_largest_distance(plan)) {
+            ib_stage(s, "sweep_", "distance");
+            ib_pass(s, IB_DISTANCE_MAX, frame, 0);
+        }
+        oit_timer_stage_end(&s->timer);
+        ib_counts unused;
+        memset(&unused, 0, sizeof unused);
+        GLuint counters[OIT_IB_COUNTER_COUNT];
+        status = ib_add_counts(s, needed, &unused, counters, err);
+        if (status != OIT_OK)
+            break;
+        /* float bits of distances >= 0 order like the values */
+        if (counters[OIT_FRAME_COUNTER_MAX_LIST] > figures->longest)
+            figures->longest = counters[OIT_FRAME_COUNTER_MAX_LIST];
+        if (counters[OIT_IB_COUNTER_MAX_DISTANCE] > figures->largest_distance)
+            figures->largest_distance = counters[OIT_IB_COUNTER_MAX_DISTANCE];
+    }
+    oit_bands_end(&walk, NULL, false);
+    return status;
+}
+
+/* A frame whose fragments exceed what one pool holds (ib_fragment_limit: one
+ * storage buffer's reach or the memory budget) is drawn in bands of rows under
+ * the scissor test (bands.h): each band clears, fills and resolves the rows it
+ * composes and ib_band_overlap rows either side, in a pool at the largest size
+ * allowed, and composes its own rows; the statistics count those only. Where
+ * the compose needs the whole frame's longest list or largest distance, a
+ * first sweep finds them (ib_sweep). Ψ and the fragments come from the
+ * histogram, the open bin's runs counted by length (OIT_SSBO_IB_LONG_RUNS).
+ * frame_needed: the frame's count, or 0 to start from the last frame's bands. */
+static oit_status ib_render_bands(ib_state *s, const oit_scene *scene,
+                                  const oit_frame_settings *frame, const ib_plan *plan,
+                                  uint64_t frame_needed, ib_counts *sum, uint64_t *fragments,
+                                  uint64_t *psi_pixels, int *band_count, oit_error *err)
+{
+    oit_status status = OIT_OK;
+    const int width = s->output.width, height = s->output.height;
+    if (s->pool_capacity < ib_fragment_limit(s)) {
+        status = ib_allocate_pool(s, ib_fragment_limit(s), err);
+        if (status != OIT_OK)
+            return status;
+        ib_bind(s, scene);
+    }
+    if (!s->long_run_buffer) {
+        glGenBuffers(1, &s->long_run_buffer);
+        oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+                                  s->long_run_buffer, OIT_IB_LONG_RUN_LENGTHS * sizeof(GLuint),
+                                  NULL, GL_DYNAMIC_READ);
+    }
+    const GLint banded = 1;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->param_buffer);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, offsetof(ib_params, banded), sizeof banded, &banded);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_LONG_RUNS, s->long_run_buffer);
+    status = oit_gl_check("ib bands", err);
+    if (status != OIT_OK)
+        return status;
+
+    glEnable(GL_SCISSOR_TEST);
+    ib_frame_figures figures = {0, 0};
+    const bool sweep = ib_needs_frame_figures(plan);
+    if (sweep) {
+        status = ib_sweep(s, scene, frame, plan, frame_needed, &figures, err);
+        if (status != OIT_OK) {
+            glDisable(GL_SCISSOR_TEST);
+            return status;
+        }
+    }
+
+    /* the long runs of the bands' composed rows (the sweep's sorts count theirs too) */
+    const GLuint zero = 0;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->long_run_buffer);
+    glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+
+    const int overlap = ib_band_overlap(plan);
+    oit_band_walk walk; /* from the last frame's bands when frame_needed is 0 */
+    status = oit_bands_begin(&walk, &s->band_plan, height, overlap, frame_needed, s->pool_capacity,
+                             "ib", err);
+    if (status != OIT_OK) {
+        glDisable(GL_SCISSOR_TEST);
+        return status;
+    }
+    /* the output is cleared once; each band's compose keeps the background of its empty pixels */
+    glScissor(0, 0, width, height);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    *band_count = 0;
+    oit_band band;
+    while (oit_bands_next(&walk, &band)) {
+        ib_set_band(s, band.stored_first, band.stored_first + band.stored_rows, band.first,
+                    band.first + band.rows);
+        glScissor(0, band.stored_first, width, band.stored_rows);
+        uint64_t needed = 0;
+        status = ib_fill_and_count(s, scene, frame, "band_", 0, sweep ? &figures : NULL, &needed,
+                                   err);
+        if (status != OIT_OK)
+            break;
+        if (needed > s->pool_capacity) {
+            if (!oit_bands_halve(&walk, &band)) {
+                status = ib_row_error(s, band.first, overlap, needed, err);
+                break;
+            }
+            continue;
+        }
+        status = ib_resolve(s, scene, frame, plan, true, *band_count == 0, err);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        GLuint counters[OIT_IB_COUNTER_COUNT];
+        if (status == OIT_OK)
+            status = ib_add_counts(s, needed, sum, counters, err);
+        if (status != OIT_OK)
+            break;
+        ++*band_count;
+        oit_bands_fitted(&walk, &band);
+    }
+    glDisable(GL_SCISSOR_TEST);
+
+    /* the frame's fragments and psi from the histogram: bins below the open
+     * one, then the open bin's runs by length */
+    *fragments = 0;
+    uint64_t psi = 0;
+    const uint64_t open_bin = OIT_HISTOGRAM_BINS - 1;
+    for (uint64_t bin = 1; bin < open_bin; ++bin) {
+        *fragments += bin * sum->histogram[bin];
+        if (3 * bin > 2 * sum->longest)
+            psi += sum->histogram[bin];
+    }
+    if (status == OIT_OK && sum->longest >= open_bin) {
+        const uint64_t lengths = sum->longest - open_bin + 1;
+        GLuint *by_length = malloc(lengths * sizeof *by_length);
+        if (!by_length) {
+            status = oit_fail(err, OIT_E_RUNTIME, "ib: out of memory reading the long runs");
+        } else {
+            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+            glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->long_run_buffer);
+            glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(open_bin * sizeof(GLuint)),
+                               (GLsizeiptr)(lengths * sizeof(GLuint)), by_length);
+            glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+            for (uint64_t i = 0; i < lengths; ++i) {
+                const uint64_t length = open_bin + i;
+                *fragments += length * by_length[i];
+                if (3 * length > 2 * sum->longest)
+                    psi += by_length[i];
+            }
+            free(by_length);
+        }
+    }
+    *psi_pixels = psi;
+    /* the next frame at this size starts from the bands that fitted, unless this
+     * one failed or would have fitted whole with room to spare (the camera moved away) */
+    oit_bands_end(&walk, &s->band_plan,
+                  status == OIT_OK && *fragments + *fragments / 4 > ib_fragment_limit(s));
+    s->band_plan_overlap = overlap;
+    return status;
 }
 
 static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
@@ -728,16 +1203,18 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof plan.params, &plan.params);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     ib_bind(s, scene);
+    ib_set_band(s, 0, s->output.height, 0, s->output.height);
 
-    int retries = 0;
-    uint64_t needed = 0;
-    for (;;) {
-        ib_clear_and_fill(s, scene, frame, retries);
-        needed = oit_gl_read_frame_fragments(s->counter_buffer, OIT_IB_COUNTER_FRAGMENTS_WRAPS);
-        status = ib_check(s, "ib fill", err);
-        if (status != OIT_OK)
-            goto failed;
-        status = oit_gl_check_frame_fragments("ib", needed, s->config.fragment_counter_start, err);
+    /* Fill until the pool holds the whole frame, or draw it in bands of rows
+     * when no pool may (straight away when the last frame was banded with the
+     * same overlap). */
+    int retries = 0, bands = 1;
+    uint64_t needed = 0, fragments = 0, psi_pixels = 0;
+    ib_counts sum;
+    memset(&sum, 0, sizeof sum);
+    const bool planned = s->band_plan.count > 0 && s->band_plan_overlap == ib_band_overlap(&plan);
+    while (!planned) {
+        status = ib_fill_and_count(s, scene, frame, "", retries, NULL, &needed, err);
         if (status != OIT_OK)
             goto failed;
         if (needed <= s->pool_capacity)
@@ -749,109 +1226,54 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
                               (unsigned long long)needed, (unsigned long long)s->pool_capacity);
             goto failed;
         }
+        if (needed > ib_fragment_limit(s)) {
+            /* bands, unless even one row per band would be over the pool on average */
+            if (needed > (uint64_t)s->output.height * ib_fragment_limit(s)) {
+                char limit[128];
+                ib_pool_limit_text(s, limit, sizeof limit);
+                status = oit_fail(err, OIT_E_RUNTIME,
+                                  "ib: the frame needs %llu fragments, more than bands of rows "
+                                  "can hold: its %d rows need more on average than %s",
+                                  (unsigned long long)needed, s->output.height, limit);
+                goto failed;
+            }
+            break;
+        }
         status = ib_grow_pool(s, needed, err);
         if (status != OIT_OK)
             goto failed;
         ++retries;
     }
 
-    oit_timer_stage_begin(&s->timer, "sort");
-    ib_pass(s, IB_SORT, frame, 0);
-    ib_count_groups(s, IB_TILES_DISPATCH); /* for the passes over the tile list */
-    /* the triangle table, the index / welded search, then epsilon for the
-     * fragments the first search queued (at most all of them) */
-    oit_timer_stage_begin(&s->timer, "neighbours");
-    ib_item_pass(s, IB_TRIANGLES, frame, scene->index_count / 3u);
-    ib_indirect_pass(s, IB_NEIGHBOURS, OIT_IB_COUNTER_TILE_DISPATCH, frame);
-    if (plan.params.search != OIT_NEIGHBOURS_INDEX) {
-        /* a stage of its own: how much of the search the fallback costs is worth seeing */
-        oit_timer_stage_begin(&s->timer, "neighbours_epsilon");
-        ib_count_groups(s, IB_EPSILON_DISPATCH);
-        ib_indirect_pass(s, IB_NEIGHBOURS_EPSILON, OIT_IB_COUNTER_EPSILON_DISPATCH, frame);
-    }
-    if (s->config.neighbour_quality) {
-        /* diagnostics, not part of the frame: oit bench and oit measure turn it off */
-        oit_timer_stage_begin(&s->timer, "neighbour_stats");
-        ib_indirect_pass(s, IB_NEIGHBOUR_STATS, OIT_IB_COUNTER_TILE_DISPATCH, frame);
-    }
-    status = ib_check(s, "ib neighbours", err);
-    if (status != OIT_OK)
-        goto failed;
-
-    int fields_copy = 0;
-    if (plan.fields) {
-        oit_timer_stage_begin(&s->timer, "fields");
-        ib_pass(s, IB_FIELDS, frame, 0);
-        if (plan.diffusion_iterations > 0) {
-            oit_timer_stage_begin(&s->timer, "diffusion");
-            for (int k = 0; k < plan.diffusion_iterations; ++k) {
-                ib_pass(s, IB_DIFFUSION, frame, fields_copy);
-                fields_copy = 1 - fields_copy;
-            }
-        }
-        if (plan.blur_iterations > 0 && (plan.params.fields & OIT_FIELD_BETA)) {
-            oit_timer_stage_begin(&s->timer, "blur");
-            for (int k = 0; k < plan.blur_iterations; ++k)
-                for (int axis = 0; axis < 2; ++axis) {
-                    ib_pass(s, IB_BLUR, frame, fields_copy | (axis << 1));
-                    fields_copy = 1 - fields_copy;
-                }
-        }
-        status = ib_check(s, "ib fields", err);
+    if (planned || needed > s->pool_capacity) {
+        status = ib_render_bands(s, scene, frame, &plan, planned ? 0 : needed, &sum, &fragments,
+                                 &psi_pixels, &bands, err);
         if (status != OIT_OK)
             goto failed;
-    }
-    if (plan.curvature_distance) {
-        oit_timer_stage_begin(&s->timer, "curvature_distance");
-        ib_pass(s, IB_CURVATURE_DISTANCE, frame, 0);
-        status = ib_check(s, "ib curvature_distance", err);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glUseProgram(0);
+        oit_timer_frame_end(&s->timer, &stats);
+    } else {
+        s->band_plan.count = 0;
+        status = ib_resolve(s, scene, frame, &plan, false, true, err);
         if (status != OIT_OK)
             goto failed;
+        GLuint counters[OIT_IB_COUNTER_COUNT];
+        glUseProgram(0);
+        oit_timer_frame_end(&s->timer, &stats);
+        status = ib_add_counts(s, needed, &sum, counters, err);
+        if (status != OIT_OK)
+            return status;
+        fragments = counters[OIT_FRAME_COUNTER_FRAGMENTS];
+        psi_pixels = counters[OIT_IB_COUNTER_PSI_PIXELS]; /* compose counted them */
     }
-
-    oit_timer_stage_begin(&s->timer, "compose");
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    /* compose discards the empty pixels: they keep this */
-    glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
-    ib_pass(s,
-            plan.params.mode == OIT_MODULATE_NONE && plan.params.view == OIT_VIEW_COLOUR
-                ? IB_COMPOSE_PLAIN
-                : IB_COMPOSE,
-            frame, fields_copy);
-    oit_timer_stage_end(&s->timer);
-    status = ib_check(s, "ib compose", err);
-    if (status != OIT_OK)
-        goto failed;
-
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    GLuint counters[OIT_IB_COUNTER_COUNT];
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counters, counters);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    glUseProgram(0);
-    oit_timer_frame_end(&s->timer, &stats);
-    /* the runs hold what the sort walked; the fill stored nodes
-     * fragment_counter_start..needed - 1 (0 but in tests) */
-    status = oit_gl_check_sorted_fragments("ib", needed - s->config.fragment_counter_start,
-                                           counters[OIT_IB_COUNTER_RUN_ALLOCATOR], err);
-    if (status != OIT_OK)
-        return status;
-    /* A run longer than a 16-bit link can address: its layers past 65534 had
-     * no neighbour links and the search ignored them, so the frame is refused.
-     * Checked here, where the counters are read anyway: the passes in between
-     * stay inside the runs (a link is below min(length, 65535)). */
-    if (counters[OIT_FRAME_COUNTER_MAX_LIST] > OIT_IB_MAX_RUN_LENGTH)
-        return oit_fail(err, OIT_E_RUNTIME,
-                        "ib: a pixel's list has %u fragments, more than the %d a neighbour link "
-                        "can address (16-bit layer indices)",
-                        (unsigned)counters[OIT_FRAME_COUNTER_MAX_LIST], OIT_IB_MAX_RUN_LENGTH);
-    ib_fill_stats(s, counters, retries, &stats);
+    ib_frame_stats(s, &sum, fragments, psi_pixels, retries, bands, &stats);
     s->last_stats = stats;
     return oit_gl_check("ib render", err);
 
 failed:
     oit_timer_stage_end(&s->timer);
+    glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glUseProgram(0);
     return status;

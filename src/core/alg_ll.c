@@ -53,6 +53,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bands.h"
 #include "gl_util.h"
 
 /* Pool bytes per fragment: the node and its two next pointers. */
@@ -90,11 +91,9 @@ typedef struct ll_state {
     GLuint counter_buffer;
     uint64_t pool_capacity;  /* nodes the pool holds */
     uint64_t gl_node_limit;  /* most nodes one SSBO binding and one buffer texture can address */
-    /* the bands of rows the last frame was drawn in, [first row, rows) pairs bottom to top
-     * (count 0: it was whole): the next frame at the size starts from them instead of from a
-     * fill that only counts */
-    int *band_plan;
-    int band_plan_count;
+    /* the bands of rows the last frame was drawn in (count 0: it was whole): the next
+     * frame at the size starts from them instead of from a fill that only counts */
+    oit_band_plan band_plan;
 
     int64_t overflow_retries_total; /* since create; stats report the last frame's */
     uint32_t long_list_pixels;      /* last frame: pixels the local-array sort could not hold */
@@ -197,7 +196,7 @@ static void ll_destroy(oit_algorithm *alg)
         glDeleteProgram(s->compose_programs[variant]);
     }
     glDeleteProgram(s->sort_program);
-    free(s->band_plan);
+    oit_band_plan_free(&s->band_plan);
     GLuint textures[] = {s->head_image, s->node_texture, s->next_texture, s->sorted_next_texture};
     oit_gl_memory_delete_textures(&s->memory, 4, textures);
     GLuint buffers[] = {s->node_buffer, s->next_buffer, s->sorted_next_buffer, s->counter_buffer};
@@ -304,7 +303,7 @@ static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error
     oit_status status = oit_gl_output_resize(&s->output, width, height, err);
     if (status != OIT_OK)
         return status;
-    s->band_plan_count = 0; /* bands of the old size */
+    s->band_plan.count = 0; /* bands of the old size */
     oit_gl_memory_delete_textures(&s->memory, 1, &s->head_image);
     s->head_image =
         oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
@@ -518,7 +517,6 @@ static oit_status ll_fill_and_count(ll_state *s, GLuint fill_program, const oit_
     return oit_gl_check_frame_fragments("ll", *needed, s->config.fragment_counter_start, err);
 }
 
-#define LL_MAX_BANDS 4096
 static bool ll_bands_allowed(const oit_frame_settings *frame)
 {
     const bool auto_region = frame->modulation.mode == OIT_MODULATE_DISTANCE &&
@@ -560,29 +558,11 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
         ll_bind_pool(s);
     }
     const int height = s->output.height, width = s->output.width;
-    /* the bands still to draw: a stack of [first row, rows), the bottom band on top */
-    int *stack = malloc(2 * (size_t)LL_MAX_BANDS * sizeof *stack);
-    if (!s->band_plan)
-        s->band_plan = malloc(2 * (size_t)LL_MAX_BANDS * sizeof *s->band_plan);
-    if (!stack || !s->band_plan) {
-        free(stack);
-        return oit_fail(err, OIT_E_RUNTIME, "ll: out of memory planning bands of rows");
-    }
-    int depth = 0;
-    if (frame_needed == 0) { /* the last frame's bands */
-        for (int band = s->band_plan_count - 1; band >= 0; --band, ++depth) {
-            stack[2 * depth] = s->band_plan[2 * band];
-            stack[2 * depth + 1] = s->band_plan[2 * band + 1];
-        }
-    } else { /* equal shares of the count, with a quarter of headroom */
-        uint64_t shares = (frame_needed + frame_needed / 4) / s->pool_capacity + 1;
-        int rows = (int)(((uint64_t)height + shares - 1) / shares);
-        for (int first = ((height - 1) / rows) * rows; first >= 0; first -= rows, ++depth) {
-            stack[2 * depth] = first;
-            stack[2 * depth + 1] = first + rows > height ? height - first : rows;
-        }
-    }
-    s->band_plan_count = 0; /* rewritten below with the bands that fit */
+    oit_band_walk walk; /* from the last frame's bands when frame_needed is 0 */
+    status = oit_bands_begin(&walk, &s->band_plan, height, 0, frame_needed, s->pool_capacity, "ll",
+                             err);
+    if (status != OIT_OK)
+        return status;
     static const char *const band_names[2] = {"band_sort", "band_compose"};
     glEnable(GL_SCISSOR_TEST);
     /* the output is cleared once; each band's compose keeps the background of its empty pixels */
@@ -592,31 +572,23 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
     glClear(GL_COLOR_BUFFER_BIT);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     *band_count = 0;
-    while (depth > 0) {
-        --depth;
-        const int first = stack[2 * depth], band_rows = stack[2 * depth + 1];
-        glScissor(0, first, width, band_rows);
+    oit_band band;
+    while (oit_bands_next(&walk, &band)) {
+        glScissor(0, band.first, width, band.rows);
         uint64_t needed = 0;
         static const char *const band_fill_names[2] = {"band_clear", "band_fill"};
         status = ll_fill_and_count(s, fill_program, scene, frame, band_fill_names, &needed, err);
         if (status != OIT_OK)
             break;
         if (needed > s->pool_capacity) {
-            if (band_rows == 1 || depth + 2 > LL_MAX_BANDS) {
+            if (!oit_bands_halve(&walk, &band)) {
                 status = oit_fail(err, OIT_E_RUNTIME,
                                   "ll: row %d of the image alone needs %llu fragments, more than "
                                   "this GL can address in one buffer (%llu)",
-                                  first, (unsigned long long)needed,
+                                  band.first, (unsigned long long)needed,
                                   (unsigned long long)s->pool_capacity);
                 break;
             }
-            /* halve it: the upper half below the lower on the stack, the lower drawn next */
-            const int lower = band_rows / 2;
-            stack[2 * depth] = first + lower;
-            stack[2 * depth + 1] = band_rows - lower;
-            stack[2 * depth + 2] = first;
-            stack[2 * depth + 3] = lower;
-            depth += 2;
             continue;
         }
         status = ll_sort_and_compose(s, compose_program, frame, false, band_names, err);
@@ -625,16 +597,13 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
         if (status != OIT_OK)
             break;
         ++*band_count;
-        s->band_plan[2 * s->band_plan_count] = first;
-        s->band_plan[2 * s->band_plan_count + 1] = band_rows;
-        ++s->band_plan_count;
+        oit_bands_fitted(&walk, &band);
     }
     /* the next frame at this size starts from the bands that fitted, unless this
      * one failed or would have fitted whole with room to spare (the camera moved away) */
-    if (status != OIT_OK || sum->counted + sum->counted / 4 <= s->gl_node_limit)
-        s->band_plan_count = 0;
+    oit_bands_end(&walk, &s->band_plan,
+                  status == OIT_OK && sum->counted + sum->counted / 4 > s->gl_node_limit);
     glDisable(GL_SCISSOR_TEST);
-    free(stack);
     return status;
 }
 
@@ -686,7 +655,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     uint64_t needed = 0;
     ll_counts sum;
     memset(&sum, 0, sizeof sum);
-    const bool planned = s->band_plan_count > 0 && ll_bands_allowed(frame);
+    const bool planned = s->band_plan.count > 0 && ll_bands_allowed(frame);
     if (planned) {
         status = ll_render_bands(s, fill_program, compose_program, scene, frame, 0, &sum, &bands,
                                  err);
@@ -722,7 +691,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
         status = ll_render_bands(s, fill_program, compose_program, scene, frame, needed, &sum,
                                  &bands, err);
     } else {
-        s->band_plan_count = 0;
+        s->band_plan.count = 0;
         static const char *const names[2] = {"sort", "compose"};
         status = ll_sort_and_compose(s, compose_program, frame, true, names, err);
         if (status == OIT_OK)

@@ -19,6 +19,7 @@
 #include <assimp/scene.h>
 
 #include "model_internal.h"
+#include "model_obj.h"
 
 /* Every count in the model must fit the GL's signed 32-bit indices and
  * gl_PrimitiveID, so anything above 2^31 is rejected. */
@@ -757,6 +758,8 @@ static void count_node(load_state *st, const struct aiNode *node)
     }
 }
 
+static void clamp_material(oit_component *comp);
+
 static void material_properties(const struct aiScene *scene, unsigned index, oit_component *comp)
 {
     memcpy(comp->colour, default_colour, sizeof comp->colour);
@@ -792,6 +795,12 @@ static void material_properties(const struct aiScene *scene, unsigned index, oit
     unsigned max = 1;
     if (aiGetMaterialFloatArray(mat, AI_MATKEY_OPACITY, &opacity, &max) == aiReturn_SUCCESS)
         comp->opacity = have_base ? fminf(comp->opacity, (float)opacity) : (float)opacity;
+    clamp_material(comp);
+}
+
+/* Colour channels and opacity in [0, 1]; what is not finite takes the default. */
+static void clamp_material(oit_component *comp)
+{
     for (int k = 0; k < 3; ++k)
         comp->colour[k] = isfinite(comp->colour[k])
                               ? fminf(fmaxf(comp->colour[k], 0.0f), 1.0f)
@@ -858,18 +867,18 @@ static uint64_t name_slot(const name_set *set, const oit_model *model, const cha
  * unique. The ids Assimp invents for unnamed glTF meshes and nodes
  * ("meshes[3]", "nodes[7]") count as no name; when several nodes instance
  * one mesh, a node name goes first (it tells the instances apart). */
-static void component_name(oit_model *model, name_set *set, uint32_t index,
-                           const struct aiMesh *mesh, const struct aiNode *node, bool instanced)
+static void component_name(oit_model *model, name_set *set, uint32_t index, const char *mesh_name,
+                           const char *node_name, bool instanced)
 {
     char base[OIT_NAME_SIZE];
-    bool mesh_named = mesh->mName.length > 0 && strncmp(mesh->mName.data, "meshes[", 7) != 0;
-    bool node_named = node->mName.length > 0 && strncmp(node->mName.data, "nodes[", 6) != 0;
+    bool mesh_named = mesh_name[0] && strncmp(mesh_name, "meshes[", 7) != 0;
+    bool node_named = node_name[0] && strncmp(node_name, "nodes[", 6) != 0;
     if (mesh_named && !(instanced && node_named))
-        copy_name(base, sizeof base, mesh->mName.data);
+        copy_name(base, sizeof base, mesh_name);
     else if (node_named)
-        copy_name(base, sizeof base, node->mName.data);
+        copy_name(base, sizeof base, node_name);
     else if (mesh_named)
-        copy_name(base, sizeof base, mesh->mName.data);
+        copy_name(base, sizeof base, mesh_name);
     else
         snprintf(base, sizeof base, "component %u", index);
     char *out = model->components[index].name;
@@ -948,7 +957,8 @@ static void fill_node(load_state *st, const struct aiNode *node, const struct ai
             continue;
         uint32_t c = model->component_count++;
         oit_component *comp = &model->components[c];
-        component_name(model, st->names, c, mesh, node, st->mesh_uses[m] > 1);
+        component_name(model, st->names, c, mesh->mName.length > 0 ? mesh->mName.data : "",
+                       node->mName.length > 0 ? node->mName.data : "", st->mesh_uses[m] > 1);
         material_properties(st->scene, mesh->mMaterialIndex, comp);
         comp->first_triangle = model->triangle_count;
 
@@ -1239,6 +1249,136 @@ static void name_failing_file(const char *path, unsigned flags,
              other_name, reason);
 }
 
+/* The one line for an import that failed: why is the importer's own reason. */
+static oit_status import_failure(const char *name, const char *why, long long file_size, oit_error *err)
+{
+    if (!why[0])
+        why = "unknown format or broken file";
+    /* With points and lines removed, Assimp reports a file without
+     * triangles in its own words; say it plainly. */
+    if (strstr(why, "No meshes remaining") || strstr(why, "contains no faces") ||
+        strstr(why, "contains no vertices") || strstr(why, "has no faces") ||
+        strstr(why, "mNumMeshes is 0"))
+        return oit_fail(err, OIT_E_INPUT, "%s: no triangles (Assimp: %s)", name, why);
+    /* Assimp sizes its arrays from the file's counts before reading the
+     * data; a count that no file of this size could hold ends in
+     * std::bad_alloc, which names nothing the user can act on. */
+    if (strstr(why, "bad_alloc")) {
+        if (file_size < ((long long)16 << 20))
+            return oit_fail(err, OIT_E_INPUT,
+                            "%s: the importer ran out of memory on this %lld-byte file: a count "
+                            "in it (vertices, faces, a face's corners) is larger than the file "
+                            "could hold, so the file is corrupt",
+                            name, file_size);
+        return oit_fail(err, OIT_E_RUNTIME,
+                        "%s: not enough memory to import this %lld-byte file", name, file_size);
+    }
+    return oit_fail(err, OIT_E_INPUT, "%s: cannot import: %s", name, why);
+}
+
+/* The end of every import: on success, the model finished and its warnings
+ * kept; on failure, nothing left. Frees warnings. */
+static oit_status finish_import(oit_model *out, const char *name, oit_status status, bool any_normals,
+                                import_warnings *warnings, oit_error *err)
+{
+    if (status != OIT_OK) {
+        oit_model_free(out);
+        free(warnings);
+        return status;
+    }
+    status = oit_model_finish(out, !any_normals, err);
+    if (status != OIT_OK) {
+        char reason[OIT_ERROR_MESSAGE_SIZE];
+        snprintf(reason, sizeof reason, "%s", err ? err->message : "");
+        oit_model_free(out);
+        free(warnings);
+        return oit_fail(err, status, "%s: %s", name, reason);
+    }
+    status = keep_warnings(out, name, warnings, err);
+    free(warnings);
+    if (status != OIT_OK)
+        oit_model_free(out);
+    return status;
+}
+
+static void obj_warning(void *user, const char *text)
+{
+    add_warning((import_warnings *)user, "the importer reports: %s", text);
+}
+
+/* OBJ files are read by model_obj.cpp (why: there), into the same model the
+ * Assimp path makes. */
+static oit_status load_obj(const char *path, const char *name, long long file_size, oit_model *out,
+                           oit_error *err)
+{
+    import_warnings *warnings = calloc(1, sizeof *warnings);
+    if (!warnings)
+        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
+    obj_data obj;
+    char why[OIT_ERROR_MESSAGE_SIZE] = "";
+    if (!obj_read(path, &obj, obj_warning, warnings, why, sizeof why)) {
+        free(warnings);
+        return import_failure(name, why, file_size, err);
+    }
+    check_line_end(path, warnings);
+    oit_status status = OIT_OK;
+    name_set names = {0};
+    uint32_t *vertex_owner = alloc_array(obj.vertex_count, sizeof *vertex_owner);
+    out->components = calloc_array(obj.mesh_count, sizeof *out->components);
+    bool any_normals = false;
+    if (!vertex_owner || !out->components || !name_set_init(&names, obj.mesh_count)) {
+        status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory for %llu parts", name,
+                          (unsigned long long)obj.mesh_count);
+        goto done;
+    }
+    for (uint64_t m = 0; m < obj.mesh_count; ++m) {
+        const obj_mesh *mesh = &obj.meshes[m];
+        oit_component *comp = &out->components[m];
+        component_name(out, &names, (uint32_t)m, mesh->name, mesh->object_name, false);
+        if (mesh->invented_material) {
+            memcpy(comp->colour, default_colour, sizeof comp->colour);
+            comp->opacity = 1.0f;
+        } else {
+            memcpy(comp->colour, mesh->colour, sizeof comp->colour);
+            comp->opacity = mesh->opacity;
+            clamp_material(comp);
+        }
+        comp->first_triangle = mesh->first_triangle;
+        comp->triangle_count = mesh->triangle_count;
+        for (uint32_t v = mesh->first_vertex; v < mesh->first_vertex + mesh->vertex_count; ++v)
+            vertex_owner[v] = (uint32_t)m;
+        any_normals |= mesh->has_normals;
+    }
+    out->component_count = (uint32_t)obj.mesh_count;
+    out->vertex_count = (uint32_t)obj.vertex_count;
+    out->triangle_count = (uint32_t)obj.triangle_count;
+    /* The Assimp path moved every vertex through its nodes' (here identity)
+     * matrices: the same arithmetic keeps the models bit for bit the same
+     * (it turns -0 into 0, and a NaN spreads to the whole vertex). */
+    for (uint64_t v = 0; v < obj.vertex_count; ++v) {
+        float *p = obj.positions + v * 3, *n = obj.normals + v * 3;
+        const float x = p[0], y = p[1], z = p[2];
+        p[0] = 1.0f * x + 0.0f * y + 0.0f * z + 0.0f;
+        p[1] = 0.0f * x + 1.0f * y + 0.0f * z + 0.0f;
+        p[2] = 0.0f * x + 0.0f * y + 1.0f * z + 0.0f;
+        const double nx = n[0], ny = n[1], nz = n[2];
+        n[0] = (float)(1.0 * nx + 0.0 * ny + 0.0 * nz);
+        n[1] = (float)(0.0 * nx + 1.0 * ny + 0.0 * nz);
+        n[2] = (float)(0.0 * nx + 0.0 * ny + 1.0 * nz);
+    }
+    out->positions = obj.positions;
+    out->normals = obj.normals;
+    out->indices = obj.indices;
+    obj.positions = obj.normals = NULL;
+    obj.indices = NULL;
+    status = join_identical_vertices(out, obj.texture_coordinates, vertex_owner, err);
+done:
+    obj_free(&obj);
+    free(vertex_owner);
+    name_set_free(&names);
+    return finish_import(out, name, status, any_normals, warnings, err);
+}
+
 oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -1249,6 +1389,9 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
     oit_status status = check_file(path, name, &file_size, err);
     if (status != OIT_OK)
         return status;
+    const char *extension = strrchr(name, '.');
+    if (extension && strcasecmp(extension, ".obj") == 0)
+        return load_obj(path, name, file_size, out, err);
 
     /* Post-processing, and why:
      * - Triangulate: polygons become triangles (the renderer draws triangles).
@@ -1295,29 +1438,7 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
     aiReleasePropertyStore(props);
     if (!scene) {
         free(warnings);
-        const char *why = why_text;
-        if (!why[0])
-            why = "unknown format or broken file";
-        /* With points and lines removed, Assimp reports a file without
-         * triangles in its own words; say it plainly. */
-        if (strstr(why, "No meshes remaining") || strstr(why, "contains no faces") ||
-            strstr(why, "contains no vertices") || strstr(why, "has no faces") ||
-            strstr(why, "mNumMeshes is 0"))
-            return oit_fail(err, OIT_E_INPUT, "%s: no triangles (Assimp: %s)", name, why);
-        /* Assimp sizes its arrays from the file's counts before reading the
-         * data; a count that no file of this size could hold ends in
-         * std::bad_alloc, which names nothing the user can act on. */
-        if (strstr(why, "bad_alloc")) {
-            if (file_size < ((long long)16 << 20))
-                return oit_fail(err, OIT_E_INPUT,
-                                "%s: the importer ran out of memory on this %lld-byte file: a count "
-                                "in it (vertices, faces, a face's corners) is larger than the file "
-                                "could hold, so the file is corrupt",
-                                name, file_size);
-            return oit_fail(err, OIT_E_RUNTIME,
-                            "%s: not enough memory to import this %lld-byte file", name, file_size);
-        }
-        return oit_fail(err, OIT_E_INPUT, "%s: cannot import: %s", name, why);
+        return import_failure(name, why_text, file_size, err);
     }
     check_line_end(path, warnings);
     if (!scene->mRootNode) {
@@ -1380,22 +1501,5 @@ done:
     free(st.vertex_owner);
     free(st.texture_coordinates);
     name_set_free(&names);
-    if (status != OIT_OK) {
-        oit_model_free(out);
-        free(warnings);
-        return status;
-    }
-    status = oit_model_finish(out, !st.any_normals, err);
-    if (status != OIT_OK) {
-        char reason[OIT_ERROR_MESSAGE_SIZE];
-        snprintf(reason, sizeof reason, "%s", err ? err->message : "");
-        oit_model_free(out);
-        free(warnings);
-        return oit_fail(err, status, "%s: %s", name, reason);
-    }
-    status = keep_warnings(out, name, warnings, err);
-    free(warnings);
-    if (status != OIT_OK)
-        oit_model_free(out);
-    return status;
+    return finish_import(out, name, status, st.any_normals, warnings, err);
 }

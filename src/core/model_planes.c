@@ -278,7 +278,7 @@ static void add_candidate(plane_search *s, uint32_t cluster, uint32_t searcher)
 
 static void collect(plane_search *s, uint32_t chain, uint32_t searcher)
 {
-    for (uint32_t e = chain; e; e = s->grid.entries[e - 1].next)
+    for (uint32_t e = chain; e && s->candidate_count < PLANE_CANDIDATES_MAX; e = s->grid.entries[e - 1].next)
         add_candidate(s, s->grid.entries[e - 1].cluster, searcher);
 }
 

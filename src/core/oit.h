@@ -463,9 +463,10 @@ typedef struct oit_stats {
     int64_t max_list;         /* longest per-pixel list; -1 where not applicable */
     int64_t layers;           /* layers peeled; -1 where not applicable */
     int64_t overflow_retries; /* frames rendered again with a larger pool; -1 n/a */
-    int64_t bands;            /* ll: bands of rows the frame was rendered in (1: whole; more
-                                 when its fragments exceed what one buffer binding addresses,
-                                 docs/algorithms.md, Limits); -1 n/a */
+    int64_t bands;            /* ll, ib: bands of rows the frame was rendered in (1: whole;
+                                 more when its fragments exceed what one buffer binding
+                                 addresses, ib: or the memory budget holds; docs/algorithms.md,
+                                 Limits); -1 n/a */
     bool truncated;           /* fragments were left out (dp, ddp: the --max-layers cap was
                                  reached with fragments left); false: the frame is whole */
 
@@ -508,7 +509,8 @@ const char *oit_moments_name(oit_moments moments);
 
 typedef struct oit_algorithm_config {
     const char *shader_dir;     /* root of the shader tree (contains common/) */
-    uint64_t max_memory_bytes;  /* budget for buffers that grow (fragment pools) */
+    uint64_t max_memory_bytes;  /* budget for buffers that grow (fragment pools; ib draws a
+                                   frame past it in bands of rows) */
     oit_ll_sort ll_sort;
     int max_layers;             /* dp, ddp: 0 (default) peels until no fragment is left;
                                    N in 1..OIT_PEEL_LAYER_CAP_MAX is an explicit cap, and
@@ -522,9 +524,9 @@ typedef struct oit_algorithm_config {
      * 32-bit counter's limits (OIT_MAX_FRAME_FRAGMENTS) are reached without
      * 2^32 fragments; such a frame fails or needs that much more pool */
     uint32_t fragment_counter_start;
-    /* tests only (0 normally): ll addresses at most this many fragments in one
-     * buffer, as if the GL's limit (GL_MAX_SHADER_STORAGE_BLOCK_SIZE) were that
-     * low, so frames are drawn in bands of rows without 8M fragments */
+    /* tests only (0 normally): ll and ib address at most this many fragments in
+     * one buffer, as if the GL's limit (GL_MAX_SHADER_STORAGE_BLOCK_SIZE) were
+     * that low, so frames are drawn in bands of rows without 8M fragments */
     uint64_t buffer_fragment_limit;
     /* kbuffer, hybrid, mlab: the layers kept per pixel (k), 1..OIT_APPROX_LAYERS_MAX;
        0: OIT_APPROX_LAYERS_DEFAULT. Others ignore it. */

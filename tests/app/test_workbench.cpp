@@ -192,7 +192,7 @@ private:
 private slots:
     void initTestCase()
     {
-        QStandardPaths::setTestModeEnabled(true); // QSettings of the tests stay apart
+        QStandardPaths::setTestModeEnabled(true); // the saved state of the tests stays apart
         work = qEnvironmentVariable("OIT_TEST_WORK", QDir::tempPath() + "/oit-workbench-test");
         QDir().mkpath(work);
         window = new MainWindow(MainWindow::Start::Fresh);
@@ -1147,19 +1147,20 @@ private slots:
         QVERIFY2(missing.isEmpty(), qPrintable(missing.join(", ")));
     }
 
-    // A 10,000-part model: the load shows progress, the parts list is a
-    // model/view that appears at once, and the GUI never waits long.
-    void ten_thousand_parts()
+    // A 100,000-part assembly (docs/cli.md, "Assemblies"): the load shows
+    // progress, the parts list is a model/view that appears at once, and the GUI
+    // never waits long, while loading, rendering and scrolling.
+    void hundred_thousand_parts()
     {
-        QString path = work + "/parts10k.obj";
+        QString path = work + "/parts100k.obj";
         {
             QFile file(path);
             QVERIFY(file.open(QIODevice::WriteOnly));
             QTextStream out(&file);
             int v = 1;
-            for (int part = 0; part < 10000; ++part) {
-                float x = float(part % 100), y = float(part / 100);
-                out << "o part_" << QString("%1").arg(part, 5, 10, QChar('0')) << "\n";
+            for (int part = 0; part < 100000; ++part) {
+                float x = float(part % 316), y = float(part / 316);
+                out << "o part_" << QString("%1").arg(part, 6, 10, QChar('0')) << "\n";
                 out << "v " << x << " " << y << " 0\nv " << x + 0.8f << " " << y << " 0\nv " << x << " " << y + 0.8f
                     << " 0.5\n";
                 out << "f " << v << " " << v + 1 << " " << v + 2 << "\n";
@@ -1179,8 +1180,8 @@ private slots:
             QTest::qWait(5);
         }
         QCOMPARE(loaded.count(), 1);
-        QCOMPARE(window->model()->component_count, 10000u);
-        QCOMPARE(window->parts_panel()->view()->model()->rowCount(), 10000);
+        QCOMPARE(window->model()->component_count, 100000u);
+        QCOMPARE(window->parts_panel()->view()->model()->rowCount(), 100000);
         // first frames and scrolling the list, while the worker renders
         window->show_tab("parts");
         for (int step = 0; step < 20; ++step) {
@@ -1191,11 +1192,19 @@ private slots:
             QTest::qWait(20);
         }
         frame();
-        qInfo("10,000 parts: %d posted events, the longest wait %.1f ms", probe.handled, probe.worst_ms);
-        QVERIFY2(probe.worst_ms < 100.0, qPrintable(QString("an event waited %1 ms").arg(probe.worst_ms)));
+        qInfo("100,000 parts: %d posted events, the longest wait %.1f ms", probe.handled, probe.worst_ms);
+        // The load's one long event (the model installed, 100,000 rows made, the
+        // settings written) takes 20-40 ms here; AddressSanitizer's checks make it
+        // 3-4 times slower (75-120 ms measured), so that build gets 3 times the budget.
+#if defined(__SANITIZE_ADDRESS__)
+        const double budget_ms = 300.0;
+#else
+        const double budget_ms = 100.0;
+#endif
+        QVERIFY2(probe.worst_ms < budget_ms, qPrintable(QString("an event waited %1 ms").arg(probe.worst_ms)));
         // a part past the GPU's per-part limit is picked and selected as any other
-        window->parts_panel()->select_part(9999);
-        QCOMPARE(window->parts_panel()->selected_parts(), std::vector<int>{9999});
+        window->parts_panel()->select_part(99999);
+        QCOMPARE(window->parts_panel()->selected_parts(), std::vector<int>{99999});
         window->load_model(MainWindow::default_model_path());
         QVERIFY(loaded.wait(60000));
         window->show_tab("algorithm");
