@@ -205,15 +205,19 @@ static void box_of(const plane_grid *g, const float *a, const float *b, const fl
 {
     double extent = 0.0;
     for (int k = 0; k < 3; ++k) {
-        double lo = fmin(fmin(a[k], b[k]), c[k]) - tolerance, hi = fmax(fmax(a[k], b[k]), c[k]) + tolerance;
+        float low = a[k] < b[k] ? a[k] : b[k], high = a[k] < b[k] ? b[k] : a[k];
+        low = c[k] < low ? c[k] : low;
+        high = c[k] > high ? c[k] : high;
+        double lo = (double)low - tolerance, hi = (double)high + tolerance;
         box->centre[k] = 0.5 * (lo + hi);
-        extent = fmax(extent, hi - lo);
+        extent = hi - lo > extent ? hi - lo : extent;
     }
-    /* the smallest level whose cell is at least twice the extent */
-    int level = 0;
-    while (level < PLANE_GRID_LEVELS - 1 && ldexp(g->cell0, level) < 2.0 * extent)
-        ++level;
-    box->level = level;
+    /* the smallest level whose cell is at least twice the extent: cell0 x 2^level >= r */
+    double r = 2.0 * extent / g->cell0;
+    int exponent = 0;
+    double fraction = frexp(r, &exponent); /* r = fraction x 2^exponent, fraction in [0.5, 1) */
+    int level = r <= 1.0 ? 0 : fraction == 0.5 ? exponent - 1 : exponent;
+    box->level = level < PLANE_GRID_LEVELS - 1 ? level : PLANE_GRID_LEVELS - 1;
 }
 
 static void cell_key(const plane_grid *g, const double centre[3], int level, int32_t key[4])
@@ -458,9 +462,14 @@ static double plane_slack(const plane_search *s, const float *a, const float *b,
  * holds it of those its searches find (merging the others that hold it
  * where they can), or starts one with its seed plane: its own, or with
  * groups, its group's (5 doubles per group: the plane and the group's
- * area). */
+ * area). A triangle first tries the cluster it most likely joins, and
+ * searches only if that one does not hold it: the first pass the cluster
+ * of the triangle before it (the order keeps faces together), the second
+ * the cluster its group's first triangle joined, which searched. So every
+ * first-pass group searches at least once in the second pass, and groups
+ * of one plane meet there. */
 static bool cluster_pass(plane_search *s, const triangle_order *order, const uint32_t *group, const double *fitted,
-                         const triangle_box *boxes, uint32_t *cluster_of)
+                         const triangle_box *boxes, uint32_t *group_cluster, uint32_t *cluster_of)
 {
     const uint32_t n = s->model->triangle_count;
     s->cluster_count = 0;
@@ -468,11 +477,19 @@ static bool cluster_pass(plane_search *s, const triangle_order *order, const uin
     s->grid.entry_count = 0;
     memset(s->grid.slots, 0, (size_t)(s->grid.slot_mask + 1) * sizeof *s->grid.slots);
     memset(s->heads, 0, (size_t)(s->head_mask + 1) * sizeof *s->heads);
+    uint32_t previous = UINT32_MAX;
     for (uint32_t i = 0; i < n; ++i) {
         uint32_t t = order[i].triangle;
-        const double *plane = group ? fitted + (size_t)group[t] * 5 : s->own_planes + (size_t)t * 4;
+        const double *plane = group && order[i].area2 > 0.0 ? fitted + (size_t)group[t] * 5
+                                                            : s->own_planes + (size_t)t * 4;
         uint32_t chosen = UINT32_MAX;
-        if (order[i].area2 > 0.0) {
+        uint32_t likely = group ? group_cluster[group[t]] : previous;
+        if (likely != UINT32_MAX) {
+            likely = find_root(s->clusters, likely);
+            if (order[i].area2 > 0.0 && triangle_on_plane(s, &s->clusters[likely], t))
+                chosen = likely;
+        }
+        if (chosen == UINT32_MAX && order[i].area2 > 0.0) {
             s->candidate_count = 0;
             if (s->offset_slack[t] >= 0.0)
                 search_by_plane(s, t);
@@ -510,6 +527,9 @@ static bool cluster_pass(plane_search *s, const triangle_order *order, const uin
         }
         add_member(s, chosen, t);
         cluster_of[t] = chosen;
+        previous = chosen;
+        if (group && group_cluster[group[t]] == UINT32_MAX)
+            group_cluster[group[t]] = chosen;
         if (order[i].area2 > 0.0 && s->use_grid && !register_triangle(s, &boxes[t], chosen))
             return false;
     }
@@ -597,6 +617,8 @@ oit_status oit_model_find_planes(oit_model *model, oit_error *err)
     triangle_box *boxes = malloc((size_t)n * sizeof *boxes);
     uint32_t *group = malloc((size_t)n * sizeof *group);
     double *fitted = NULL;
+    uint32_t *group_cluster = NULL;
+    triangle_order *group_order = NULL;
     s.own_planes = own_planes;
     s.offset_slack = malloc((size_t)n * sizeof *s.offset_slack);
     s.clusters = malloc((size_t)n * sizeof *s.clusters);
@@ -654,23 +676,43 @@ oit_status oit_model_find_planes(oit_model *model, oit_error *err)
         }
     }
     qsort(order, n, sizeof *order, larger_area_first);
-    if (!cluster_pass(&s, order, NULL, NULL, boxes, cluster_of))
+    if (!cluster_pass(&s, order, NULL, NULL, boxes, NULL, cluster_of))
         goto out_of_memory;
 
-    /* the second pass's seeds and order: the first pass's clusters, fitted */
-    fitted = malloc((size_t)(s.cluster_count ? s.cluster_count : 1) * 5 * sizeof *fitted);
-    if (!fitted)
+    /* the second pass's seeds and order: the first pass's clusters (groups),
+     * fitted, the largest first, each group's triangles in the first pass's
+     * order (degenerate triangles last, as before) */
+    uint32_t groups = s.cluster_count;
+    fitted = malloc((size_t)(groups ? groups : 1) * 5 * sizeof *fitted);
+    group_cluster = malloc((size_t)(groups ? groups : 1) * sizeof *group_cluster);
+    group_order = malloc((size_t)(groups ? groups : 1) * sizeof *group_order);
+    if (!fitted || !group_cluster || !group_order)
         goto out_of_memory;
-    for (uint32_t c = 0; c < s.cluster_count; ++c)
-        if (s.clusters[c].parent == c)
-            fitted[(size_t)c * 5 + 4] = refit_plane(&s, c, fitted + (size_t)c * 5);
-    for (uint32_t i = 0; i < n; ++i) {
-        uint32_t t = order[i].triangle;
-        group[t] = find_root(s.clusters, cluster_of[t]);
-        order[i].group_area2 = order[i].area2 > 0.0 ? fitted[(size_t)group[t] * 5 + 4] : 0.0;
+    uint32_t root_count = 0, placed = 0;
+    for (uint32_t c = 0; c < groups; ++c) {
+        group_cluster[c] = UINT32_MAX;
+        if (s.clusters[c].parent != c || s.clusters[c].seed_area <= 0.0)
+            continue;
+        fitted[(size_t)c * 5 + 4] = refit_plane(&s, c, fitted + (size_t)c * 5);
+        group_order[root_count++] = (triangle_order){fitted[(size_t)c * 5 + 4], 0.0, c};
     }
-    qsort(order, n, sizeof *order, larger_area_first);
-    if (!cluster_pass(&s, order, group, fitted, boxes, cluster_of))
+    qsort(group_order, root_count, sizeof *group_order, larger_area_first);
+    for (uint32_t i = 0; i < n; ++i)
+        group[order[i].triangle] = find_root(s.clusters, cluster_of[order[i].triangle]);
+    triangle_order *second = malloc((size_t)n * sizeof *second);
+    if (!second)
+        goto out_of_memory;
+    for (uint32_t g = 0; g < root_count; ++g) {
+        uint32_t c = group_order[g].triangle;
+        for (uint32_t t = s.clusters[c].first; t != UINT32_MAX; t = s.member_next[t])
+            second[placed++] = (triangle_order){group_order[g].group_area2, 1.0, t};
+    }
+    for (uint32_t i = 0; i < n; ++i) /* the degenerate ones keep a cluster each */
+        if (!(order[i].area2 > 0.0))
+            second[placed++] = order[i];
+    free(order);
+    order = second;
+    if (!cluster_pass(&s, order, group, fitted, boxes, group_cluster, cluster_of))
         goto out_of_memory;
 
     /* planes numbered in the order their clusters were made */
@@ -701,6 +743,8 @@ done:
     free(boxes);
     free(group);
     free(fitted);
+    free(group_cluster);
+    free(group_order);
     free(s.offset_slack);
     free(s.clusters);
     free(s.member_next);
