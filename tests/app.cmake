@@ -12,7 +12,7 @@ if(NOT XVFB_RUN)
 endif()
 set(APP_WORK ${CMAKE_CURRENT_BINARY_DIR}/work/app)
 set(APP_XVFB ${XVFB_RUN} -a -s "-screen 0 1280x1024x24")
-# QSettings and Qt's runtime files stay inside the build tree; Xvfb has no
+# The saved state and Qt's runtime files stay inside the build tree; Xvfb has no
 # D-Bus session bus, and libdbus leaks what Qt's attempt to reach one allocates
 set(APP_ENVIRONMENT
   "DBUS_SESSION_BUS_ADDRESS=disabled:"
@@ -28,8 +28,13 @@ add_test(NAME app_workbench COMMAND ${APP_XVFB} $<TARGET_FILE:test_workbench>)
 add_test(NAME app_command_line
   COMMAND ${APP_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/app/command_line.sh $<TARGET_FILE:oit-workbench>
           ${APP_WORK}/command_line)
-set_tests_properties(app_workbench app_command_line PROPERTIES
+# The saved state, presets and exports on FIFOs, devices, bad and read-only
+# files, and the window without shaders (tests/app/test_saved_state.cpp).
+add_test(NAME app_saved_state COMMAND ${APP_XVFB} $<TARGET_FILE:test_saved_state>)
+set_tests_properties(app_workbench app_command_line app_saved_state PROPERTIES
   ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 900)
+# about 1 s: a regression that waits on a FIFO should fail in minutes, not 15
+set_tests_properties(app_saved_state PROPERTIES TIMEOUT 180)
 # app_workbench measures how long the GUI thread keeps posted events waiting
 # (under 100 ms): alone on the machine, not beside another test's renders
 set_tests_properties(app_workbench PROPERTIES RUN_SERIAL TRUE)
@@ -38,3 +43,13 @@ set_tests_properties(app_workbench PROPERTIES RUN_SERIAL TRUE)
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/parts_panel.cmake)
 # The window manager's ping answered while loading and rendering (tests/app/wm_ping.cmake).
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/wm_ping.cmake)
+
+# The start on a broken installation or saved state (tests/app/startup.sh):
+# no usable shader folder (exit 3, or a dialog), a FIFO for the settings file
+# or the screenshot. The dialog and the window are found with the ping probe.
+if(TARGET wm_ping)
+  add_test(NAME app_startup
+    COMMAND ${APP_XVFB} bash ${CMAKE_CURRENT_SOURCE_DIR}/app/startup.sh $<TARGET_FILE:oit-workbench>
+            $<TARGET_FILE:wm_ping> ${PROJECT_SOURCE_DIR}/shaders ${APP_WORK}/startup)
+  set_tests_properties(app_startup PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 300)
+endif()

@@ -3,18 +3,19 @@
 //   oit-workbench [MODEL] [--algorithm NAME] [--preset FILE] [--size WxH]
 //                 [--screenshot FILE [--screenshot-after MS]] [--help]
 #include <QApplication>
+#include <QBuffer>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
 #include <QFileInfo>
 #include <QRegularExpression>
 #include <QScreen>
-#include <QSettings>
 #include <QTimer>
 
 #include <cstdio>
 #include <cstring>
 #include <memory>
 
+#include "file_io.h"
 #include "main_window.h"
 
 namespace {
@@ -101,13 +102,25 @@ int main(int argc, char **argv)
             return fail("--screenshot-after '" + parser.value(screenshot_after) +
                         "' needs --screenshot and 0..3600000 milliseconds");
     }
-    bool restore = !automated && !parser.isSet(fresh);
-    if (model_path.isEmpty() && restore)
-        model_path = QSettings().value("last_model").toString();
+    QString refused;
+    if (automated && !check_output_path(parser.value(screenshot), "--screenshot", refused))
+        return fail(refused); // a FIFO would wait for a reader; a device is not replaced
+
+    // a screenshot neither depends on the saved state nor changes it
+    MainWindow window(automated              ? MainWindow::Start::Untouched
+                      : parser.isSet(fresh) ? MainWindow::Start::Fresh
+                                            : MainWindow::Start::Restore);
+    if (!window.startup_error().isEmpty()) {
+        // no shaders: exit 3 with the command line's one line, or its dialog
+        if (!automated)
+            return MainWindow::refuse_to_start(window.startup_error());
+        fail(window.startup_error());
+        return 3;
+    }
+    if (model_path.isEmpty())
+        model_path = window.saved_last_model();
     if (model_path.isEmpty() || (!parser.positionalArguments().isEmpty() ? false : !QFileInfo::exists(model_path)))
         model_path = MainWindow::default_model_path();
-
-    MainWindow window(restore);
     if (parser.isSet(preset)) {
         QString error;
         if (!window.load_preset(parser.value(preset), error))
@@ -154,8 +167,13 @@ int main(int argc, char **argv)
                 QCoreApplication::processEvents();
                 QImage image = window.grab().toImage();
                 FrameResultPointer last = window.view()->last_result();
-                if (image.isNull() || !image.save(out, "PNG")) {
-                    exit_code = fail("cannot write the screenshot " + out);
+                QByteArray png;
+                QBuffer buffer(&png);
+                QString not_written;
+                if (image.isNull() || !buffer.open(QIODevice::WriteOnly) || !image.save(&buffer, "PNG")) {
+                    exit_code = fail("cannot encode the screenshot " + out);
+                } else if (!write_output_file(out, "--screenshot", png, not_written)) {
+                    exit_code = fail(not_written);
                 } else if (!window.last_error().isEmpty()) {
                     // the window shows the failure; the caller learns it too
                     fail("the frame failed: " + window.last_error());

@@ -3,6 +3,7 @@
 #include "oit_shared.h" // OIT_APPROX_LAYERS_DEFAULT, _MAX
 #include "compare_panel.h"
 #include "error_legend.h"
+#include "file_io.h"
 #include "parts_panel.h"
 #include "pick.h"
 
@@ -42,9 +43,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QRadioButton>
-#include <QSaveFile>
 #include <QScrollArea>
-#include <QSettings>
 #include <QSlider>
 #include <QSpinBox>
 #include <QStandardItemModel>
@@ -56,6 +55,7 @@
 #include <QtConcurrent/QtConcurrent>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 struct LoadResult {
@@ -85,24 +85,9 @@ QAction *menu_action(QMenu *menu, const QString &text, const QKeySequence &key, 
 QString read_text_file(const QString &path, QString &error)
 {
     // a regular file only: a FIFO or /dev/zero would block or never end
-    // (oit_open_regular_file opens without blocking and checks with fstat)
-    FILE *handle = nullptr;
-    oit_error err{};
-    if (oit_open_regular_file(QFile::encodeName(path).constData(), nullptr, &handle, &err) != OIT_OK) {
-        error = QString::fromUtf8(err.message);
+    QByteArray bytes;
+    if (!read_regular_file(path, nullptr, bytes, error))
         return QString();
-    }
-    QFile file;
-    if (!file.open(handle, QIODevice::ReadOnly, QFileDevice::AutoCloseHandle)) {
-        fclose(handle);
-        error = path + ": " + file.errorString();
-        return QString();
-    }
-    QByteArray bytes = file.readAll();
-    if (file.error() != QFileDevice::NoError) {
-        error = path + ": " + file.errorString();
-        return QString();
-    }
     return QString::fromUtf8(bytes);
 }
 
@@ -125,7 +110,7 @@ QString colour_text(const float c[3])
 
 // ------------------------------------------------------------ construction
 
-MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent)
+MainWindow::MainWindow(Start start, QWidget *parent) : QMainWindow(parent), start_(start)
 {
     setWindowTitle("oit-workbench");
     setAcceptDrops(true);
@@ -202,12 +187,15 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
     });
 
     // which algorithm can express which option: measured by the worker when idle
-    connect(view_->worker(), &RenderWorker::capabilities_ready, this, [this](const CapabilityTable &table) {
-        capabilities_ = table;
-        apply_capabilities();
-    });
+    // (no worker without shaders: the window is not shown then, see startup_error)
+    if (RenderWorker *worker = view_->worker()) {
+        connect(worker, &RenderWorker::capabilities_ready, this, [this](const CapabilityTable &table) {
+            capabilities_ = table;
+            apply_capabilities();
+        });
+        worker->request_capabilities();
+    }
     sync_actions_.push_back([this] { apply_capabilities(); });
-    view_->worker()->request_capabilities();
     coalesce_timer_ = new QTimer(this);
     coalesce_timer_->setSingleShot(true);
     coalesce_timer_->setInterval(kUndoCoalesceMs);
@@ -220,16 +208,27 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
         view_menu->addAction(dock->toggleViewAction());
 
     resize(1200, 760);
-    QSettings settings;
-    recent_ = settings.value("recent").toStringList();
+    // a window that cannot render is not shown: nothing to read or save
+    if (!startup_error().isEmpty())
+        start_ = Start::Untouched;
+    if (start_ != Start::Untouched) {
+        // checked and read without blocking; a file that cannot be used is said here
+        QString problem = settings_file_.load(saved_);
+        if (!problem.isEmpty())
+            log_message("warning", problem);
+    }
+    for (const std::string &path : saved_.recent)
+        recent_ << QString::fromStdString(path);
     rebuild_recent_menu();
-    if (restore_state) {
+    if (start_ == Start::Restore) {
         // the restored state may be slow (a deep model with dp): its first full
         // frame gets a budget, past which the coarse frame stays and the user decides
         view_->set_full_frame_budget(3000.0);
-        restoreGeometry(settings.value("geometry").toByteArray());
-        restoreState(settings.value("window").toByteArray());
-        pending_preset_ = settings.value("settings").toString().toStdString();
+        QByteArray geometry = QByteArray::fromBase64(QByteArray::fromStdString(saved_.geometry));
+        QByteArray layout = QByteArray::fromBase64(QByteArray::fromStdString(saved_.window));
+        if ((!geometry.isEmpty() && !restoreGeometry(geometry)) || (!layout.isEmpty() && !restoreState(layout)))
+            log_message("warning", "the saved window layout was not restored (Qt did not take it)");
+        pending_preset_ = saved_.settings;
         pending_preset_name_ = "saved settings";
         if (!pending_preset_.empty()) {
             Camera ignored = view_->camera;
@@ -247,9 +246,13 @@ MainWindow::MainWindow(bool restore_state, QWidget *parent) : QMainWindow(parent
 
 MainWindow::~MainWindow()
 {
-    if (loader_->isRunning()) {
+    if (load_unclaimed_) {
+        // a load that load_finished never took (still running, or its signal
+        // not delivered yet): its model is freed here
         loader_->waitForFinished();
-        delete loader_->result();
+        std::unique_ptr<LoadResult> result(loader_->result());
+        if (result->ok)
+            oit_model_free(&result->model);
     }
     delete view_; // its GL resources go before the model they came from
     view_ = nullptr;
@@ -257,14 +260,51 @@ MainWindow::~MainWindow()
 
 void MainWindow::closeEvent(QCloseEvent *event)
 {
-    QSettings settings;
-    settings.setValue("geometry", saveGeometry());
-    settings.setValue("window", saveState());
-    settings.setValue("recent", recent_);
-    if (!model_path_.isEmpty())
-        settings.setValue("last_model", model_path_);
-    settings.setValue("settings", QString::fromStdString(preset_to_json(view_->settings, view_->camera, model_.get())));
+    save_state(true);
     QMainWindow::closeEvent(event);
+}
+
+void MainWindow::save_state(bool closing)
+{
+    if (start_ == Start::Untouched)
+        return;
+    saved_.recent.clear();
+    for (const QString &path : recent_)
+        saved_.recent.push_back(path.toStdString());
+    if (!model_path_.isEmpty())
+        saved_.last_model = model_path_.toStdString();
+    if (closing) {
+        saved_.geometry = saveGeometry().toBase64().toStdString();
+        saved_.window = saveState().toBase64().toStdString();
+        saved_.settings = preset_to_json(view_->settings, view_->camera, model_.get());
+    }
+    QString error;
+    if (settings_file_.save(saved_, error)) {
+        last_save_error_.clear();
+        return;
+    }
+    if (error != last_save_error_)
+        log_message("warning", "settings not saved: " + error);
+    if (closing)
+        std::fprintf(stderr, "oit-workbench: warning: settings not saved: %s\n", error.toLocal8Bit().constData());
+    last_save_error_ = error;
+}
+
+QString MainWindow::saved_last_model() const
+{
+    return start_ == Start::Restore ? QString::fromStdString(saved_.last_model) : QString();
+}
+
+int MainWindow::refuse_to_start(const QString &problem)
+{
+    // the command line's one line, and where the shaders are looked for
+    QMessageBox box(QMessageBox::Critical, "oit-workbench cannot start", problem, QMessageBox::Ok);
+    box.setObjectName("cannot_start");
+    box.setInformativeText("The workbench renders with the shaders of its installation "
+                           "(PREFIX/share/oit-workbench/shaders, or the source tree's shaders/ "
+                           "for a build); OIT_SHADER_DIR names another folder.");
+    box.exec();
+    return 3;
 }
 
 void MainWindow::render_now()
@@ -587,14 +627,13 @@ void MainWindow::rebuild_recent_menu()
     recent_menu_->setEnabled(!recent_.isEmpty());
 }
 
-void MainWindow::add_recent(const QString &path, QSettings &settings)
+void MainWindow::add_recent(const QString &path)
 {
     recent_.removeAll(path);
     recent_.prepend(path);
     while (recent_.size() > 8)
         recent_.removeLast();
     rebuild_recent_menu();
-    settings.setValue("recent", recent_);
 }
 
 void MainWindow::show_error(const QString &title, const QString &message)
@@ -1574,6 +1613,7 @@ void MainWindow::load_model(const QString &path)
     status_label_->setText("loading " + loading_path_ + "…");
     log_message("load", "reading " + loading_path_);
     QString target = loading_path_;
+    load_unclaimed_ = true;
     loader_->setFuture(QtConcurrent::run([target] {
         auto *result = new LoadResult;
         result->path = target;
@@ -1591,6 +1631,7 @@ void MainWindow::load_finished()
     progress_->hide();
     progress_label_->hide();
     std::unique_ptr<LoadResult> result(loader_->result());
+    load_unclaimed_ = false;
     if (!result->ok) {
         show_error("Cannot open model", result->error);
         emit model_failed(result->error);
@@ -1617,19 +1658,19 @@ void MainWindow::load_finished()
             // a camera saved with another model would show nothing useful
             if (has_camera && pending_preset_name_ != "saved settings")
                 view_->camera = camera;
+        } else {
+            log_message("warning", QString("the parts of %1 were not applied: %2")
+                                       .arg(pending_preset_name_, QString::fromStdString(preset_error)));
         }
         pending_preset_.clear();
     }
     saved_cameras_.clear();
     saved_views_->clear();
     setWindowTitle(QString("%1 — oit-workbench").arg(QFileInfo(model_path_).fileName()));
-    {
-        // one write of the settings file: each is synced to disk on this
-        // thread, up to 25 ms on a busy disk (measured with strace)
-        QSettings settings;
-        add_recent(model_path_, settings);
-        settings.setValue("last_model", model_path_);
-    }
+    add_recent(model_path_);
+    // one write of the settings file: each is synced to disk on this thread,
+    // up to 25 ms on a busy disk (measured with strace)
+    save_state(false);
     rebuild_parts();
     sync_panel_from_settings();
     reset_settings_history(); // the parts are another model's now
@@ -1692,9 +1733,11 @@ void MainWindow::dropEvent(QDropEvent *event)
 
 bool MainWindow::load_preset(const QString &path, QString &error)
 {
-    QString text = read_text_file(path, error);
-    if (!error.isEmpty())
+    // a regular file only: a FIFO or /dev/zero would block or never end
+    QByteArray bytes;
+    if (!read_regular_file(path, nullptr, bytes, error))
         return false;
+    QString text = QString::fromUtf8(bytes);
     RenderSettings s = view_->settings;
     Camera camera = view_->camera;
     bool has_camera = false;
@@ -1717,24 +1760,19 @@ bool MainWindow::load_preset(const QString &path, QString &error)
 
 bool MainWindow::save_preset(const QString &path, QString &error)
 {
-    // written beside the file and renamed over it once whole (QSaveFile): a
-    // failed write (a full disk) leaves the previous preset as it was
-    QSaveFile file(path);
-    if (!file.open(QIODevice::WriteOnly)) {
-        error = path + ": cannot write: " + file.errorString();
-        return false;
-    }
+    // written beside the file and renamed over it once whole: a failed write
+    // (a full disk) leaves the previous preset as it was; only a regular file
+    // is replaced (a link to a device or a FIFO is refused)
     QByteArray bytes = QByteArray::fromStdString(preset_to_json(view_->settings, view_->camera, model_.get()));
-    if (file.write(bytes) != bytes.size() || !file.commit()) {
-        error = path + ": cannot write: " + file.errorString();
-        file.cancelWriting(); // the temporary file goes; nothing is renamed
-        return false;
-    }
-    return true;
+    return write_output_file(path, nullptr, bytes, error);
 }
 
 bool MainWindow::export_png(const QString &path, int width, int height, QString &error)
 {
+    // checked before the frame: the core's writer would write into a FIFO (and
+    // wait for a reader, on the GUI thread) or a device rather than replace it
+    if (!check_output_path(path, nullptr, error))
+        return false;
     oit_image image{};
     oit_frame_settings frame;
     std::string message;
@@ -1744,10 +1782,12 @@ bool MainWindow::export_png(const QString &path, int width, int height, QString 
     }
     oit_error err{};
     QByteArray bytes = QFile::encodeName(path);
-    bool ok = oit_png_write(bytes.constData(), &image, &err) == OIT_OK;
+    QString refused;
+    bool ok = check_output_path(path, nullptr, refused) && // again: the frame took a while
+              oit_png_write(bytes.constData(), &image, &err) == OIT_OK;
     oit_image_free(&image);
     if (!ok)
-        error = QString::fromUtf8(err.message);
+        error = refused.isEmpty() ? QString::fromUtf8(err.message) : refused;
     else
         log_message("export", QString("wrote %1 (%2x%3)").arg(path).arg(width).arg(height));
     return ok;

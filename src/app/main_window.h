@@ -1,6 +1,7 @@
 // main_window.h: the workbench window: the render view, the settings panel
 // (Algorithm, Opacity, Parts, Camera, Views, Stats), menus, model loading off
-// the GUI thread, Export PNG, "Copy as command", presets and QSettings.
+// the GUI thread, Export PNG, "Copy as command", presets and the saved state
+// (saved_state.h).
 #pragma once
 
 #include <QFutureWatcher>
@@ -15,6 +16,7 @@
 
 #include "oit.h"
 #include "render_view.h"
+#include "saved_state.h"
 #include "settings.h"
 
 class QCheckBox;
@@ -46,14 +48,27 @@ struct ModelDeleter {
 // while the window already holds the next one
 using ModelPointer = std::shared_ptr<const oit_model>;
 
-class QSettings;
-
 class MainWindow : public QMainWindow {
     Q_OBJECT
 public:
-    // restore_state: reload the last model and settings from QSettings
-    explicit MainWindow(bool restore_state = true, QWidget *parent = nullptr);
+    // What the window does with the saved state (saved_state.h).
+    enum class Start {
+        Restore,  // the last settings, window layout and recent models; saved again
+        Fresh,    // --fresh: the defaults, with the recent models; saved again
+        Untouched // --screenshot: the saved state is neither read nor written
+    };
+    explicit MainWindow(Start start = Start::Restore, QWidget *parent = nullptr);
     ~MainWindow() override;
+
+    // Why the workbench cannot run (no usable shader folder: the core's one
+    // line, as `oit` says it); empty when it can. The window then renders
+    // nothing and must not be shown: main() says it and exits with status 3.
+    QString startup_error() const { return QString::fromStdString(view_->startup_error()); }
+    // Say startup_error() in a modal dialog; returns the exit status, 3.
+    static int refuse_to_start(const QString &problem);
+    // The last model of the saved state ("" if none, or not restored).
+    QString saved_last_model() const;
+    const SettingsFile &settings_file() const { return settings_file_; }
 
     RenderView *view() const { return view_; }
     const oit_model *model() const { return model_.get(); }
@@ -134,7 +149,11 @@ private:
     void rebuild_parts();
     void update_stats();
     void load_finished();
-    void add_recent(const QString &path, QSettings &settings);
+    void add_recent(const QString &path);
+    // Write the saved state (the recent models and the last model; closing,
+    // also the settings and the window's layout); a failure goes to the
+    // Messages once (and to stderr when closing, the Messages going with the window).
+    void save_state(bool closing);
     void rebuild_recent_menu();
     void show_error(const QString &title, const QString &message);
     void open_model_dialog();
@@ -154,6 +173,7 @@ private:
     QStringList model_warnings_;
     QFutureWatcher<LoadResult *> *loader_ = nullptr;
     QString loading_path_;
+    bool load_unclaimed_ = false; // a load's result that load_finished has not taken
     std::string pending_preset_; // applied again once the next model is loaded
     QString pending_preset_name_;
 
@@ -168,6 +188,10 @@ private:
     bool last_truncated_ = false;
     QMenu *recent_menu_ = nullptr;
     QStringList recent_;
+    SettingsFile settings_file_;
+    SavedStateText saved_; // as read, updated by each save
+    Start start_ = Start::Restore;
+    QString last_save_error_; // said once
     bool syncing_ = false; // true while the panel is being set from the settings
     std::vector<std::function<void()>> sync_actions_; // refresh each control from the settings
 

@@ -79,7 +79,7 @@ RenderView::RenderView(QWidget *parent) : QWidget(parent)
     oit_error err{};
     std::string argv0 = QCoreApplication::applicationFilePath().toStdString();
     if (oit_find_shader_dir(argv0.c_str(), dir, sizeof dir, &err) != OIT_OK) {
-        gl_error_ = err.message;
+        startup_error_ = err.message; // no worker: the window refuses to start (main.cpp)
         return;
     }
     shader_dir_ = dir;
@@ -328,7 +328,7 @@ bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_f
         return false;
     }
     if (!worker_) {
-        error = "no OpenGL context: " + gl_error_;
+        error = startup_error_.empty() ? "no OpenGL context: " + gl_error_ : startup_error_;
         return false;
     }
     if (export_id_) {
@@ -418,7 +418,9 @@ void RenderView::paintEvent(QPaintEvent *)
         }
     }
     QString text;
-    if (!gl_error_.empty() && !gl_ready_)
+    if (!startup_error_.empty())
+        text = QString::fromStdString(startup_error_);
+    else if (!gl_error_.empty() && !gl_ready_)
         text = "no OpenGL context: " + QString::fromStdString(gl_error_);
     else if (last_result_ && last_result_->status != OIT_OK && last_result_->id == latest_id_)
         text = "render failed: " + last_result_->error;

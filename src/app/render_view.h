@@ -80,6 +80,9 @@ public:
     const std::string &shader_dir() const { return shader_dir_; }
     bool gl_ready() const { return gl_ready_; }
     const std::string &gl_error() const { return gl_error_; }
+    // Why the view cannot render at all (no usable shader folder: the core's
+    // one line); empty when the render worker runs. worker() is null then.
+    const std::string &startup_error() const { return startup_error_; }
     RenderWorker *worker() const { return worker_.get(); }
     // Nothing waits or runs and the full frame of the current settings is shown.
     bool settled() const;
@@ -134,7 +137,7 @@ private:
     std::shared_ptr<const oit_model> model_;
     std::unique_ptr<RenderWorker> worker_;
     bool gl_ready_ = false;
-    std::string gl_error_, renderer_, shader_dir_;
+    std::string gl_error_, renderer_, shader_dir_, startup_error_;
 
     uint64_t latest_id_ = 0;      // the newest view job submitted
     uint64_t latest_coarse_id_ = 0;

@@ -470,17 +470,13 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     return std::string(buffer.GetString()) + "\n";
 }
 
-bool preset_from_json(const std::string &file, const std::string &text, RenderSettings &out, Camera &camera,
-                      bool &has_camera, const oit_model *model, std::string &error)
+namespace {
+
+// A preset's object d, parsed from text (whose lines the messages name).
+bool preset_from_object(const std::string &file, const std::string &text, const Value &d, RenderSettings &out,
+                        Camera &camera, bool &has_camera, const oit_model *model, std::string &error)
 {
     has_camera = false;
-    rapidjson::Document d;
-    if (!parse_json(file, text, d, error))
-        return false;
-    if (!d.IsObject()) {
-        error = file + ":1: a preset is a JSON object";
-        return false;
-    }
     PresetReader r{file, text, error};
     RenderSettings s = out; // applied only if the whole file is good
     static const char *const known[] = {
@@ -676,6 +672,129 @@ bool preset_from_json(const std::string &file, const std::string &text, RenderSe
     out = s;
     camera = c;
     return true;
+}
+
+} // namespace
+
+bool preset_from_json(const std::string &file, const std::string &text, RenderSettings &out, Camera &camera,
+                      bool &has_camera, const oit_model *model, std::string &error)
+{
+    has_camera = false;
+    rapidjson::Document d;
+    if (!parse_json(file, text, d, error))
+        return false;
+    if (!d.IsObject()) {
+        error = file + ":1: a preset is a JSON object";
+        return false;
+    }
+    return preset_from_object(file, text, d, out, camera, has_camera, model, error);
+}
+
+// ------------------------------------------------------------- saved state
+
+namespace {
+
+bool is_base64(const std::string &text)
+{
+    if (text.empty())
+        return true;
+    size_t last = text.find_last_not_of('=');
+    if (text.size() % 4 != 0 || last == std::string::npos || text.size() - last - 1 > 2)
+        return false;
+    for (size_t i = 0; i <= last; ++i)
+        if (!std::isalnum(static_cast<unsigned char>(text[i])) && text[i] != '+' && text[i] != '/')
+            return false;
+    return true;
+}
+
+} // namespace
+
+bool saved_state_from_json(const std::string &file, const std::string &text, SavedStateText &out,
+                           std::string &error)
+{
+    rapidjson::Document d;
+    if (!parse_json(file, text, d, error))
+        return false;
+    if (!d.IsObject()) {
+        error = file + ":1: the saved state is a JSON object";
+        return false;
+    }
+    PresetReader r{file, text, error};
+    SavedStateText state;
+    static const char *const known[] = {"settings", "last-model", "recent", "geometry", "window"};
+    for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
+        std::string key = it->name.GetString();
+        if (std::find(std::begin(known), std::end(known), key) == std::end(known))
+            return r.fail(key.c_str(), "unknown key (the keys are settings, last-model, recent, geometry, window)");
+    }
+    if (d.HasMember("settings")) {
+        // the settings are checked as a preset would be (ranges, names); parts
+        // are checked against the model once it is loaded
+        const Value &settings = d["settings"];
+        if (!settings.IsObject())
+            return r.fail("settings", "must be an object (a preset)");
+        RenderSettings checked;
+        Camera camera;
+        bool has_camera;
+        if (!preset_from_object(file, text, settings, checked, camera, has_camera, nullptr, error))
+            return false;
+        rapidjson::StringBuffer buffer;
+        rapidjson::PrettyWriter<rapidjson::StringBuffer> writer(buffer);
+        writer.SetIndent(' ', 2);
+        settings.Accept(writer);
+        state.settings = std::string(buffer.GetString()) + "\n";
+    }
+    if (d.HasMember("last-model")) {
+        if (!d["last-model"].IsString())
+            return r.fail("last-model", "must be a file name");
+        state.last_model = d["last-model"].GetString();
+    }
+    if (d.HasMember("recent")) {
+        const Value &recent = d["recent"];
+        if (!recent.IsArray())
+            return r.fail("recent", "must be an array of file names");
+        for (const Value &name : recent.GetArray()) {
+            if (!name.IsString())
+                return r.fail("recent", "must be an array of file names");
+            state.recent.push_back(name.GetString());
+        }
+    }
+    for (const char *key : {"geometry", "window"}) {
+        if (!d.HasMember(key))
+            continue;
+        if (!d[key].IsString() || !is_base64(d[key].GetString()))
+            return r.fail(key, "must be a base64 string");
+        (std::strcmp(key, "geometry") == 0 ? state.geometry : state.window) = d[key].GetString();
+    }
+    out = state;
+    return true;
+}
+
+std::string saved_state_to_json(const SavedStateText &state)
+{
+    rapidjson::Document d(rapidjson::kObjectType);
+    auto &a = d.GetAllocator();
+    if (!state.settings.empty()) {
+        rapidjson::Document settings(&a);
+        settings.Parse(state.settings.c_str(), state.settings.size());
+        if (!settings.HasParseError() && settings.IsObject())
+            add(d, "settings", Value(settings, a), a);
+    }
+    if (!state.last_model.empty())
+        add(d, "last-model", string_value(state.last_model, a), a);
+    Value recent(rapidjson::kArrayType);
+    for (const std::string &name : state.recent)
+        recent.PushBack(string_value(name, a), a);
+    add(d, "recent", std::move(recent), a);
+    if (!state.geometry.empty())
+        add(d, "geometry", string_value(state.geometry, a), a);
+    if (!state.window.empty())
+        add(d, "window", string_value(state.window, a), a);
+    rapidjson::StringBuffer buffer;
+    rapidjson::PrettyWriter<rapidjson::StringBuffer> writer(buffer);
+    writer.SetIndent(' ', 2);
+    d.Accept(writer);
+    return std::string(buffer.GetString()) + "\n";
 }
 
 bool read_model_list(const std::string &file, const std::string &text, const std::string &base_dir,

@@ -66,6 +66,22 @@ std::string preset_to_json(const RenderSettings &settings, const Camera &camera,
 bool preset_from_json(const std::string &file_name, const std::string &text, RenderSettings &settings,
                       Camera &camera, bool &has_camera, const oit_model *model, std::string &error);
 
+// The workbench's saved state (saved_state.h) as JSON: {"settings": a preset
+// (the last settings), "last-model": a file name, "recent": [file names],
+// "geometry" and "window": base64 (QMainWindow's saveGeometry, saveState)},
+// every key optional. Reading checks every value, the settings as a preset
+// (ranges, names; parts once a model is loaded), and fails with
+// "FILE:LINE: problem" on the first bad one.
+struct SavedStateText {
+    std::string settings; // preset JSON, "" for none
+    std::string last_model;
+    std::vector<std::string> recent;
+    std::string geometry, window; // base64
+};
+bool saved_state_from_json(const std::string &file_name, const std::string &text, SavedStateText &out,
+                           std::string &error);
+std::string saved_state_to_json(const SavedStateText &state);
+
 // config/models.json: [{"name", "path"}]; relative paths are taken from base_dir.
 struct ModelEntry {
     std::string name, path;

@@ -89,7 +89,9 @@ typedef struct plane_grid {
     double base[3];  /* the grid's corner: the model's box minimum */
     double cell0;    /* the width of a level-0 cell */
     uint64_t levels_used; /* bit l: some triangle has level l */
+    uint64_t levels_searched; /* bit l: some triangle of level l searches the grid */
     int top_level;   /* the coarsest level any triangle has */
+    double inverse_width[PLANE_GRID_LEVELS]; /* 1 / the width of a cell of each level */
 } plane_grid;
 
 typedef struct triangle_order {
@@ -205,23 +207,26 @@ static void box_of(const plane_grid *g, const float *a, const float *b, const fl
 {
     double extent = 0.0;
     for (int k = 0; k < 3; ++k) {
-        double lo = fmin(fmin(a[k], b[k]), c[k]) - tolerance, hi = fmax(fmax(a[k], b[k]), c[k]) + tolerance;
+        float low = a[k] < b[k] ? a[k] : b[k], high = a[k] < b[k] ? b[k] : a[k];
+        low = c[k] < low ? c[k] : low;
+        high = c[k] > high ? c[k] : high;
+        double lo = (double)low - tolerance, hi = (double)high + tolerance;
         box->centre[k] = 0.5 * (lo + hi);
-        extent = fmax(extent, hi - lo);
+        extent = hi - lo > extent ? hi - lo : extent;
     }
-    /* the smallest level whose cell is at least twice the extent */
-    int level = 0;
-    while (level < PLANE_GRID_LEVELS - 1 && ldexp(g->cell0, level) < 2.0 * extent)
-        ++level;
-    box->level = level;
+    /* the smallest level whose cell is at least twice the extent: cell0 x 2^level >= r */
+    double r = 2.0 * extent / g->cell0;
+    int exponent = 0;
+    double fraction = frexp(r, &exponent); /* r = fraction x 2^exponent, fraction in [0.5, 1) */
+    int level = r <= 1.0 ? 0 : fraction == 0.5 ? exponent - 1 : exponent;
+    box->level = level < PLANE_GRID_LEVELS - 1 ? level : PLANE_GRID_LEVELS - 1;
 }
 
 static void cell_key(const plane_grid *g, const double centre[3], int level, int32_t key[4])
 {
-    double width = ldexp(g->cell0, level);
     key[0] = level;
-    for (int k = 0; k < 3; ++k)
-        key[k + 1] = (int32_t)floor((centre[k] - g->base[k]) / width);
+    for (int k = 0; k < 3; ++k) /* >= 0: the base is below the model's box, so truncating floors */
+        key[k + 1] = (int32_t)((centre[k] - g->base[k]) * g->inverse_width[level]);
 }
 
 static uint32_t find_root(plane_cluster *clusters, uint32_t c)
@@ -248,6 +253,7 @@ typedef struct plane_search {
     const double *own_planes; /* per triangle: its own plane (4 doubles), the plane hash's key */
     float *offset_slack; /* per triangle: how far the offset of a plane holding it may be from its
                             own; negative: its normal is too uncertain for the plane hash */
+    float *lean;         /* per triangle: how far the normal of a plane holding it may be from its own */
     bool use_grid;     /* some triangle is not: the grid is kept */
     plane_grid grid;
     plane_cluster *clusters;
@@ -303,16 +309,24 @@ static void offset_steps(const double plane[4], double slack, double tolerance, 
     *last = (int32_t)floor((plane[3] + slack) / step);
 }
 
-/* The clusters whose seed plane is within half a step of the triangle's in
- * each normal component (its bucket and the nearer neighbour) and whose
- * offset is within its slack. */
+/* The clusters whose seed plane's normal is within the triangle's lean of
+ * its own in each component (its bucket, and the nearer neighbour where the
+ * lean reaches across) and whose offset is within its slack. */
 static void search_by_plane(plane_search *s, uint32_t t)
 {
     const double *plane = s->own_planes + (size_t)t * 4;
     int32_t own[4], nearer[4], first, last;
     plane_key(plane, s->tolerance, own, nearer);
     offset_steps(plane, s->offset_slack[t], s->tolerance, &first, &last);
-    for (int probe = 0; probe < 8; ++probe)
+    int needed = 0; /* bit k: component k's nearer bucket is within the lean */
+    for (int k = 0; k < 3; ++k) {
+        double within = plane[k] * PLANE_NORMAL_STEPS - own[k], reach = s->lean[t] * PLANE_NORMAL_STEPS;
+        if (within - reach < 0.0 || within + reach >= 1.0)
+            needed |= 1 << k;
+    }
+    for (int probe = 0; probe < 8; ++probe) {
+        if ((probe & needed) != probe)
+            continue;
         for (int32_t offset = first; offset <= last; ++offset) {
             int32_t key[4] = {0, 0, 0, offset};
             for (int k = 0; k < 3; ++k)
@@ -321,17 +335,17 @@ static void search_by_plane(plane_search *s, uint32_t t)
                 if (memcmp(s->clusters[c - 1].key, key, sizeof key) == 0)
                     add_candidate(s, c - 1, t);
         }
+    }
 }
 
 /* The 2x2x2 cells nearest a centre at one level: the centre's cell and, per
  * axis, its neighbour on the nearer side. */
 static int nearest_cells(const plane_grid *g, const double centre[3], int level, int32_t keys[8][4])
 {
-    double width = ldexp(g->cell0, level);
     int32_t own[4], side[3];
     cell_key(g, centre, level, own);
     for (int k = 0; k < 3; ++k) {
-        double within = (centre[k] - g->base[k]) / width - own[k + 1];
+        double within = (centre[k] - g->base[k]) * g->inverse_width[level] - own[k + 1];
         side[k] = within < 0.5 ? -1 : 1;
     }
     for (int i = 0; i < 8; ++i) {
@@ -362,13 +376,15 @@ static void search_near(plane_search *s, const triangle_box *box, uint32_t searc
     }
 }
 
-/* Registers a triangle of cluster c: in own at its level, in below at the
- * coarser levels some triangle searches from. A run of one cluster's
+/* Registers a triangle of cluster c where a search can meet it: in own at
+ * its level when a triangle of that level or a finer one searches, in below
+ * at the coarser levels some triangle searches from. A run of one cluster's
  * triangles in a cell is listed once. */
 static bool register_triangle(plane_search *s, const triangle_box *box, uint32_t c)
 {
+    uint64_t own_needed = s->grid.levels_searched & (((uint64_t)2 << box->level) - 1);
     for (int level = box->level; level <= s->grid.top_level; ++level) {
-        if (!((s->grid.levels_used >> level) & 1))
+        if (level == box->level ? !own_needed : !((s->grid.levels_searched >> level) & 1))
             continue;
         int32_t key[4];
         cell_key(&s->grid, box->centre, level, key);
@@ -435,7 +451,7 @@ static bool better_root(const plane_cluster *clusters, uint32_t a, uint32_t b)
  * direction) must not flip within that lean, and the offset probes are
  * bounded. */
 static double plane_slack(const plane_search *s, const float *a, const float *b, const float *c, double area2,
-                          const double plane[4], const double centroid[3])
+                          const double plane[4], const double centroid[3], float *lean_out)
 {
     double longest = 0.0;
     const float *v[3] = {a, b, c};
@@ -445,6 +461,7 @@ static double plane_slack(const plane_search *s, const float *a, const float *b,
         longest = fmax(longest, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
     }
     double lean = 3.14159265358979323846 * s->tolerance * longest / area2; /* h = area2 / longest */
+    *lean_out = (float)nextafter(lean, INFINITY); /* rounded up: a bound */
     double reach = sqrt(centroid[0] * centroid[0] + centroid[1] * centroid[1] + centroid[2] * centroid[2]);
     double towards = fabs(plane[0] * generic_direction[0] + plane[1] * generic_direction[1] +
                           plane[2] * generic_direction[2]);
@@ -458,9 +475,14 @@ static double plane_slack(const plane_search *s, const float *a, const float *b,
  * holds it of those its searches find (merging the others that hold it
  * where they can), or starts one with its seed plane: its own, or with
  * groups, its group's (5 doubles per group: the plane and the group's
- * area). */
+ * area). A triangle first tries the cluster it most likely joins, and
+ * searches only if that one does not hold it: the first pass the cluster
+ * of the triangle before it (the order keeps faces together), the second
+ * the cluster its group's first triangle joined, which searched. So every
+ * first-pass group searches at least once in the second pass, and groups
+ * of one plane meet there. */
 static bool cluster_pass(plane_search *s, const triangle_order *order, const uint32_t *group, const double *fitted,
-                         const triangle_box *boxes, uint32_t *cluster_of)
+                         const triangle_box *boxes, uint32_t *group_cluster, uint32_t *cluster_of)
 {
     const uint32_t n = s->model->triangle_count;
     s->cluster_count = 0;
@@ -468,11 +490,19 @@ static bool cluster_pass(plane_search *s, const triangle_order *order, const uin
     s->grid.entry_count = 0;
     memset(s->grid.slots, 0, (size_t)(s->grid.slot_mask + 1) * sizeof *s->grid.slots);
     memset(s->heads, 0, (size_t)(s->head_mask + 1) * sizeof *s->heads);
+    uint32_t previous = UINT32_MAX;
     for (uint32_t i = 0; i < n; ++i) {
         uint32_t t = order[i].triangle;
-        const double *plane = group ? fitted + (size_t)group[t] * 5 : s->own_planes + (size_t)t * 4;
+        const double *plane = group && order[i].area2 > 0.0 ? fitted + (size_t)group[t] * 5
+                                                            : s->own_planes + (size_t)t * 4;
         uint32_t chosen = UINT32_MAX;
-        if (order[i].area2 > 0.0) {
+        uint32_t likely = group ? group_cluster[group[t]] : previous;
+        if (likely != UINT32_MAX) {
+            likely = find_root(s->clusters, likely);
+            if (order[i].area2 > 0.0 && triangle_on_plane(s, &s->clusters[likely], t))
+                chosen = likely;
+        }
+        if (chosen == UINT32_MAX && order[i].area2 > 0.0) {
             s->candidate_count = 0;
             if (s->offset_slack[t] >= 0.0)
                 search_by_plane(s, t);
@@ -510,6 +540,9 @@ static bool cluster_pass(plane_search *s, const triangle_order *order, const uin
         }
         add_member(s, chosen, t);
         cluster_of[t] = chosen;
+        previous = chosen;
+        if (group && group_cluster[group[t]] == UINT32_MAX)
+            group_cluster[group[t]] = chosen;
         if (order[i].area2 > 0.0 && s->use_grid && !register_triangle(s, &boxes[t], chosen))
             return false;
     }
@@ -597,8 +630,11 @@ oit_status oit_model_find_planes(oit_model *model, oit_error *err)
     triangle_box *boxes = malloc((size_t)n * sizeof *boxes);
     uint32_t *group = malloc((size_t)n * sizeof *group);
     double *fitted = NULL;
+    uint32_t *group_cluster = NULL;
+    triangle_order *group_order = NULL;
     s.own_planes = own_planes;
     s.offset_slack = malloc((size_t)n * sizeof *s.offset_slack);
+    s.lean = malloc((size_t)n * sizeof *s.lean);
     s.clusters = malloc((size_t)n * sizeof *s.clusters);
     s.member_next = malloc((size_t)n * sizeof *s.member_next);
     s.candidates = malloc((size_t)n * sizeof *s.candidates);
@@ -611,13 +647,15 @@ oit_status oit_model_find_planes(oit_model *model, oit_error *err)
     s.head_mask = heads - 1;
     oit_status status = OIT_OK;
     uint32_t *cluster_of = model->triangle_plane; /* cluster ids first, plane indices at the end */
-    if (!model->triangle_plane || !order || !own_planes || !boxes || !group || !s.offset_slack || !s.clusters ||
+    if (!model->triangle_plane || !order || !own_planes || !boxes || !group || !s.offset_slack || !s.lean || !s.clusters ||
         !s.member_next || !s.candidates || !s.grid.slots || !s.heads)
         goto out_of_memory;
 
     for (int k = 0; k < 3; ++k)
         s.grid.base[k] = (double)model->bounds_min[k] - 2.0 * s.tolerance;
     s.grid.cell0 = 4.0 * s.tolerance;
+    for (int level = 0; level < PLANE_GRID_LEVELS; ++level)
+        s.grid.inverse_width[level] = 1.0 / ldexp(s.grid.cell0, level);
     for (uint32_t t = 0; t < n; ++t) {
         const uint32_t *tri = model->indices + (size_t)t * 3;
         const float *a = p + (size_t)tri[0] * 3, *b = p + (size_t)tri[1] * 3, *c = p + (size_t)tri[2] * 3;
@@ -645,8 +683,12 @@ oit_status oit_model_find_planes(oit_model *model, oit_error *err)
         plane[3] = -(plane[0] * centroid[0] + plane[1] * centroid[1] + plane[2] * centroid[2]);
         order[t] = (triangle_order){0.0, length, t};
         box_of(&s.grid, a, b, c, s.tolerance, &boxes[t]);
-        s.offset_slack[t] = length > 0.0 ? (float)plane_slack(&s, a, b, c, length, plane, centroid) : -1.0f;
+        s.lean[t] = 0.0f;
+        double slack = length > 0.0 ? plane_slack(&s, a, b, c, length, plane, centroid, &s.lean[t]) : -1.0;
+        s.offset_slack[t] = slack >= 0.0 ? nextafterf((float)slack, INFINITY) : -1.0f; /* a bound: up */
         s.use_grid = s.use_grid || (length > 0.0 && s.offset_slack[t] < 0.0f);
+        if (length > 0.0 && s.offset_slack[t] < 0.0f)
+            s.grid.levels_searched |= (uint64_t)1 << boxes[t].level;
         if (length > 0.0) {
             s.grid.levels_used |= (uint64_t)1 << boxes[t].level;
             if (boxes[t].level > s.grid.top_level)
@@ -654,23 +696,43 @@ oit_status oit_model_find_planes(oit_model *model, oit_error *err)
         }
     }
     qsort(order, n, sizeof *order, larger_area_first);
-    if (!cluster_pass(&s, order, NULL, NULL, boxes, cluster_of))
+    if (!cluster_pass(&s, order, NULL, NULL, boxes, NULL, cluster_of))
         goto out_of_memory;
 
-    /* the second pass's seeds and order: the first pass's clusters, fitted */
-    fitted = malloc((size_t)(s.cluster_count ? s.cluster_count : 1) * 5 * sizeof *fitted);
-    if (!fitted)
+    /* the second pass's seeds and order: the first pass's clusters (groups),
+     * fitted, the largest first, each group's triangles in the first pass's
+     * order (degenerate triangles last, as before) */
+    uint32_t groups = s.cluster_count;
+    fitted = malloc((size_t)(groups ? groups : 1) * 5 * sizeof *fitted);
+    group_cluster = malloc((size_t)(groups ? groups : 1) * sizeof *group_cluster);
+    group_order = malloc((size_t)(groups ? groups : 1) * sizeof *group_order);
+    if (!fitted || !group_cluster || !group_order)
         goto out_of_memory;
-    for (uint32_t c = 0; c < s.cluster_count; ++c)
-        if (s.clusters[c].parent == c)
-            fitted[(size_t)c * 5 + 4] = refit_plane(&s, c, fitted + (size_t)c * 5);
-    for (uint32_t i = 0; i < n; ++i) {
-        uint32_t t = order[i].triangle;
-        group[t] = find_root(s.clusters, cluster_of[t]);
-        order[i].group_area2 = order[i].area2 > 0.0 ? fitted[(size_t)group[t] * 5 + 4] : 0.0;
+    uint32_t root_count = 0, placed = 0;
+    for (uint32_t c = 0; c < groups; ++c) {
+        group_cluster[c] = UINT32_MAX;
+        if (s.clusters[c].parent != c || s.clusters[c].seed_area <= 0.0)
+            continue;
+        fitted[(size_t)c * 5 + 4] = refit_plane(&s, c, fitted + (size_t)c * 5);
+        group_order[root_count++] = (triangle_order){fitted[(size_t)c * 5 + 4], 0.0, c};
     }
-    qsort(order, n, sizeof *order, larger_area_first);
-    if (!cluster_pass(&s, order, group, fitted, boxes, cluster_of))
+    qsort(group_order, root_count, sizeof *group_order, larger_area_first);
+    for (uint32_t i = 0; i < n; ++i)
+        group[order[i].triangle] = find_root(s.clusters, cluster_of[order[i].triangle]);
+    triangle_order *second = malloc((size_t)n * sizeof *second);
+    if (!second)
+        goto out_of_memory;
+    for (uint32_t g = 0; g < root_count; ++g) {
+        uint32_t c = group_order[g].triangle;
+        for (uint32_t t = s.clusters[c].first; t != UINT32_MAX; t = s.member_next[t])
+            second[placed++] = (triangle_order){group_order[g].group_area2, 1.0, t};
+    }
+    for (uint32_t i = 0; i < n; ++i) /* the degenerate ones keep a cluster each */
+        if (!(order[i].area2 > 0.0))
+            second[placed++] = order[i];
+    free(order);
+    order = second;
+    if (!cluster_pass(&s, order, group, fitted, boxes, group_cluster, cluster_of))
         goto out_of_memory;
 
     /* planes numbered in the order their clusters were made */
@@ -701,7 +763,10 @@ done:
     free(boxes);
     free(group);
     free(fitted);
+    free(group_cluster);
+    free(group_order);
     free(s.offset_slack);
+    free(s.lean);
     free(s.clusters);
     free(s.member_next);
     free(s.candidates);

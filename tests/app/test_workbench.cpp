@@ -19,7 +19,6 @@
 #include <QDir>
 #include <QFile>
 #include <QMimeData>
-#include <QSettings>
 #include <QProcess>
 #include <QSignalSpy>
 #include <QSlider>
@@ -193,10 +192,10 @@ private:
 private slots:
     void initTestCase()
     {
-        QStandardPaths::setTestModeEnabled(true); // QSettings of the tests stay apart
+        QStandardPaths::setTestModeEnabled(true); // the saved state of the tests stays apart
         work = qEnvironmentVariable("OIT_TEST_WORK", QDir::tempPath() + "/oit-workbench-test");
         QDir().mkpath(work);
-        window = new MainWindow(false);
+        window = new MainWindow(MainWindow::Start::Fresh);
         window->show();
         QVERIFY(QTest::qWaitForWindowExposed(window));
         window->view()->setFixedSize(view_size);
@@ -507,14 +506,30 @@ private slots:
     {
         window->set_algorithm("ddp");
         window->view()->settings.alpha = 0.3f;
-        window->close(); // closeEvent writes QSettings (test mode: a private location)
+        window->close(); // closeEvent writes the saved state (test mode: a private location)
         {
-            MainWindow restored(true);
+            MainWindow restored(MainWindow::Start::Restore);
             QCOMPARE(QString::fromStdString(restored.view()->settings.algorithm), QString("ddp"));
             QCOMPARE(restored.view()->settings.alpha, 0.3f);
+            QCOMPARE(restored.saved_last_model(), window->model_path());
+            QString path = QStandardPaths::writableLocation(QStandardPaths::GenericConfigLocation) +
+                           "/oit-workbench-test/settings.json";
+            QCOMPARE(restored.settings_file().path(), path);
+            QFile file(path);
+            QVERIFY(file.open(QIODevice::ReadOnly));
+            SavedStateText saved;
+            std::string error;
+            QVERIFY2(saved_state_from_json(path.toStdString(), file.readAll().toStdString(), saved, error),
+                     error.c_str());
+            QVERIFY(std::find(saved.recent.begin(), saved.recent.end(), window->model_path().toStdString()) !=
+                    saved.recent.end());
+            QVERIFY(restored.messages().join("\n").isEmpty()); // nothing to say about a good file
         }
-        QCOMPARE(QSettings().value("last_model").toString(), window->model_path());
-        QVERIFY(QSettings().value("recent").toStringList().contains(window->model_path()));
+        {
+            MainWindow fresh(MainWindow::Start::Fresh); // --fresh: the recent models, not the rest
+            QCOMPARE(QString::fromStdString(fresh.view()->settings.algorithm), QString("ll"));
+            QVERIFY(fresh.saved_last_model().isEmpty());
+        }
         window->show();
         QVERIFY(QTest::qWaitForWindowExposed(window));
     }
@@ -760,7 +775,7 @@ private slots:
         window->set_algorithm("dp");
         window->close(); // saves dp as the last settings
         {
-            MainWindow restored(true);
+            MainWindow restored(MainWindow::Start::Restore);
             restored.show();
             restored.view()->setFixedSize(300, 300);
             QSignalSpy cancelled(restored.view(), &RenderView::frame_cancelled);
