@@ -39,7 +39,7 @@ bool check_output_path(const QString &path, const char *what, QString &error)
     struct stat info;
     if (stat(name.constData(), &info) != 0) {
         if (errno == ENOENT)
-            return true; // a new name (or a dangling link, replaced by the file)
+            return true; // a new name (or a dangling link: the core creates the file it names)
         oit_error err{};
         oit_check_regular_file(name.constData(), what, &err); // names the errno ("cannot open: ...")
         error = QString::fromUtf8(err.message);

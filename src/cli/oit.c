@@ -445,7 +445,10 @@ static int command_gen(int argc, char **argv)
     if (!scene || !out)
         return usage_error("gen needs SCENE and --out FILE.obj%s", "");
     oit_error err = {{0}};
-    return report(oit_scene_generate(scene, (int)complexity, out, &err), &err);
+    oit_status status = check_output_path("--out", out, &err); /* (the MTL's name is checked as it is opened) */
+    if (status == OIT_OK)
+        status = oit_scene_generate(scene, (int)complexity, out, &err);
+    return report(status, &err);
 }
 
 static int command_algorithms(int argc, char **argv)

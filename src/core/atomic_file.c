@@ -168,13 +168,16 @@ typedef struct output_plan {
                          stream) or -1 (/dev/null, opened) */
     bool exists;      /* target is a regular file */
     mode_t mode;      /* its permissions */
+    char reason[160]; /* on failure, the short reason oit_atomic_file_open gives ("Permission denied") */
 } output_plan;
 
 #define IN_PLACE_NULL (-1)
 
-static oit_status plan_failure(const char *path, const char *what, const char *problem, const char *detail,
-                               oit_error *err)
+/* The check's message "WHAT PATH: PROBLEM: DETAIL"; reason is the short form. */
+static oit_status plan_failure(output_plan *plan, const char *reason, const char *path, const char *what,
+                               const char *problem, const char *detail, oit_error *err)
 {
+    snprintf(plan->reason, sizeof plan->reason, "%s", reason);
     return input_failure(OIT_E_INPUT, path, what, problem, detail, err);
 }
 
@@ -185,12 +188,14 @@ static oit_status plan_output(const char *path, const char *what, bool append, b
                               oit_error *err)
 {
     memset(plan, 0, sizeof *plan);
-    if (!path || !*path)
+    if (!path || !*path) {
+        snprintf(plan->reason, sizeof plan->reason, "empty file name");
         return oit_fail(err, OIT_E_INPUT, "%s%sempty file name", what ? what : "", what && *what ? ": " : "");
+    }
     char limit[96];
     if (strlen(path) >= PATH_MAX) {
         snprintf(limit, sizeof limit, "a path has at most %d bytes, this one %zu", PATH_MAX - 1, strlen(path));
-        return plan_failure(path, what, strerror(ENAMETOOLONG), limit, err);
+        return plan_failure(plan, strerror(ENAMETOOLONG), path, what, strerror(ENAMETOOLONG), limit, err);
     }
     /* the two special files an output may be (nothing to replace: written in place) */
     int stream = folder ? 0 : oit_output_standard_stream(path);
@@ -212,40 +217,45 @@ static oit_status plan_output(const char *path, const char *what, bool append, b
                 longest = strcspn(c, "/");
         if (longest > NAME_MAX)
             snprintf(limit, sizeof limit, "a name has at most %d bytes, this one %zu", NAME_MAX, longest);
-        return plan_failure(path, what, strerror(error), longest > NAME_MAX ? limit : NULL, err);
+        return plan_failure(plan, strerror(error), path, what, strerror(error), longest > NAME_MAX ? limit : NULL,
+                            err);
     }
     if (!target)
-        return plan_failure(path, what, strerror(error), NULL, err);
+        return plan_failure(plan, strerror(error), path, what, strerror(error), NULL, err);
     plan->target = target;
     const char *slash = strrchr(target, '/');
     const char *name = slash ? slash + 1 : target;
     if (strlen(name) > NAME_MAX) {
         snprintf(limit, sizeof limit, "a name has at most %d bytes, this one %zu", NAME_MAX, strlen(name));
-        return plan_failure(path, what, strerror(ENAMETOOLONG), limit, err);
+        return plan_failure(plan, strerror(ENAMETOOLONG), path, what, strerror(ENAMETOOLONG), limit, err);
     }
     if (stat(target, &info) == 0 && folder) {
         if (S_ISREG(info.st_mode))
-            return plan_failure(path, what, "not a directory", NULL, err);
-        if (!S_ISDIR(info.st_mode))
-            return oit_fail(err, OIT_E_INPUT, "%s%s%s: not a directory or a new name (%s)", what ? what : "",
-                            what && *what ? " " : "", path, file_kind(info.st_mode));
+            return plan_failure(plan, strerror(ENOTDIR), path, what, "not a directory", NULL, err);
+        if (!S_ISDIR(info.st_mode)) {
+            char kind[96];
+            snprintf(kind, sizeof kind, "not a directory or a new name (%s)", file_kind(info.st_mode));
+            return plan_failure(plan, kind, path, what, kind, NULL, err);
+        }
         /* it is replaced and its files removed */
         if (access(target, R_OK | W_OK | X_OK) != 0)
-            return plan_failure(path, what, "cannot replace", strerror(errno), err);
+            return plan_failure(plan, strerror(errno), path, what, "cannot replace", strerror(errno), err);
         plan->exists = true;
         plan->mode = info.st_mode & 07777;
     } else if (stat(target, &info) == 0) {
         if (S_ISDIR(info.st_mode))
-            return plan_failure(path, what, "is a directory", NULL, err);
-        if (!S_ISREG(info.st_mode)) /* a FIFO would block, a device is no file to replace */
-            return oit_fail(err, OIT_E_INPUT, "%s%s%s: not a regular file or a new name (%s)", what ? what : "",
-                            what && *what ? " " : "", path, file_kind(info.st_mode));
+            return plan_failure(plan, strerror(EISDIR), path, what, "is a directory", NULL, err);
+        if (!S_ISREG(info.st_mode)) { /* a FIFO would block, a device is no file to replace */
+            char kind[96];
+            snprintf(kind, sizeof kind, "not a regular file or a new name (%s)", file_kind(info.st_mode));
+            return plan_failure(plan, kind, path, what, kind, NULL, err);
+        }
         if (access(target, W_OK) != 0) /* a read-only file is not replaced behind its owner's back */
-            return plan_failure(path, what, "cannot write", strerror(errno), err);
+            return plan_failure(plan, strerror(errno), path, what, "cannot write", strerror(errno), err);
         plan->exists = true;
         plan->mode = info.st_mode & 07777;
     } else if (errno != ENOENT && errno != ENOTDIR) {
-        return plan_failure(path, what, strerror(errno), NULL, err);
+        return plan_failure(plan, strerror(errno), path, what, strerror(errno), NULL, err);
     }
     /* the directory: the temporary is made there (an append to a file that exists needs none) */
     char directory[PATH_MAX];
@@ -257,20 +267,22 @@ static oit_status plan_output(const char *path, const char *what, bool append, b
         snprintf(directory, sizeof directory, "%.*s", (int)(slash - target), target);
     char problem[PATH_MAX + 64];
     if (stat(directory, &info) != 0) {
+        int error = errno;
         snprintf(problem, sizeof problem, "the directory %s does not exist", directory);
-        return plan_failure(path, what, problem, errno == ENOENT ? NULL : strerror(errno), err);
+        return plan_failure(plan, strerror(error), path, what, problem, error == ENOENT ? NULL : strerror(error), err);
     }
     if (!S_ISDIR(info.st_mode)) {
         snprintf(problem, sizeof problem, "%s is not a directory", directory);
-        return plan_failure(path, what, problem, NULL, err);
+        return plan_failure(plan, strerror(ENOTDIR), path, what, problem, NULL, err);
     }
     if (!(append && plan->exists) && access(directory, W_OK | X_OK) != 0) {
+        int error = errno;
         snprintf(problem, sizeof problem, "cannot write in %s", directory);
-        return plan_failure(path, what, problem, strerror(errno), err);
+        return plan_failure(plan, strerror(error), path, what, problem, strerror(error), err);
     }
     if (!append && oit_temporary_path_length(target) >= PATH_MAX) {
         snprintf(limit, sizeof limit, "its temporary file's path would pass %d bytes", PATH_MAX - 1);
-        return plan_failure(path, what, strerror(ENAMETOOLONG), limit, err);
+        return plan_failure(plan, strerror(ENAMETOOLONG), path, what, strerror(ENAMETOOLONG), limit, err);
     }
     return OIT_OK;
 }
@@ -442,10 +454,13 @@ oit_status oit_atomic_file_open(const char *path, const char *what, int flags, o
         file_free(file);
         return oit_fail(err, OIT_E_RUNTIME, "out of memory");
     }
+    /* (its own message is the check's; here the short reason, in the form of a failed write) */
     output_plan plan;
-    oit_status status = plan_output(path, what, file->append, false, &plan, err);
+    oit_error plan_err;
+    oit_status status = plan_output(path, what, file->append, false, &plan, &plan_err);
     file->target = plan.target;
     if (status != OIT_OK) {
+        status = write_failure(file, status, plan.reason, err);
         file_free(file);
         return status;
     }

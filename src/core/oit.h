@@ -242,10 +242,13 @@ oit_status oit_open_regular_file(const char *path, const char *what, FILE **out,
  *   /proc/self/fd/1, or a path to the same file), written through that
  *   stream where it stands (a pipe, a terminal, the shell's file);
  * - a name longer than NAME_MAX, a path of PATH_MAX or more, a missing or
- *   read-only directory, a read-only file: OIT_E_INPUT, "WHAT PATH: File name
- *   too long (a name has at most 255 bytes, this one 300)", "WHAT PATH: the
- *   directory D does not exist", "WHAT PATH: cannot write in D: <strerror>",
- *   "WHAT PATH: cannot write: <strerror>" (without WHAT "PATH: ...").
+ *   read-only directory, a read-only file: OIT_E_INPUT.
+ * oit_check_output_file says it at length: "WHAT PATH: File name too long: a
+ * name has at most 255 bytes, this one 300", "WHAT PATH: the directory D does
+ * not exist", "WHAT PATH: cannot write in D: <strerror>", "WHAT PATH: not a
+ * regular file or a new name (a FIFO)" (without WHAT "PATH: ..."); a refusal
+ * by oit_atomic_file_open itself keeps the form of a failed write below, with
+ * the short reason: "WHAT: cannot write PATH: Permission denied".
  * A replaced file is written to a temporary (oit_temporary_create), flushed,
  * fsync'ed, closed and renamed over the target, so a failed write (a full
  * disk) leaves the previous file byte for byte and no temporary file. The
