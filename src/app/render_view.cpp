@@ -16,10 +16,16 @@
 
 namespace {
 
-// OIT_BACKEND=osmesa picks the OSMesa context (as `oit --backend osmesa`); EGL otherwise.
-oit_backend backend_from_environment()
+// OIT_BACKEND picks the context as `oit --backend` does: egl (also unset or
+// empty) or osmesa; any other value is refused (it used to mean EGL silently).
+bool backend_from_environment(oit_backend &backend, std::string &error)
 {
-    return qEnvironmentVariable("OIT_BACKEND") == "osmesa" ? OIT_BACKEND_OSMESA : OIT_BACKEND_EGL;
+    QString value = qEnvironmentVariable("OIT_BACKEND");
+    backend = value == "osmesa" ? OIT_BACKEND_OSMESA : OIT_BACKEND_EGL;
+    if (value.isEmpty() || value == "egl" || value == "osmesa")
+        return true;
+    error = "OIT_BACKEND=" + value.left(40).toStdString() + ": must be egl or osmesa";
+    return false;
 }
 
 QString seconds_text(double ms)
@@ -83,7 +89,10 @@ RenderView::RenderView(QWidget *parent) : QWidget(parent)
         return;
     }
     shader_dir_ = dir;
-    worker_.reset(new RenderWorker(backend_from_environment(), shader_dir_));
+    oit_backend backend;
+    if (!backend_from_environment(backend, startup_error_))
+        return; // no worker: the window refuses to start, as without shaders
+    worker_.reset(new RenderWorker(backend, shader_dir_));
     gl_ready_ = worker_->context_error().isEmpty();
     renderer_ = worker_->renderer().toStdString();
     gl_error_ = worker_->context_error().toStdString();

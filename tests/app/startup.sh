@@ -7,7 +7,8 @@
 #    crashed, not hung);
 #  - a settings file that is a FIFO: neither --screenshot nor a normal start
 #    waits for it, and it stays a FIFO;
-#  - --screenshot into a FIFO: refused at once (exit 2), the FIFO stays.
+#  - --screenshot into a FIFO: refused at once (exit 2), the FIFO stays;
+#  - OIT_BACKEND=bogus: exit 3, one line naming the values.
 # The saved state lives in XDG_CONFIG_HOME, which this script points into WORK.
 set -uo pipefail # not -e: expect_exit looks at failing commands' status
 workbench=$1 probe=$2 shaders=$3 work=$4
@@ -56,6 +57,11 @@ OIT_SHADER_DIR=$work/missing "$workbench" > "$work/dialog.log" 2>&1 &
 workbench_pid=$!
 window "oit-workbench cannot start" "$work/dialog.log"
 [ ! -e "$XDG_CONFIG_HOME/oit-workbench" ] || fail "the refused start wrote the saved state"
+
+# --- a back end that does not exist: refused, naming the values (it meant EGL silently)
+OIT_BACKEND=bogus expect_exit 3 "^oit-workbench: error: OIT_BACKEND=bogus: must be egl or osmesa" -- \
+  "$workbench" --size 64x64 --screenshot "$work/never.png"
+[ ! -e "$work/never.png" ] || fail "a screenshot was written with OIT_BACKEND=bogus"
 
 # --- the settings file is a FIFO
 settings=$XDG_CONFIG_HOME/oit-workbench/settings.json
