@@ -18,6 +18,8 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -266,15 +268,25 @@ oit_status oit_temporary_create(const char *target, bool directory, oit_temporar
     if (!path)
         return oit_fail(err, OIT_E_RUNTIME, "out of memory");
     snprintf(path, size, "%.*s%s%sXXXXXX", (int)directory_length, target, name, SUFFIX);
+    /* an interrupt between the creation and the entry in the table would
+     * leave the temporary behind: held back until it is listed */
+    sigset_t interrupts, previous;
+    sigemptyset(&interrupts);
+    sigaddset(&interrupts, SIGINT);
+    sigaddset(&interrupts, SIGTERM);
+    sigaddset(&interrupts, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &interrupts, &previous);
     int fd = create_locked(path, directory);
+    int error = errno;
+    if (fd >= 0)
+        out->watch = watch_path(path, directory ? SLOT_DIRECTORY : SLOT_FILE);
+    pthread_sigmask(SIG_SETMASK, &previous, NULL);
     if (fd < 0) {
-        int error = errno;
         free(path);
         return oit_fail(err, OIT_E_INPUT, "%s", strerror(error));
     }
     out->path = path;
     out->fd = fd;
-    out->watch = watch_path(path, directory ? SLOT_DIRECTORY : SLOT_FILE);
     return OIT_OK;
 }
 
