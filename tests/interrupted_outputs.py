@@ -54,8 +54,15 @@ def wait_for(condition, process, what, timeout=60.0):
         time.sleep(0.001)
 
 
+def default_signals():
+    """In the child: the signals as a terminal would deliver them (a test started in the
+    background of a shell inherits SIGINT ignored, which oit rightly keeps ignored)."""
+    for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        signal.signal(number, signal.SIG_DFL)
+
+
 def start(command):
-    return subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    return subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, preexec_fn=default_signals)
 
 
 def interrupt(process, number, label):
