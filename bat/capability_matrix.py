@@ -35,8 +35,8 @@ import tempfile
 import threading
 from pages import commits, machine, machine_line
 
-ALGORITHMS = ["blend", "wboit", "kbuffer", "hybrid", "mlab", "mboit", "dp", "ddp", "ll", "ib", "reference"]
-EXACT = {"dp", "ddp", "ll", "ib", "reference"}
+ALGORITHMS = []  # from `oit algorithms --json` (algorithms()): the approximations, the exact GPU ones, the CPU reference
+EXACT = set()
 TOLERANCE = 2          # the exact algorithms' tolerance (tests/CMakeLists.txt)
 MISMATCH_PERCENT = 1.0  # share of pixels allowed over it
 
@@ -271,6 +271,18 @@ def kind(row):
 
 
 
+def algorithms(oit):
+    """The columns, from the algorithms' own capability tables (`oit algorithms
+    --json`): the approximations, then the exact GPU algorithms, then the CPU
+    reference, each group in the registry's order."""
+    listed = json.loads(subprocess.run([oit, "algorithms", "--json"], check=True, capture_output=True,
+                                       text=True).stdout)
+    rank = lambda a: (not a["uses_gl"], a["exact"])  # noqa: E731
+    ALGORITHMS[:] = [a["name"] for a in sorted(listed, key=rank)]
+    EXACT.clear()
+    EXACT.update(a["name"] for a in listed if a["exact"])
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--oit", default="build/src/cli/oit")
@@ -282,6 +294,7 @@ def main():
     parser.add_argument("--jobs", type=int, default=1,
                         help="renders at a time (more: the same page but for slower timings)")
     args = parser.parse_args()
+    algorithms(args.oit)
 
     work = tempfile.mkdtemp(prefix="oit-matrix-")
     atexit.register(shutil.rmtree, work, ignore_errors=True)

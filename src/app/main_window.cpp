@@ -186,15 +186,8 @@ MainWindow::MainWindow(Start start, QWidget *parent) : QMainWindow(parent), star
         last_left_out_ = text;
     });
 
-    // which algorithm can express which option: measured by the worker when idle
-    // (no worker without shaders: the window is not shown then, see startup_error)
-    if (RenderWorker *worker = view_->worker()) {
-        connect(worker, &RenderWorker::capabilities_ready, this, [this](const CapabilityTable &table) {
-            capabilities_ = table;
-            apply_capabilities();
-        });
-        worker->request_capabilities();
-    }
+    // which algorithm renders which option: the core's capability tables
+    capabilities_ = capability_table();
     sync_actions_.push_back([this] { apply_capabilities(); });
     coalesce_timer_ = new QTimer(this);
     coalesce_timer_->setSingleShot(true);
@@ -797,8 +790,8 @@ QWidget *scrolled(QWidget *content)
 } // namespace
 
 // Options the current algorithm cannot express are disabled, with a tooltip
-// naming the algorithms that can (from the worker's probe, so never stale);
-// the settings keep them, and a frame leaves them out and says so.
+// naming the algorithms that can (from the core's capability tables); the
+// settings keep them, and a frame leaves them out and says so.
 void MainWindow::apply_capabilities()
 {
     if (capabilities_.empty() || !modulation_combo_)
@@ -1005,7 +998,7 @@ QWidget *MainWindow::build_algorithm_tab()
                                sync_actions_, syncing_);
     layer_cap->setSpecialValueText("none");
     form->addRow("layer cap (--max-layers, dp/ddp)", layer_cap);
-    // the approximations' parameters (oit_algorithm_ops.uses_layers / uses_moments)
+    // the approximations' parameters (OIT_OPTION_LAYERS / OIT_OPTION_MOMENTS in their capabilities)
     auto *approx_layers = spin_box(1, OIT_APPROX_LAYERS_MAX,
                                    [&s] { return s.config.layers == 0 ? OIT_APPROX_LAYERS_DEFAULT : s.config.layers; },
                                    [this, &s](int n) {

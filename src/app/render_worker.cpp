@@ -55,30 +55,6 @@ void reset_gl_state()
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
 }
 
-// One option the algorithm refused, dropped: false when nothing is left to drop.
-bool drop_one_option(oit_frame_settings &frame)
-{
-    oit_modulation &m = frame.modulation;
-    if (m.view != OIT_VIEW_COLOUR) {
-        m.view = OIT_VIEW_COLOUR;
-        m.view_parameter = 0;
-        return true;
-    }
-    if (m.mode != OIT_MODULATE_NONE) {
-        m.mode = OIT_MODULATE_NONE;
-        return true;
-    }
-    if (m.distance != OIT_DISTANCE_ADJACENT) {
-        m.distance = OIT_DISTANCE_ADJACENT;
-        return true;
-    }
-    if (frame.local.focus_shape != OIT_FOCUS_NONE) {
-        frame.local.focus_shape = OIT_FOCUS_NONE;
-        return true;
-    }
-    return false;
-}
-
 // Everything that decides the reference's image of a frame, as bytes: the
 // size, the camera's matrices, every setting and the configuration.
 class KeyWriter {
@@ -134,37 +110,47 @@ oit_image core_image(const QImage &image)
 
 } // namespace
 
-const std::vector<CapabilityFeature> &capability_features()
+CapabilityTable capability_table()
 {
-    static const std::vector<CapabilityFeature> features = {
-        {"view:heatmap", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_HEATMAP; }},
-        {"view:peel-limit",
-         [](oit_frame_settings &f) {
-             f.modulation.view = OIT_VIEW_PEEL_LIMIT;
-             f.modulation.view_parameter = 1;
-         }},
-        {"view:layer", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_LAYER; }},
-        {"view:neighbours", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_NEIGHBOURS; }},
-        {"view:curvature", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_CURVATURE; }},
-        {"view:distance", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_DISTANCE; }},
-        {"view:fields", [](oit_frame_settings &f) { f.modulation.view = OIT_VIEW_FIELDS; }},
-        {"modulation:curvature", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_CURVATURE; }},
-        {"modulation:distance", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_DISTANCE; }},
-        {"modulation:dist-curv", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_DIST_CURV; }},
-        {"modulation:fields", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_FIELDS; }},
-        {"modulation:edges", [](oit_frame_settings &f) { f.modulation.mode = OIT_MODULATE_EDGES; }},
-        {"distance:skip",
-         [](oit_frame_settings &f) {
-             f.modulation.mode = OIT_MODULATE_DISTANCE;
-             f.modulation.distance = OIT_DISTANCE_SKIP;
-         }},
-        {"distance:far",
-         [](oit_frame_settings &f) {
-             f.modulation.mode = OIT_MODULATE_DISTANCE;
-             f.modulation.distance = OIT_DISTANCE_FAR_END;
-         }},
-    };
-    return features;
+    CapabilityTable table;
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    for (size_t i = 0; i < count; ++i) {
+        const oit_capabilities *can = list[i]->capabilities;
+        const QString name = QString::fromUtf8(list[i]->name);
+        for (int v = OIT_VIEW_COLOUR + 1; v < OIT_VIEW_COUNT; ++v)
+            if (!can->views[v])
+                table[QString("view:") + oit_view_name(oit_view(v))] << name;
+        for (int m = OIT_MODULATE_NONE + 1; m < OIT_MODULATION_COUNT; ++m)
+            if (!can->modulations[m])
+                table[QString("modulation:") + oit_modulation_mode_name(oit_modulation_mode(m))] << name;
+        // a distance is rendered where a modulation that measures it is
+        bool measures = !can->modulations[OIT_MODULATE_DISTANCE] || !can->modulations[OIT_MODULATE_DIST_CURV];
+        for (int d = OIT_DISTANCE_ADJACENT + 1; measures && d < OIT_DISTANCE_COUNT; ++d)
+            if (!can->distances[d])
+                table[QString("distance:") + oit_distance_mode_name(oit_distance_mode(d))] << name;
+    }
+    return table;
+}
+
+void reduce_to_capabilities(const oit_algorithm_ops *ops, oit_frame_settings &frame, std::vector<QString> &left_out)
+{
+    oit_error err{};
+    oit_modulation &m = frame.modulation;
+    const oit_capabilities *can = ops->capabilities;
+    while (oit_frame_check(ops, &frame, &err) == OIT_E_INPUT) {
+        left_out.push_back(QString::fromUtf8(err.message));
+        // leave out what the check refused: it looks at the modulation, its distance, the view
+        if (unsigned(m.mode) >= OIT_MODULATION_COUNT || can->modulations[m.mode])
+            m.mode = OIT_MODULATE_NONE;
+        else if ((m.mode == OIT_MODULATE_DISTANCE || m.mode == OIT_MODULATE_DIST_CURV) &&
+                 (unsigned(m.distance) >= OIT_DISTANCE_COUNT || can->distances[m.distance]))
+            m.distance = OIT_DISTANCE_ADJACENT;
+        else {
+            m.view = OIT_VIEW_COLOUR;
+            m.view_parameter = 0;
+        }
+    }
 }
 
 struct RenderWorker::Running {
@@ -179,7 +165,6 @@ RenderWorker::RenderWorker(oit_backend backend, const std::string &shader_dir, Q
     : QObject(parent), backend_(backend), shader_dir_(shader_dir)
 {
     qRegisterMetaType<FrameResultPointer>("FrameResultPointer");
-    qRegisterMetaType<CapabilityTable>("CapabilityTable");
     thread_ = std::thread([this] { run(); });
     std::unique_lock<std::mutex> lock(mutex_);
     wake_.wait(lock, [this] { return context_attempted_; });
@@ -219,15 +204,6 @@ void RenderWorker::cancel()
     pending_exports_.clear();
 }
 
-void RenderWorker::request_capabilities()
-{
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        probe_requested_ = true;
-    }
-    wake_.notify_all();
-}
-
 bool RenderWorker::busy() const
 {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -263,18 +239,10 @@ void RenderWorker::run()
         {
             std::unique_lock<std::mutex> lock(mutex_);
             wake_.wait(lock, [this] {
-                return stopping_ || pending_view_ || !pending_exports_.empty() || probe_requested_;
+                return stopping_ || pending_view_ || !pending_exports_.empty();
             });
             if (stopping_)
                 break;
-            if (!pending_view_ && pending_exports_.empty()) {
-                // only the probe waits: one step of it, then look for frames again
-                lock.unlock();
-                bool more = probe_step();
-                lock.lock();
-                probe_requested_ = probe_requested_ && more;
-                continue;
-            }
             // exports first: the user asked for them explicitly and waits on them
             if (!pending_exports_.empty()) {
                 job = std::move(pending_exports_.front());
@@ -292,11 +260,6 @@ void RenderWorker::run()
         running_id_ = 0;
     }
     release_gl();
-    if (probe_scene_ready_) {
-        oit_scene_release(&probe_scene_);
-        oit_model_free(&probe_model_);
-        probe_scene_ready_ = false;
-    }
     if (context_)
         oit_gl_context_destroy(context_);
     context_ = nullptr;
@@ -366,74 +329,6 @@ void RenderWorker::release_gl()
         oit_scene_release(&gpu_scene_);
     scene_uploaded_ = false;
     uploaded_model_.reset();
-}
-
-bool RenderWorker::probe_step()
-{
-    size_t count = 0;
-    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
-    if (!context_)
-        return false;
-    if (probe_next_algorithm_ >= count) { // measured before: say it again
-        emit capabilities_ready(probe_table_);
-        return false;
-    }
-    oit_error err{};
-    if (!probe_scene_ready_) {
-        // two triangles facing the eye, one behind the other
-        oit_model &m = probe_model_;
-        m = oit_model{};
-        m.vertex_count = 6;
-        m.triangle_count = 2;
-        m.component_count = 1;
-        m.positions = static_cast<float *>(malloc(18 * sizeof(float)));
-        m.indices = static_cast<uint32_t *>(malloc(6 * sizeof(uint32_t)));
-        m.components = static_cast<oit_component *>(calloc(1, sizeof(oit_component)));
-        if (!m.positions || !m.indices || !m.components) {
-            oit_model_free(&m);
-            return false;
-        }
-        const float positions[18] = {-1, -1, 0, 1, -1, 0, 0, 1, 0, -1, -1, -0.5f, 1, -1, -0.5f, 0, 1, -0.5f};
-        std::memcpy(m.positions, positions, sizeof positions);
-        for (uint32_t i = 0; i < 6; ++i)
-            m.indices[i] = i;
-        std::snprintf(m.components[0].name, sizeof m.components[0].name, "probe");
-        m.components[0].opacity = 1.0f;
-        m.components[0].triangle_count = 2;
-        if (oit_model_finish(&m, true, &err) != OIT_OK || oit_scene_upload(&probe_scene_, &m, &err) != OIT_OK) {
-            oit_model_free(&m);
-            return false;
-        }
-        probe_scene_ready_ = true;
-    }
-    const oit_algorithm_ops *ops = list[probe_next_algorithm_++];
-    oit_algorithm_config config{};
-    oit_algorithm_config_defaults(&config);
-    config.shader_dir = shader_dir_.c_str();
-    oit_algorithm *algorithm = nullptr;
-    if (ops->create(&config, &algorithm, &err) == OIT_OK && ops->resize(algorithm, 4, 4, &err) == OIT_OK) {
-        oit_scene cpu_scene{};
-        oit_scene_cpu(&cpu_scene, &probe_model_);
-        for (const CapabilityFeature &feature : capability_features()) {
-            oit_frame_settings frame{};
-            frame.width = frame.height = 4;
-            frame.alpha = 0.5f;
-            if (oit_default_camera(&probe_model_, 4, 4, 0.0f, 0.0f, frame.modelview, frame.projection, &err) !=
-                OIT_OK)
-                break;
-            feature.apply(frame);
-            reset_gl_state();
-            oit_status status = oit_algorithm_render(ops, algorithm, ops->uses_gl ? &probe_scene_ : &cpu_scene, &frame, &err);
-            if (status != OIT_E_INPUT) // refused before any work: the algorithm cannot express it
-                probe_table_[feature.key] << ops->name;
-        }
-    }
-    if (algorithm)
-        ops->destroy(algorithm);
-    if (probe_next_algorithm_ < count)
-        return true;
-    emit capabilities_ready(probe_table_);
-    return false;
 }
 
 void RenderWorker::render_job(FrameJob &job)
@@ -550,25 +445,13 @@ oit_status RenderWorker::render_side(const FrameJob &job, const std::string &nam
                               : oit_fail(&err, OIT_E_RUNTIME, "%s: cannot be created", name.c_str());
     const oit_scene *scene = ops->uses_gl ? &gpu_scene_ : &cpu_scene_;
 
+    // the options this algorithm does not render are left out, and said (its capabilities)
+    reduce_to_capabilities(ops, frame, left_out);
     oit_status status = needs_resize ? ops->resize(algorithm, frame.width, frame.height, &err) : OIT_OK;
-    QString first_refusal;
-    while (status == OIT_OK) {
+    if (status == OIT_OK) {
         reset_gl_state();
         status = oit_algorithm_render(ops, algorithm, scene, &frame, &err);
-        if (status != OIT_E_INPUT)
-            break;
-        // an option this algorithm cannot express: leave it out, say so
-        oit_frame_settings reduced = frame;
-        if (!drop_one_option(reduced))
-            break;
-        if (first_refusal.isEmpty())
-            first_refusal = QString::fromUtf8(err.message);
-        left_out.push_back(QString::fromUtf8(err.message));
-        frame = reduced;
-        status = OIT_OK;
     }
-    if (status == OIT_E_INPUT && !first_refusal.isEmpty())
-        std::snprintf(err.message, sizeof err.message, "%s", first_refusal.toUtf8().constData());
     if (status == OIT_OK) {
         oit_image out{};
         status = ops->read_image(algorithm, &out, &err);

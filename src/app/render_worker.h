@@ -106,20 +106,15 @@ struct FrameResult {
 using FrameResultPointer = std::shared_ptr<const FrameResult>;
 Q_DECLARE_METATYPE(FrameResultPointer)
 
-// Which algorithms can express each option: feature key ("view:heatmap",
-// "modulation:fields", "distance:skip", ...) -> the algorithms whose render()
-// accepts it. Measured, not listed by hand: RenderWorker::probe renders a
-// 4x4 frame of a two-triangle model with each option on each algorithm and
-// records which ones the core refuses (OIT_E_INPUT).
+// Which algorithms render each option: feature key ("view:heatmap",
+// "modulation:fields", "distance:skip", ...) -> their names, from the core's
+// capability tables (oit_capabilities); no frame is rendered to find out.
 using CapabilityTable = std::map<QString, QStringList>;
-Q_DECLARE_METATYPE(CapabilityTable)
+CapabilityTable capability_table();
 
-// The feature keys the probe measures, and how each one changes a frame.
-struct CapabilityFeature {
-    const char *key;
-    void (*apply)(oit_frame_settings &frame);
-};
-const std::vector<CapabilityFeature> &capability_features();
+// The frame with what ops does not render left out (the view, the
+// modulation, its distance), each refusal's one line in left_out.
+void reduce_to_capabilities(const oit_algorithm_ops *ops, oit_frame_settings &frame, std::vector<QString> &left_out);
 
 class RenderWorker : public QObject {
     Q_OBJECT
@@ -149,9 +144,6 @@ public:
     void cancel();
     // A frame is running or waiting.
     bool busy() const;
-    // Measure which algorithms express which options, when no frame waits
-    // (capabilities_ready; once per worker, yielding to frames between steps).
-    void request_capabilities();
     // GL_RENDERER, or empty with context_error() saying why there is no context.
     QString renderer() const { return renderer_; }
     QString context_error() const { return context_error_; }
@@ -161,7 +153,6 @@ public:
 signals:
     void progress(quint64 id, const QString &stage, int stages_done, double elapsed_ms);
     void frame_done(FrameResultPointer result);
-    void capabilities_ready(const CapabilityTable &table);
 
 private:
     struct Running;
@@ -179,7 +170,6 @@ private:
     CachedAlgorithm *algorithm_for(const std::string &name, const FrameJob &job, const oit_algorithm_ops *ops,
                                    oit_error *err);
     void release_gl();
-    bool probe_step(); // one algorithm of the capability probe; false when done
 
     oit_backend backend_;
     std::string shader_dir_;
@@ -195,7 +185,6 @@ private:
     std::atomic<uint64_t> running_id_{0};
     bool running_ = false;
     bool context_attempted_ = false;
-    bool probe_requested_ = false;
     QString renderer_, context_error_;
 
     // worker thread only
@@ -220,10 +209,4 @@ private:
     };
     std::deque<CachedReference> references_;
     Running *running_job_ = nullptr; // the job render_job is working on
-    // the capability probe's own tiny scene and progress
-    oit_model probe_model_{};
-    oit_scene probe_scene_{};
-    bool probe_scene_ready_ = false;
-    size_t probe_next_algorithm_ = 0;
-    CapabilityTable probe_table_;
 };

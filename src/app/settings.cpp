@@ -201,9 +201,9 @@ std::string render_command(const std::string &oit_program, const std::string &mo
         c << " --max-layers " << s.config.max_layers;
     // the approximations' parameters, only for the algorithms that read them (as oit render takes them)
     const oit_algorithm_ops *ops = oit_algorithm_find(s.algorithm.c_str());
-    if (ops && ops->uses_layers && s.config.layers != 0)
+    if (ops && oit_algorithm_reads(ops, OIT_OPTION_LAYERS) && s.config.layers != 0)
         c << " --layers " << s.config.layers;
-    if (ops && ops->uses_moments && s.config.moments != OIT_MOMENTS_DEFAULT)
+    if (ops && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS) && s.config.moments != OIT_MOMENTS_DEFAULT)
         c << " --moments " << oit_moments_name(s.config.moments);
     const oit_modulation &m = s.modulation;
     if (m.view != OIT_VIEW_COLOUR)

@@ -351,9 +351,9 @@ static const oit_moments moments_values[] = {OIT_MOMENTS_POWER4, OIT_MOMENTS_POW
 /* What an algorithm's parameter may be, for messages. */
 static const char *parameter_kind(const oit_algorithm_ops *ops)
 {
-    if (ops->uses_layers && ops->uses_moments)
+    if (oit_algorithm_reads(ops, OIT_OPTION_LAYERS) && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS))
         return "layers K or moments power4, power6 or trig3";
-    return ops->uses_layers ? "layers K" : "moments power4, power6 or trig3";
+    return oit_algorithm_reads(ops, OIT_OPTION_LAYERS) ? "layers K" : "moments power4, power6 or trig3";
 }
 
 /* NAME[:PARAMETER] (item is modified). */
@@ -391,16 +391,16 @@ static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err
         if (strcmp(parameter, moments_names[k]) == 0)
             moments = k;
     const oit_algorithm_ops *ops = a->ops;
-    if (numeric && ops->uses_layers) {
+    if (numeric && oit_algorithm_reads(ops, OIT_OPTION_LAYERS)) {
         long layers;
         if (!parse_int(parameter, 1, OIT_APPROX_LAYERS_MAX, &layers))
             return oit_fail(err, OIT_E_INPUT,
                             "--algorithms: '%s': layers must be a whole number from 1 to %d", a->label,
                             OIT_APPROX_LAYERS_MAX);
         a->layers = (int)layers;
-    } else if (moments >= 0 && ops->uses_moments) {
+    } else if (moments >= 0 && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS)) {
         a->moments = moments_values[moments];
-    } else if (ops->uses_layers || ops->uses_moments) {
+    } else if (oit_algorithm_reads(ops, OIT_OPTION_LAYERS) || oit_algorithm_reads(ops, OIT_OPTION_MOMENTS)) {
         return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': %s takes %s, got '%s'", a->label, name,
                         parameter_kind(ops), parameter);
     } else {

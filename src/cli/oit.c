@@ -124,41 +124,77 @@ static void print_render_json(FILE *out, const render_options *o, const session 
 
 /* ------------------------------------------------------------ commands */
 
-static const char render_help[] =
-    "usage: oit render --model PATH [--out FILE.png] [options]\n"
-    "  --algorithm NAME       blend, dp, ddp, ll, ib, wboit, mlab, reference (default ll;\n"
-    "                         oit algorithms)\n"
-    "  --size WxH             image size, 1..16384 per side (default 256x256)\n"
-    "  --modelview M          16 comma-separated numbers, row by row (default: frame the model)\n"
-    "  --projection P         16 comma-separated numbers, row by row; clip = P * MV * v\n"
-    "  --orbit AZ,EL          default camera turned by azimuth and elevation in degrees (default 0,0)\n"
-    "  --alpha A              uniform opacity in [0, 1] (default 0.5), times each material's opacity\n"
-    "  --shading MODE         flat | headlight (default headlight: two-sided diffuse from the eye)\n"
-    "  --background R,G,B     each in [0, 1] (default 1,1,1)\n"
-    "  --backend NAME         egl | osmesa (default egl)\n"
-    "  --max-memory MB        budget for growing buffers such as the fragment pool (default 1024)\n"
-    "  --sort VARIANT         ll: insertion (in place, default) | array (local array of 64)\n"
-    "  --fragment-pool N      ll, ib: initial fragment pool capacity (default: automatic); it grows\n"
-    "                         as needed\n"
-    "  --fragment-counter-start N  ll, ib (tests): start the fill's 32-bit fragment counter at N,\n"
-    "                         0..4294967295 (default 0), to reach its limit without 2^32 fragments\n"
-    "  --buffer-fragment-limit N  ll, ib (tests): address at most N fragments in one buffer, as if\n"
-    "                         the GL's limit were that low, so the frame is drawn in bands of rows\n"
-    "  --max-layers N         dp, ddp: peel at most N layers, 1..1000000 (default: no cap, peel\n"
-    "                         until nothing is left); a frame the cap cuts short gets a warning\n"
-    "                         and \"truncated\": true\n"
-    "  --layers K             kbuffer, hybrid, mlab: layers kept per pixel, 1..64 (default 8)\n"
-    "  --moments M            mboit: power4, power6 or trig3 (default power4)\n"
-    "  --error-vs-reference   also render the frame with the CPU reference and report the error:\n"
-    "                         rmse, psnr, ssim, max, share_over_2 (RGB; docs/cli.md); --json adds\n"
-    "                         \"error\": {...}\n"
-    "  --error-map FILE.png   write the per-pixel error against the reference as a heat map with a\n"
-    "                         legend (black: exact; blue to red: 1 to 64+ of 255, logarithmic)\n"
-    "  --locks-held           mlab (tests): every pixel's lock starts taken, so every fragment\n"
-    "                         gives up after its tries and the frame fails naming them\n"
-    "  --frames N             render N frames; figures are medians over frames 2..N (default 1)\n"
-    "  --json                 print one JSON object with timings and statistics on stdout\n"
-    "  --debug                debug GL context: every stage is checked for GL errors\n";
+/* "kbuffer, hybrid, mlab": the algorithms whose capabilities say they read the option. */
+static const char *algorithms_reading(unsigned option, char *out, size_t size)
+{
+    size_t count, used = 0;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    out[0] = '\0';
+    for (size_t i = 0; i < count; ++i)
+        if (oit_algorithm_reads(list[i], option) && used < size)
+            used += (size_t)snprintf(out + used, size - used, "%s%s", used ? ", " : "", list[i]->name);
+    return out;
+}
+
+/* The render flags and, from the registry and the capabilities, which
+ * algorithms there are and which read each algorithm-specific flag. */
+static void print_render_help(FILE *out)
+{
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    char names[256] = "", reading[128];
+    for (size_t i = 0, used = 0; i < count && used < sizeof names; ++i)
+        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", i ? ", " : "", list[i]->name);
+    fprintf(out,
+            "usage: oit render --model PATH [--out FILE.png] [options]\n"
+            "  --algorithm NAME       %s\n"
+            "                         (default ll; oit algorithms says what each renders)\n"
+            "  --size WxH             image size, 1..16384 per side (default 256x256)\n"
+            "  --modelview M          16 comma-separated numbers, row by row (default: frame the model)\n"
+            "  --projection P         16 comma-separated numbers, row by row; clip = P * MV * v\n"
+            "  --orbit AZ,EL          default camera turned by azimuth and elevation in degrees (default 0,0)\n"
+            "  --alpha A              uniform opacity in [0, 1] (default 0.5), times each material's opacity\n"
+            "  --shading MODE         flat | headlight (default headlight: two-sided diffuse from the eye)\n"
+            "  --background R,G,B     each in [0, 1] (default 1,1,1)\n"
+            "  --backend NAME         egl | osmesa (default egl)\n",
+            names);
+    fprintf(out, "  --max-memory MB        budget for growing buffers such as the fragment pool (default\n"
+                 "                         1024); read by %s\n",
+            algorithms_reading(OIT_OPTION_MAX_MEMORY, reading, sizeof reading));
+    fprintf(out, "  --sort VARIANT         %s: insertion (in place, default) | array (local array of 64)\n",
+            algorithms_reading(OIT_OPTION_SORT, reading, sizeof reading));
+    fprintf(out,
+            "  --fragment-pool N      %s: initial fragment pool capacity (default: automatic); it grows\n"
+            "                         as needed\n"
+            "  --fragment-counter-start N  %s (tests): start the fill's 32-bit fragment counter at N,\n"
+            "                         0..4294967295 (default 0), to reach its limit without 2^32 fragments\n"
+            "  --buffer-fragment-limit N  %s (tests): address at most N fragments in one buffer, as if\n"
+            "                         the GL's limit were that low, so the frame is drawn in bands of rows\n",
+            algorithms_reading(OIT_OPTION_FRAGMENT_POOL, reading, sizeof reading), reading, reading);
+    fprintf(out,
+            "  --max-layers N         %s: peel at most N layers, 1..1000000 (default: no cap, peel\n"
+            "                         until nothing is left); a frame the cap cuts short gets a warning\n"
+            "                         and \"truncated\": true\n",
+            algorithms_reading(OIT_OPTION_MAX_LAYERS, reading, sizeof reading));
+    fprintf(out, "  --layers K             %s: layers kept per pixel, 1..64 (default 8)\n",
+            algorithms_reading(OIT_OPTION_LAYERS, reading, sizeof reading));
+    fprintf(out, "  --moments M            %s: power4, power6 or trig3 (default power4)\n",
+            algorithms_reading(OIT_OPTION_MOMENTS, reading, sizeof reading));
+    fputs("  --error-vs-reference   also render the frame with the CPU reference and report the error:\n"
+          "                         rmse, psnr, ssim, max, share_over_2 (RGB; docs/cli.md); --json adds\n"
+          "                         \"error\": {...}\n"
+          "  --error-map FILE.png   write the per-pixel error against the reference as a heat map with a\n"
+          "                         legend (black: exact; blue to red: 1 to 64+ of 255, logarithmic)\n",
+          out);
+    fprintf(out,
+            "  --locks-held           %s (tests): every pixel's lock starts taken, so every fragment\n"
+            "                         gives up after its tries and the frame fails naming them\n",
+            algorithms_reading(OIT_OPTION_LOCKS_HELD, reading, sizeof reading));
+    fputs("  --frames N             render N frames; figures are medians over frames 2..N (default 1)\n"
+          "  --json                 print one JSON object with timings and statistics on stdout\n"
+          "  --debug                debug GL context: every stage is checked for GL errors\n",
+          out);
+}
 
 static int command_render(int argc, char **argv)
 {
@@ -170,7 +206,7 @@ static int command_render(int argc, char **argv)
     const char *error_map_path = NULL;
     for (int i = 0; i < argc; ++i) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(render_help, stdout);
+            print_render_help(stdout);
             oit_cli_print_local_help(stdout);
             oit_cli_print_modulation_help(stdout);
             return EXIT_OK;
@@ -451,6 +487,41 @@ static int command_gen(int argc, char **argv)
     return report(status, &err);
 }
 
+/* ', "views": [...], "modulations": [...], "distances": [...], "options": [...]':
+ * the values each --flag takes that the algorithm renders, and the render
+ * flags it reads, from its capabilities. */
+static void json_capabilities(FILE *out, const oit_algorithm_ops *ops)
+{
+    const oit_capabilities *can = ops->capabilities;
+    fputs(", \"views\": [", out);
+    for (int v = 0, n = 0; v < OIT_VIEW_COUNT; ++v)
+        if (!can->views[v])
+            fprintf(out, "%s\"%s\"", n++ ? ", " : "", oit_view_name((oit_view)v));
+    fputs("], \"modulations\": [", out);
+    for (int m = 0, n = 0; m < OIT_MODULATION_COUNT; ++m)
+        if (!can->modulations[m])
+            fprintf(out, "%s\"%s\"", n++ ? ", " : "", oit_modulation_mode_name((oit_modulation_mode)m));
+    fputs("], \"distances\": [", out); /* where a modulation measures distance */
+    bool measures = !can->modulations[OIT_MODULATE_DISTANCE] || !can->modulations[OIT_MODULATE_DIST_CURV];
+    for (int d = 0, n = 0; measures && d < OIT_DISTANCE_COUNT; ++d)
+        if (!can->distances[d])
+            fprintf(out, "%s\"%s\"", n++ ? ", " : "", oit_distance_mode_name((oit_distance_mode)d));
+    fputs("], \"options\": [", out);
+    int n = 0;
+    for (int bit = 0; bit < OIT_OPTION_COUNT; ++bit) {
+        if (!oit_algorithm_reads(ops, 1u << bit))
+            continue;
+        /* each flag of the option */
+        const char *flags = oit_option_flags(1u << bit);
+        while (*flags) {
+            size_t length = strcspn(flags, " ");
+            fprintf(out, "%s\"%.*s\"", n++ ? ", " : "", (int)length, flags);
+            flags += length + (flags[length] == ' ');
+        }
+    }
+    fputs("]", out);
+}
+
 static int command_algorithms(int argc, char **argv)
 {
     bool json = false;
@@ -459,7 +530,10 @@ static int command_algorithms(int argc, char **argv)
             json = true;
         else if (strcmp(argv[i], "--help") == 0) {
             fputs("usage: oit algorithms [--json]   (--json: [{\"name\", \"exact\", \"uses_layers\", "
-                  "\"uses_moments\", \"summary\"}])\n", stdout);
+                  "\"uses_moments\", \"summary\", \"uses_gl\", \"views\", \"modulations\", \"distances\",\n"
+                  "                                  \"options\"}]:"
+                  "                                  what each renders, from its capabilities)\n",
+                  stdout);
             return EXIT_OK;
         } else
             return usage_error("algorithms: unknown option '%s'", argv[i]);
@@ -476,9 +550,11 @@ static int command_algorithms(int argc, char **argv)
         printf("%s{\"name\": ", i ? ", " : "");
         json_string(stdout, list[i]->name);
         printf(", \"exact\": %s, \"uses_layers\": %s, \"uses_moments\": %s, \"summary\": ",
-               list[i]->exact ? "true" : "false", list[i]->uses_layers ? "true" : "false",
-               list[i]->uses_moments ? "true" : "false");
+               list[i]->exact ? "true" : "false", oit_algorithm_reads(list[i], OIT_OPTION_LAYERS) ? "true" : "false",
+               oit_algorithm_reads(list[i], OIT_OPTION_MOMENTS) ? "true" : "false");
         json_string(stdout, list[i]->summary);
+        printf(", \"uses_gl\": %s", list[i]->uses_gl ? "true" : "false");
+        json_capabilities(stdout, list[i]);
         printf("}");
     }
     if (json)

@@ -7,6 +7,7 @@
  */
 #include <stdlib.h>
 
+#include "capabilities.h"
 #include "gl_util.h"
 
 struct oit_algorithm {
@@ -90,19 +91,6 @@ static oit_status blend_render(oit_algorithm *alg, const oit_scene *scene,
 {
     if (!scene->has_gpu)
         return oit_fail(err, OIT_E_RUNTIME, "blend: the scene is not on the GPU");
-    const oit_modulation *modulation = &frame->modulation;
-    if (modulation->mode == OIT_MODULATE_DISTANCE)
-        return oit_fail(err, OIT_E_INPUT, "blend: the distance modulation needs the next fragment along the ray, and "
-                        "blending in submission order never has two fragments of a pixel at once");
-    if (modulation->mode != OIT_MODULATE_NONE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "blend: opacity modulation '%s' needs surface neighbours (ib only): blending "
-                        "in submission order never sees the adjacent pixels' fragments of the "
-                        "same surface",
-                        oit_modulation_mode_name(modulation->mode));
-    if (modulation->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "blend: buffer views are ll's and ib's (view '%s')",
-                        oit_view_name(modulation->view));
     if (frame->width != alg->output.width || frame->height != alg->output.height) {
         oit_status status = blend_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)
@@ -162,11 +150,20 @@ static void blend_stats(const oit_algorithm *alg, oit_stats *out)
     *out = alg->stats;
 }
 
+static const oit_capabilities blend_capabilities = {
+    .modulations = {[OIT_MODULATE_DISTANCE] = "the distance modulation needs the next fragment along the ray, and "
+                                              "blending in submission order never has two fragments of a pixel at once",
+                    OIT_REFUSES_NEIGHBOUR_MODULATIONS("blending in submission order never sees the adjacent "
+                                                      "pixels' fragments of the same surface")},
+    .views = {OIT_REFUSES_BUFFER_VIEWS},
+};
+
 const oit_algorithm_ops oit_algorithm_blend = {
     .name = "blend",
     .summary = "alpha blending in submission order (one pass, not order-independent)",
     .uses_gl = true,
     .exact = false,
+    .capabilities = &blend_capabilities,
     .create = blend_create,
     .resize = blend_resize,
     .render = blend_render,

@@ -39,8 +39,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "capabilities.h"
 #include "gl_util.h"
-#include "oit.h"
 
 typedef struct ddp_state {
     oit_algorithm_config config;
@@ -500,20 +500,6 @@ static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,
         return oit_fail(err, OIT_E_INPUT, "ddp: the scene has no GPU buffers");
     const oit_modulation *modulation = &frame->modulation;
     const bool distance = modulation->mode == OIT_MODULATE_DISTANCE;
-    if (distance && modulation->distance != OIT_DISTANCE_ADJACENT)
-        return oit_fail(err, OIT_E_INPUT,
-                        "ddp: only the adjacent distance: skip and far-end distances need layers "
-                        "further along the ray than the ones peeled (use ll, ib or reference)");
-    if (modulation->mode != OIT_MODULATE_NONE && !distance)
-        return oit_fail(err, OIT_E_INPUT,
-                        "ddp: opacity modulation '%s' needs surface neighbours (ib only): dual depth "
-                        "peeling blends each front layer in the pass that peels it, before the "
-                        "adjacent pixels' fragments of that layer are known (dp approximates "
-                        "curvature and dist-curv from neighbours in the same peeled layer)",
-                        oit_modulation_mode_name(modulation->mode));
-    if (modulation->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "ddp: buffer views are ll's and ib's (view '%s')",
-                        oit_view_name(modulation->view));
     if (frame->width != s->width || frame->height != s->height ||
         (distance && !s->distance_targets)) {
         s->distance_targets = s->distance_targets || distance;
@@ -598,11 +584,25 @@ static void ddp_destroy(oit_algorithm *alg)
     free(s);
 }
 
+/* ddp knows the adjacent distance (its blending delayed by a layer) and
+ * nothing of the neighbouring pixels. */
+static const oit_capabilities ddp_capabilities = {
+    .modulations = {OIT_REFUSES_NEIGHBOUR_MODULATIONS(
+        "dual depth peeling blends each front layer in the pass that peels it, before the adjacent pixels' "
+        "fragments of that layer are known (dp approximates curvature and dist-curv from neighbours in the same "
+        "peeled layer)")},
+    .distances = {OIT_ADJACENT_DISTANCE_ONLY("skip and far-end distances need layers further along the ray than "
+                                             "the ones peeled (use ll, ib or reference)")},
+    .views = {OIT_REFUSES_BUFFER_VIEWS},
+    .options = OIT_OPTION_MAX_LAYERS,
+};
+
 const oit_algorithm_ops oit_algorithm_ddp = {
     .name = "ddp",
     .summary = "dual depth peeling (Bavoil & Myers 2008): nearest and farthest layer per pass",
     .uses_gl = true,
     .exact = true,
+    .capabilities = &ddp_capabilities,
     .create = ddp_create,
     .resize = ddp_resize,
     .render = ddp_render,

@@ -56,8 +56,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "capabilities.h"
 #include "gl_util.h"
-#include "oit.h"
 
 _Static_assert(OIT_IB_MODE_CURVATURE == OIT_MODULATE_CURVATURE &&
                    OIT_IB_MODE_DIST_CURV == OIT_MODULATE_DIST_CURV &&
@@ -576,19 +576,6 @@ static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
     /* dist-curv needs the distance (delayed blending) and the neighbours */
     const bool distance = m->mode == OIT_MODULATE_DISTANCE || m->mode == OIT_MODULATE_DIST_CURV;
     const bool neighbours = dp_needs_neighbours(frame);
-    if (m->mode == OIT_MODULATE_FIELDS)
-        return oit_fail(err, OIT_E_INPUT,
-                        "dp: opacity modulation 'fields' needs surface neighbours (ib only): "
-                        "the fields diffuse over the whole surface, across layers, and a peeled "
-                        "layer is gone once blended; dp does the local ones, the adjacent "
-                        "distance, and curvature and edges from neighbours in the same layer");
-    if (distance && m->distance != OIT_DISTANCE_ADJACENT)
-        return oit_fail(err, OIT_E_INPUT,
-                        "dp: only the adjacent distance: skip and far-end distances need layers "
-                        "further behind than the last one peeled (use ll, ib or reference)");
-    if (m->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "dp: buffer views are ll's and ib's (view '%s')",
-                        oit_view_name(m->view));
     if (frame->width != s->width || frame->height != s->height ||
         (distance && !s->distance_targets) || (neighbours && !s->normal_targets)) {
         s->distance_targets = s->distance_targets || distance;
@@ -678,11 +665,26 @@ static void dp_destroy(oit_algorithm *alg)
     free(s);
 }
 
+/* dp knows the previous layer's depth (the adjacent distance) and, in a
+ * layer, the neighbouring pixels' fragments of that layer (curvature, edges);
+ * nothing further along the ray nor across layers. */
+static const oit_capabilities dp_capabilities = {
+    .modulations = {[OIT_MODULATE_FIELDS] = OIT_NEEDS_NEIGHBOURS(
+                        "the fields diffuse over the whole surface, across layers, and a peeled layer is gone once "
+                        "blended; dp does the local ones, the adjacent distance, and curvature and edges from "
+                        "neighbours in the same layer")},
+    .distances = {OIT_ADJACENT_DISTANCE_ONLY("skip and far-end distances need layers further behind than the last "
+                                             "one peeled (use ll, ib or reference)")},
+    .views = {OIT_REFUSES_BUFFER_VIEWS},
+    .options = OIT_OPTION_MAX_LAYERS,
+};
+
 const oit_algorithm_ops oit_algorithm_dp = {
     .name = "dp",
     .summary = "depth peeling (Everitt 2001): one geometry pass per layer, front to back",
     .uses_gl = true,
     .exact = true,
+    .capabilities = &dp_capabilities,
     .create = dp_create,
     .resize = dp_resize,
     .render = dp_render,

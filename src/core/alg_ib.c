@@ -432,10 +432,7 @@ static oit_status ib_make_plan(const oit_frame_settings *frame, const oit_scene 
     ib_params *p = &plan->params;
     if (!ib_invert(frame->projection, p->inverse_projection))
         return oit_fail(err, OIT_E_INPUT, "ib: the projection matrix is singular");
-    if ((int)m->mode < OIT_MODULATE_NONE || (int)m->mode > OIT_MODULATE_EDGES)
-        return oit_fail(err, OIT_E_INPUT, "ib: unknown modulation %d", (int)m->mode);
-    if ((int)m->view < OIT_VIEW_COLOUR || (int)m->view > OIT_VIEW_FIELDS)
-        return oit_fail(err, OIT_E_INPUT, "ib: unknown view %d", (int)m->view);
+    /* the modulation and the view are checked against ib's capabilities (oit_frame_check) */
     if ((int)m->neighbours < OIT_NEIGHBOURS_DEFAULT || (int)m->neighbours > OIT_NEIGHBOURS_EPSILON)
         return oit_fail(err, OIT_E_INPUT, "ib: unknown neighbour search %d", (int)m->neighbours);
     if ((int)m->distance < OIT_DISTANCE_ADJACENT || (int)m->distance > OIT_DISTANCE_FAR_END)
@@ -1289,11 +1286,17 @@ static void ib_stats(const oit_algorithm *alg, oit_stats *out)
     *out = ((const ib_state *)alg)->last_stats;
 }
 
+/* ib renders every view, modulation and distance. */
+static const oit_capabilities ib_capabilities = {
+    .options = OIT_OPTION_FRAGMENT_POOL | OIT_OPTION_MAX_MEMORY,
+};
+
 const oit_algorithm_ops oit_algorithm_ib = {
     .name = "ib",
     .summary = "Illustration Buffer: sorted runs with surface neighbours; opacity modulation",
     .uses_gl = true,
     .exact = true,
+    .capabilities = &ib_capabilities,
     .create = ib_create,
     .resize = ib_resize,
     .render = ib_render,

@@ -54,6 +54,7 @@
 #include <string.h>
 
 #include "bands.h"
+#include "capabilities.h"
 #include "gl_util.h"
 
 /* Pool bytes per fragment: the node and its two next pointers. */
@@ -348,25 +349,6 @@ static void ll_bind_pool(const ll_state *s)
     glActiveTexture(GL_TEXTURE0);
 }
 
-/* ll shows the colour image and the list views; the rest is the Illustration
- * Buffer's (ib). */
-static oit_status ll_check_view(const oit_modulation *modulation, oit_error *err)
-{
-    if (modulation->view != OIT_VIEW_COLOUR && modulation->view != OIT_VIEW_HEATMAP &&
-        modulation->view != OIT_VIEW_PEEL_LIMIT && modulation->view != OIT_VIEW_LAYER)
-        return oit_fail(err, OIT_E_INPUT,
-                        "ll: view '%s' is not supported (colour, heatmap, peel limit and layer only)",
-                        oit_view_name(modulation->view));
-    if (modulation->mode != OIT_MODULATE_NONE && modulation->mode != OIT_MODULATE_DISTANCE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "ll: opacity modulation '%s' needs surface neighbours (ib only): a pixel's "
-                        "list has no link to the adjacent pixels' lists, which are sorted only "
-                        "inside their own compose invocation; ll does the local ones and the "
-                        "distance",
-                        oit_modulation_mode_name(modulation->mode));
-    return OIT_OK;
-}
-
 /* In debug mode, check for GL errors after each stage. */
 static oit_status ll_check(const ll_state *s, const char *stage, oit_error *err)
 {
@@ -614,9 +596,6 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     oit_status status;
     if (!scene->has_gpu)
         return oit_fail(err, OIT_E_INPUT, "ll: the scene has not been uploaded to the GPU");
-    status = ll_check_view(&frame->modulation, err);
-    if (status != OIT_OK)
-        return status;
     if (frame->width != s->output.width || frame->height != s->output.height ||
         !s->head_image) {
         status = ll_resize(alg, frame->width, frame->height, err);
@@ -753,11 +732,24 @@ static void ll_stats(const oit_algorithm *alg, oit_stats *out)
     *out = ll_from_const(alg)->last_stats;
 }
 
+/* ll shows the colour image and the list views, and every local modulation
+ * and distance; the rest is the Illustration Buffer's (ib). */
+#define LL_VIEW_REASON "view '%s' is not supported (colour, heatmap, peel limit and layer only)"
+static const oit_capabilities ll_capabilities = {
+    .views = {[OIT_VIEW_NEIGHBOURS] = LL_VIEW_REASON, [OIT_VIEW_CURVATURE] = LL_VIEW_REASON,
+              [OIT_VIEW_DISTANCE] = LL_VIEW_REASON, [OIT_VIEW_FIELDS] = LL_VIEW_REASON},
+    .modulations = {OIT_REFUSES_NEIGHBOUR_MODULATIONS("a pixel's list has no link to the adjacent pixels' lists, "
+                                                      "which are sorted only inside their own compose invocation; "
+                                                      "ll does the local ones and the distance")},
+    .options = OIT_OPTION_SORT | OIT_OPTION_FRAGMENT_POOL | OIT_OPTION_MAX_MEMORY,
+};
+
 const oit_algorithm_ops oit_algorithm_ll = {
     .name = "ll",
     .summary = "per-pixel linked lists: one geometry pass, then sort and compose per pixel",
     .uses_gl = true,
     .exact = true,
+    .capabilities = &ll_capabilities,
     .create = ll_create,
     .resize = ll_resize,
     .render = ll_render,

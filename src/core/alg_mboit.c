@@ -30,6 +30,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "capabilities.h"
 #include "gl_util.h"
 #include "oit.h"
 
@@ -183,26 +184,6 @@ static oit_status mboit_resize(oit_algorithm *alg, int width, int height, oit_er
     return OIT_OK;
 }
 
-/* What mboit cannot show, refused before any work (as wboit). */
-static oit_status mboit_check_frame(const oit_frame_settings *frame, oit_error *err)
-{
-    const oit_modulation *modulation = &frame->modulation;
-    if (modulation->mode == OIT_MODULATE_DISTANCE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "mboit: the distance modulation needs the next fragment along the ray, and "
-                        "moment-based OIT keeps only moments of the depths, not the fragments");
-    if (modulation->mode != OIT_MODULATE_NONE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "mboit: opacity modulation '%s' needs surface neighbours (ib only): "
-                        "moment-based OIT keeps no fragment, so no pixel sees its neighbours' "
-                        "fragments",
-                        oit_modulation_mode_name(modulation->mode));
-    if (modulation->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "mboit: buffer views are ll's and ib's (view '%s')",
-                        oit_view_name(modulation->view));
-    return OIT_OK;
-}
-
 static void mboit_bind_texture(GLenum unit, GLuint texture)
 {
     glActiveTexture(GL_TEXTURE0 + unit);
@@ -215,9 +196,7 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
     mboit_state *s = (mboit_state *)alg;
     if (!scene->has_gpu)
         return oit_fail(err, OIT_E_INPUT, "mboit: the scene has no GPU buffers");
-    oit_status status = mboit_check_frame(frame, err);
-    if (status != OIT_OK)
-        return status;
+    oit_status status = OIT_OK;
     if (frame->width != s->width || frame->height != s->height) {
         status = mboit_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)
@@ -318,12 +297,21 @@ static void mboit_destroy(oit_algorithm *alg)
     free(s);
 }
 
+static const oit_capabilities mboit_capabilities = {
+    .modulations = {[OIT_MODULATE_DISTANCE] = "the distance modulation needs the next fragment along the ray, and "
+                                              "moment-based OIT keeps only moments of the depths, not the fragments",
+                    OIT_REFUSES_NEIGHBOUR_MODULATIONS("moment-based OIT keeps no fragment, so no pixel sees its "
+                                                      "neighbours' fragments")},
+    .views = {OIT_REFUSES_BUFFER_VIEWS},
+    .options = OIT_OPTION_MOMENTS,
+};
+
 const oit_algorithm_ops oit_algorithm_mboit = {
     .name = "mboit",
     .summary = "moment-based OIT (Muenstermann et al. 2018): two additive passes, approximate",
     .uses_gl = true,
     .exact = false,
-    .uses_moments = true,
+    .capabilities = &mboit_capabilities,
     .create = mboit_create,
     .resize = mboit_resize,
     .render = mboit_render,

@@ -47,6 +47,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "capabilities.h"
 #include "gl_util.h"
 #include "oit.h"
 
@@ -205,34 +206,13 @@ static oit_status mlab_resize(oit_algorithm *alg, int width, int height, oit_err
     return OIT_OK;
 }
 
-/* What the frame asks that mlab cannot do: OIT_E_INPUT before any work. */
-static oit_status mlab_check_frame(const oit_frame_settings *frame, oit_error *err)
-{
-    const oit_modulation *modulation = &frame->modulation;
-    if (modulation->mode == OIT_MODULATE_DISTANCE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "mlab: the distance modulation needs the distance to the next fragment "
-                        "along the ray, and merged layers no longer know where their fragments were");
-    if (modulation->mode != OIT_MODULATE_NONE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "mlab: opacity modulation '%s' needs surface neighbours (ib only): a pixel "
-                        "keeps k merged layers and no link to the adjacent pixels' fragments",
-                        oit_modulation_mode_name(modulation->mode));
-    if (modulation->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "mlab: buffer views are ll's and ib's (view '%s')",
-                        oit_view_name(modulation->view));
-    return OIT_OK;
-}
-
 static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,
                               const oit_frame_settings *frame, oit_error *err)
 {
     mlab_state *s = (mlab_state *)alg;
     if (!scene->has_gpu)
         return oit_fail(err, OIT_E_INPUT, "mlab: the scene has no GPU buffers");
-    oit_status status = mlab_check_frame(frame, err);
-    if (status != OIT_OK)
-        return status;
+    oit_status status = OIT_OK;
     if (frame->width != s->width || frame->height != s->height) {
         status = mlab_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)
@@ -364,13 +344,23 @@ static void mlab_destroy(oit_algorithm *alg)
     free(s);
 }
 
+static const oit_capabilities mlab_capabilities = {
+    .modulations = {[OIT_MODULATE_DISTANCE] = "the distance modulation needs the distance to the next fragment "
+                                              "along the ray, and merged layers no longer know where their "
+                                              "fragments were",
+                    OIT_REFUSES_NEIGHBOUR_MODULATIONS("a pixel keeps k merged layers and no link to the adjacent "
+                                                      "pixels' fragments")},
+    .views = {OIT_REFUSES_BUFFER_VIEWS},
+    .options = OIT_OPTION_LAYERS | OIT_OPTION_MAX_MEMORY | OIT_OPTION_LOCKS_HELD,
+};
+
 const oit_algorithm_ops oit_algorithm_mlab = {
     .name = "mlab",
     .summary = "multi-layer alpha blending (Salvi & Vaidyanathan 2014): k merged layers per pixel, "
                "approximate",
     .uses_gl = true,
     .exact = false,
-    .uses_layers = true,
+    .capabilities = &mlab_capabilities,
     .create = mlab_create,
     .resize = mlab_resize,
     .render = mlab_render,

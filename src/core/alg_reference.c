@@ -61,7 +61,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "oit.h"
+#include "capabilities.h"
 #include "oit_shared.h" /* constants shared with the shaders: definitions */
 
 /* llvmpipe's subpixel precision: 8 bits. */
@@ -1040,28 +1040,6 @@ static void list_statistics(const uint32_t *counts, size_t pixels, uint64_t tota
     stats->psi = non_empty ? (double)long_lists / (double)non_empty : 0.0;
 }
 
-/* The reference shows the composited image and the views that select fragments
- * by depth order; list heat maps and the Illustration Buffer's modulation are
- * the GPU algorithms' business. */
-static oit_status check_view(const oit_modulation *modulation, oit_error *err)
-{
-    if (modulation->view != OIT_VIEW_COLOUR && modulation->view != OIT_VIEW_PEEL_LIMIT &&
-        modulation->view != OIT_VIEW_LAYER)
-        return oit_fail(err, OIT_E_INPUT,
-                        "reference: view '%s' is not supported (only colour, peel limit and layer)",
-                        oit_view_name(modulation->view));
-    if (modulation->mode != OIT_MODULATE_NONE && modulation->mode != OIT_MODULATE_DISTANCE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "reference: opacity modulation '%s' is not supported (only distance; the "
-                        "non-local ones are ib's)",
-                        oit_modulation_mode_name(modulation->mode));
-    if ((int)modulation->distance < OIT_DISTANCE_ADJACENT ||
-        (int)modulation->distance > OIT_DISTANCE_FAR_END)
-        return oit_fail(err, OIT_E_INPUT, "reference: unknown distance mode %d",
-                        (int)modulation->distance);
-    return OIT_OK;
-}
-
 static bool reference_continue(const oit_frame_settings *frame, const char *pass, int *passes_done);
 static oit_status reference_cancelled(const char *pass, int passes_done, oit_error *err);
 
@@ -1081,9 +1059,6 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
     if (status != OIT_OK)
         return status;
     status = check_model(model, err);
-    if (status != OIT_OK)
-        return status;
-    status = check_view(&frame->modulation, err);
     if (status != OIT_OK)
         return status;
 
@@ -1212,11 +1187,29 @@ static void reference_stats(const oit_algorithm *alg, oit_stats *out)
     *out = alg->stats;
 }
 
+/* The reference shows the composited image and the views that select
+ * fragments by depth order, with the local modulations and the distance; list
+ * heat maps and the Illustration Buffer's modulation are the GPU algorithms'
+ * business. */
+#define REFERENCE_VIEW_REASON "view '%s' is not supported (only colour, peel limit and layer)"
+#define REFERENCE_MODULATION_REASON "opacity modulation '%s' is not supported (only distance; the non-local ones are ib's)"
+static const oit_capabilities reference_capabilities = {
+    .views = {[OIT_VIEW_HEATMAP] = REFERENCE_VIEW_REASON, [OIT_VIEW_NEIGHBOURS] = REFERENCE_VIEW_REASON,
+              [OIT_VIEW_CURVATURE] = REFERENCE_VIEW_REASON, [OIT_VIEW_DISTANCE] = REFERENCE_VIEW_REASON,
+              [OIT_VIEW_FIELDS] = REFERENCE_VIEW_REASON},
+    .modulations = {[OIT_MODULATE_CURVATURE] = REFERENCE_MODULATION_REASON,
+                    [OIT_MODULATE_DIST_CURV] = REFERENCE_MODULATION_REASON,
+                    [OIT_MODULATE_FIELDS] = REFERENCE_MODULATION_REASON,
+                    [OIT_MODULATE_EDGES] = REFERENCE_MODULATION_REASON},
+    .options = OIT_OPTION_MAX_MEMORY,
+};
+
 const oit_algorithm_ops oit_algorithm_reference = {
     .name = "reference",
     .summary = "exact CPU rasterizer: every fragment sorted per pixel (the test oracle)",
     .uses_gl = false,
     .exact = true,
+    .capabilities = &reference_capabilities,
     .create = reference_create,
     .resize = reference_resize,
     .render = reference_render,

@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "capabilities.h"
 #include "gl_util.h"
 #include "oit.h"
 
@@ -121,18 +122,6 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
     wboit_state *s = (wboit_state *)alg;
     if (!scene->has_gpu)
         return oit_fail(err, OIT_E_INPUT, "wboit: the scene has no GPU buffers");
-    const oit_modulation *modulation = &frame->modulation;
-    if (modulation->mode == OIT_MODULATE_DISTANCE)
-        return oit_fail(err, OIT_E_INPUT, "wboit: the distance modulation needs the next fragment along the ray, and "
-                        "weighted blending accumulates fragments with no order");
-    if (modulation->mode != OIT_MODULATE_NONE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "wboit: opacity modulation '%s' needs surface neighbours (ib only): weighted "
-                        "blending keeps no fragment, so no pixel sees its neighbours' fragments",
-                        oit_modulation_mode_name(modulation->mode));
-    if (modulation->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "wboit: buffer views are ll's and ib's (view '%s')",
-                        oit_view_name(modulation->view));
     if (frame->width != s->width || frame->height != s->height) {
         oit_status status = wboit_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)
@@ -217,11 +206,20 @@ static void wboit_destroy(oit_algorithm *alg)
     free(s);
 }
 
+static const oit_capabilities wboit_capabilities = {
+    .modulations = {[OIT_MODULATE_DISTANCE] = "the distance modulation needs the next fragment along the ray, and "
+                                              "weighted blending accumulates fragments with no order",
+                    OIT_REFUSES_NEIGHBOUR_MODULATIONS("weighted blending keeps no fragment, so no pixel sees its "
+                                                      "neighbours' fragments")},
+    .views = {OIT_REFUSES_BUFFER_VIEWS},
+};
+
 const oit_algorithm_ops oit_algorithm_wboit = {
     .name = "wboit",
     .summary = "weighted blended OIT (McGuire & Bavoil 2013): one pass, approximate",
     .uses_gl = true,
     .exact = false,
+    .capabilities = &wboit_capabilities,
     .create = wboit_create,
     .resize = wboit_resize,
     .render = wboit_render,

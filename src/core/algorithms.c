@@ -32,7 +32,9 @@ oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg
 {
     if (!ops || !alg || !scene || !scene->model || !frame)
         return oit_fail(err, OIT_E_INPUT, "render: no algorithm, scene or frame settings");
-    oit_status status = oit_matrices_validate(frame->modelview, frame->projection, err);
+    oit_status status = oit_frame_check(ops, frame, err);
+    if (status == OIT_OK)
+        status = oit_matrices_validate(frame->modelview, frame->projection, err);
     if (status != OIT_OK)
         return status;
     const double *origin = scene->model->origin;

@@ -48,7 +48,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "capabilities.h"
 #include "closest_layers.h"
+
+const oit_capabilities closest_layers_capabilities = {
+    .modulations = {[OIT_MODULATE_DISTANCE] = "the distance modulation needs the next fragment along the ray, and "
+                                              "the fragments past the k nearest are blended into a tail with no order",
+                    OIT_REFUSES_NEIGHBOUR_MODULATIONS("a pixel keeps its k nearest fragments and no link to the "
+                                                      "adjacent pixels'")},
+    .views = {OIT_REFUSES_BUFFER_VIEWS},
+    .options = OIT_OPTION_LAYERS | OIT_OPTION_MAX_MEMORY,
+};
 
 _Static_assert(OIT_CLOSEST_HISTOGRAM_BINS == OIT_HISTOGRAM_BINS, "oit_shared.h and oit.h disagree");
 _Static_assert(OIT_CLOSEST_COUNTER_HISTOGRAM + OIT_CLOSEST_HISTOGRAM_BINS == OIT_CLOSEST_COUNTER_COUNT,
@@ -254,29 +264,6 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
 
 /* ------------------------------------------------------------ render */
 
-/* The family keeps whole fragments (shaded by oit_shade_fragment(), so the
- * local modulation works) but only a pixel's k nearest in order. */
-static oit_status closest_check_frame(const closest_layers_state *s, const oit_frame_settings *frame,
-                                      oit_error *err)
-{
-    const char *name = s->tail->algorithm;
-    const oit_modulation *modulation = &frame->modulation;
-    if (modulation->mode == OIT_MODULATE_DISTANCE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "%s: the distance modulation needs the next fragment along the ray, and the "
-                        "fragments past the k nearest are blended into a tail with no order",
-                        name);
-    if (modulation->mode != OIT_MODULATE_NONE)
-        return oit_fail(err, OIT_E_INPUT,
-                        "%s: opacity modulation '%s' needs surface neighbours (ib only): a pixel "
-                        "keeps its k nearest fragments and no link to the adjacent pixels'",
-                        name, oit_modulation_mode_name(modulation->mode));
-    if (modulation->view != OIT_VIEW_COLOUR)
-        return oit_fail(err, OIT_E_INPUT, "%s: buffer views are ll's and ib's (view '%s')", name,
-                        oit_view_name(modulation->view));
-    return OIT_OK;
-}
-
 /* With config.debug, check for GL errors after each stage; stop if cancelled. */
 static oit_status closest_stage_check(const closest_layers_state *s, const char *stage, oit_error *err)
 {
@@ -353,9 +340,7 @@ oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
     closest_layers_state *s = closest_from(alg);
     if (!scene->has_gpu)
         return oit_fail(err, OIT_E_INPUT, "%s: the scene has no GPU buffers", s->tail->algorithm);
-    oit_status status = closest_check_frame(s, frame, err);
-    if (status != OIT_OK)
-        return status;
+    oit_status status = OIT_OK;
     if (frame->width != s->width || frame->height != s->height) {
         status = closest_layers_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)

@@ -28,6 +28,9 @@ typedef struct closest_layers_tail {
     closest_layers_tail_target targets[CLOSEST_LAYERS_MAX_TAIL_TARGETS];
 } closest_layers_tail;
 
+/* What the family renders: the same for every tail. */
+extern const oit_capabilities closest_layers_capabilities;
+
 /* The oit_algorithm_ops of the family: create takes the tail (a static
  * description, kept by pointer); the others are the ops themselves. */
 oit_status closest_layers_create(const closest_layers_tail *tail, const oit_algorithm_config *config,

@@ -69,6 +69,12 @@ const char *oit_view_name(oit_view view)
     return (int)view >= 0 && (size_t)view < sizeof names / sizeof names[0] ? names[view] : "unknown";
 }
 
+const char *oit_distance_mode_name(oit_distance_mode mode)
+{
+    static const char *const names[] = {"adjacent", "skip", "far"};
+    return (int)mode >= 0 && (size_t)mode < sizeof names / sizeof names[0] ? names[mode] : "unknown";
+}
+
 const char *oit_modulation_mode_name(oit_modulation_mode mode)
 {
     static const char *const names[] = {"none", "curvature", "distance", "dist-curv", "fields", "edges"};

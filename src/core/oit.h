@@ -374,6 +374,13 @@ typedef enum oit_distance_mode {
     OIT_DISTANCE_FAR_END = 2   /* to the last fragment on the ray */
 } oit_distance_mode;
 
+#define OIT_VIEW_COUNT 8       /* oit_view's values: 0 .. OIT_VIEW_COUNT - 1 */
+#define OIT_MODULATION_COUNT 6 /* oit_modulation_mode's */
+#define OIT_DISTANCE_COUNT 3   /* oit_distance_mode's */
+
+/* "adjacent", "skip", "far" (the command line's --distance words); "unknown" outside the enum */
+const char *oit_distance_mode_name(oit_distance_mode mode);
+
 #define OIT_FIELD_ALPHA 1
 #define OIT_FIELD_BETA 2
 #define OIT_FIELD_GAMMA 4
@@ -635,13 +642,45 @@ void oit_scene_release(oit_scene *scene);
 
 typedef struct oit_algorithm oit_algorithm; /* each algorithm's own state */
 
+/* ------------------------------------------------------------ capabilities */
+/* What an algorithm renders, as data on its operations table (issue "One
+ * shape for every algorithm"): for every view, modulation and distance mode,
+ * NULL where it renders it, else why it cannot, one clause in which "%s"
+ * stands for the value's name. oit_frame_check refuses the rest, once, for
+ * every algorithm, before any work; render() keeps only the limits that
+ * depend on the frame's contents (fragments, memory). The command line's
+ * help, `oit algorithms --json`, the workbench's greyed-out entries and the
+ * generated capability page all read this table. */
+typedef struct oit_capabilities {
+    const char *views[OIT_VIEW_COUNT];
+    const char *modulations[OIT_MODULATION_COUNT];
+    const char *distances[OIT_DISTANCE_COUNT]; /* with a modulation that measures distance */
+    unsigned options;                          /* OIT_OPTION_*: the render options it reads */
+} oit_capabilities;
+
+/* The render options an algorithm reads beyond every algorithm's own (size,
+ * camera, alpha, shading, background, the local modulations), by their
+ * command-line flags (oit_option_flags). */
+enum {
+    OIT_OPTION_SORT = 1u << 0,           /* --sort: oit_algorithm_config.ll_sort */
+    OIT_OPTION_MAX_LAYERS = 1u << 1,     /* --max-layers */
+    OIT_OPTION_LAYERS = 1u << 2,         /* --layers */
+    OIT_OPTION_MOMENTS = 1u << 3,        /* --moments */
+    OIT_OPTION_FRAGMENT_POOL = 1u << 4,  /* --fragment-pool, --fragment-counter-start,
+                                            --buffer-fragment-limit */
+    OIT_OPTION_MAX_MEMORY = 1u << 5,     /* --max-memory */
+    OIT_OPTION_LOCKS_HELD = 1u << 6,     /* --locks-held (tests) */
+    OIT_OPTION_COUNT = 7
+};
+/* The flags of one OIT_OPTION_* bit, space-separated ("--sort"); NULL for a bit outside them. */
+const char *oit_option_flags(unsigned option);
+
 typedef struct oit_algorithm_ops {
     const char *name;    /* as on the command line */
     const char *summary; /* one line for `oit algorithms` */
     bool uses_gl;        /* false only for the CPU reference */
     bool exact;          /* true if it composites every fragment in depth order */
-    bool uses_layers;    /* reads oit_algorithm_config.layers (k-layer families) */
-    bool uses_moments;   /* reads oit_algorithm_config.moments (mboit) */
+    const oit_capabilities *capabilities; /* what it renders, and why not the rest */
     oit_status (*create)(const oit_algorithm_config *config, oit_algorithm **out, oit_error *err);
     oit_status (*resize)(oit_algorithm *alg, int width, int height, oit_error *err);
     /* Render one frame into the algorithm's RGBA8 output; fills the stage
@@ -653,8 +692,17 @@ typedef struct oit_algorithm_ops {
     void (*destroy)(oit_algorithm *alg);
 } oit_algorithm_ops;
 
+/* Whether the algorithm renders what the frame asks (its capabilities):
+ * OIT_E_INPUT "NAME: reason" for the first thing it does not (the
+ * modulation, then its distance mode, then the view), or for a value outside
+ * its enum. oit_algorithm_render calls it; shells may ask before rendering. */
+oit_status oit_frame_check(const oit_algorithm_ops *ops, const oit_frame_settings *frame, oit_error *err);
+/* Whether it reads that OIT_OPTION_* (the option is ignored otherwise). */
+bool oit_algorithm_reads(const oit_algorithm_ops *ops, unsigned option);
+
 /* The one way to render a frame (every shell calls it, never ops->render):
- * validates the matrices, then hands the algorithm the frame as its GPU
+ * checks the frame against the algorithm's capabilities (oit_frame_check)
+ * and validates the matrices, then hands the algorithm the frame as its GPU
  * passes must see it: the modelview folded onto the model's relative
  * positions (oit_model_modelview) and the focus shapes moved with them, both
  * matrices and the focus rounded to float, as the GL takes them. The

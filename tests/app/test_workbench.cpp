@@ -557,8 +557,8 @@ private slots:
 
     void controls_an_algorithm_cannot_express_are_disabled()
     {
-        // the worker measures the table when idle: each option on each algorithm
-        QTRY_VERIFY_WITH_TIMEOUT(!window->capabilities().empty(), 120000);
+        // the table comes from the core's capability tables: there at once, no frame rendered
+        QVERIFY(!window->capabilities().empty());
         const CapabilityTable &table = window->capabilities();
         for (const auto &[key, algorithms] : table)
             qInfo("%-22s %s", qPrintable(key), qPrintable(algorithms.join(", ")));
