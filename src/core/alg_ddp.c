@@ -40,14 +40,10 @@
 #include <stdlib.h>
 
 #include "capabilities.h"
-#include "gl_util.h"
+#include "gpu_algorithm.h"
 
 typedef struct ddp_state {
-    oit_algorithm_config config;
-    oit_gl_output output;
-    oit_gl_memory memory; /* every target below and the output (gl_util.h) */
-    oit_stage_timer timer;
-    oit_stats stats;
+    oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
 
     GLuint init_program;    /* geometry.vert + ddp/init.frag */
     GLuint peel_program;    /* geometry.vert + ddp/peel.frag */
@@ -73,23 +69,16 @@ typedef struct ddp_state {
     GLuint distance_peel_framebuffer[2]; /* minmax[i], front_layer, back_layer */
     GLuint distance_blend_framebuffer[2]; /* front, back, previous_far[i] */
     GLuint distance_max_framebuffer[2];   /* distance_max, previous_far[i] */
-    int width, height;
 } ddp_state;
 
-/* A screen-sized target, recorded in s->memory. Per pixel: 2 min-max (8
+/* A screen-sized target, recorded in s->gpu.memory. Per pixel: 2 min-max (8
  * each), front, back layer and back (16 each), the RGBA8 output (4); with the
  * distance modulation the front layer (16), two far depths and the maximum (4
  * each). */
 static GLuint ddp_target(ddp_state *s, GLenum internal_format, int width, int height)
 {
-    return oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, internal_format, width,
+    return oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, internal_format, width,
                                     height);
-}
-
-/* What the targets and the output hold, as allocated (the tracker). */
-static uint64_t ddp_memory(const struct ddp_state *s)
-{
-    return oit_gl_memory_total(&s->memory);
 }
 
 /* Cleared min-max: nothing left (near > far); loses every MAX. */
@@ -99,24 +88,24 @@ static void ddp_release_targets(ddp_state *s)
 {
     glDeleteFramebuffers(2, s->peel_framebuffer);
     glDeleteFramebuffers(1, &s->back_framebuffer);
-    oit_gl_memory_delete_textures(&s->memory, 2, s->minmax);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->front);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->back_layer);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->back);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 2, s->minmax);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->front);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->back_layer);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->back);
     for (int i = 0; i < 2; ++i)
         s->peel_framebuffer[i] = s->minmax[i] = 0;
     s->back_framebuffer = s->front = s->back_layer = s->back = 0;
     glDeleteFramebuffers(2, s->distance_peel_framebuffer);
     glDeleteFramebuffers(2, s->distance_blend_framebuffer);
     glDeleteFramebuffers(2, s->distance_max_framebuffer);
-    oit_gl_memory_delete_textures(&s->memory, 2, s->previous_far);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->front_layer);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->distance_max);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 2, s->previous_far);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->front_layer);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->distance_max);
     for (int i = 0; i < 2; ++i)
         s->distance_peel_framebuffer[i] = s->distance_blend_framebuffer[i] =
             s->distance_max_framebuffer[i] = s->previous_far[i] = 0;
     s->front_layer = s->distance_max = 0;
-    s->width = s->height = 0;
+    s->gpu.output.width = s->gpu.output.height = 0;
 }
 
 static oit_status ddp_check_framebuffer(const ddp_state *s, const char *what, int width, int height,
@@ -124,19 +113,7 @@ static oit_status ddp_check_framebuffer(const ddp_state *s, const char *what, in
 {
     char name[64];
     snprintf(name, sizeof name, "ddp: the %s framebuffer", what);
-    return oit_gl_check_framebuffer(name, width, height, &s->memory, err);
-}
-
-/* With config.debug, check for GL errors after each stage. */
-static oit_status ddp_stage_check(const ddp_state *s, const char *stage, oit_error *err)
-{
-    if (s->timer.cancelled)
-        return oit_timer_status(&s->timer, err);
-    if (!s->config.debug)
-        return OIT_OK;
-    char where[64];
-    snprintf(where, sizeof where, "ddp: %s", stage);
-    return oit_gl_check(where, err);
+    return oit_gl_check_framebuffer(name, width, height, &s->gpu.memory, err);
 }
 
 static void ddp_destroy(oit_algorithm *alg);
@@ -148,35 +125,32 @@ static oit_status ddp_create(const oit_algorithm_config *config, oit_algorithm *
     if (config->max_layers < 0 || config->max_layers > OIT_PEEL_LAYER_CAP_MAX)
         return oit_fail(err, OIT_E_INPUT, "ddp: config.max_layers %d outside 0 (no cap)..%d",
                         config->max_layers, OIT_PEEL_LAYER_CAP_MAX);
-    ddp_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_fail(err, OIT_E_RUNTIME, "ddp: out of memory");
-    s->config = *config;
-    s->output.memory = &s->memory;
-    oit_stats_reset(&s->stats);
-    oit_timer_create(&s->timer);
+    oit_gpu_algorithm *gpu;
+    oit_status status = oit_gpu_create(sizeof(ddp_state), "ddp", config, &gpu, err);
+    if (status != OIT_OK)
+        return status;
+    ddp_state *s = (ddp_state *)gpu;
     glGenQueries(2, s->probe_queries);
 
-    const char *dir = config->shader_dir;
-    oit_status status =
-        oit_gl_program(dir, "common/geometry.vert", "ddp/init.frag", &s->init_program, err);
+    status =
+        oit_gpu_program(&s->gpu, "common/geometry.vert", "ddp/init.frag", &s->init_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(dir, "common/geometry.vert", "ddp/peel.frag", &s->peel_program,
+        status = oit_gpu_program(&s->gpu, "common/geometry.vert", "ddp/peel.frag", &s->peel_program,
                                 err);
     if (status == OIT_OK)
-        status = oit_gl_program(dir, "common/fullscreen.vert", "ddp/blend_back.frag",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "ddp/blend_back.frag",
                                 &s->back_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(dir, "common/fullscreen.vert", "ddp/probe.frag",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "ddp/probe.frag",
                                 &s->probe_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(dir, "common/fullscreen.vert", "ddp/compose.frag",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "ddp/compose.frag",
                                 &s->compose_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(dir, "common/fullscreen.vert", "ddp/blend_distance.frag",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "ddp/blend_distance.frag",
                                 &s->distance_programs[0], err);
     if (status == OIT_OK)
-        status = oit_gl_program(dir, "common/fullscreen.vert", "ddp/distance_max.frag",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "ddp/distance_max.frag",
                                 &s->distance_programs[1], err);
     if (status == OIT_OK)
         status = oit_gl_check("ddp: create", err);
@@ -194,7 +168,7 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
     if (width < 1 || height < 1)
         return oit_fail(err, OIT_E_INPUT, "ddp: bad size %dx%d", width, height);
     ddp_release_targets(s);
-    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)
         return status;
 
@@ -266,9 +240,9 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
         ddp_release_targets(s);
         return status;
     }
-    s->width = width;
-    s->height = height;
-    s->stats.memory_bytes = ddp_memory(s);
+    s->gpu.output.width = width;
+    s->gpu.output.height = height;
+    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
     return OIT_OK;
 }
 
@@ -297,7 +271,7 @@ static void ddp_probe(ddp_state *s, int index, bool *any_left, bool *two_left)
     for (int two = 0; two < 2; ++two) {
         glUniform1i(OIT_UNIFORM_DDP_PROBE_TWO, two);
         glBeginQuery(GL_ANY_SAMPLES_PASSED, s->probe_queries[two]);
-        oit_gl_draw_fullscreen(&s->output);
+        oit_gl_draw_fullscreen(&s->gpu.output);
         glEndQuery(GL_ANY_SAMPLES_PASSED);
     }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -363,7 +337,7 @@ static void ddp_distance_pass(ddp_state *s, const oit_frame_settings *frame, ddp
     glBindTexture(GL_TEXTURE_2D, s->minmax[next]);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
     glBindTexture(GL_TEXTURE_2D, s->previous_far[read]);
-    oit_gl_draw_fullscreen(&s->output);
+    oit_gl_draw_fullscreen(&s->gpu.output);
     glDisable(GL_BLEND);
 }
 
@@ -380,7 +354,7 @@ static oit_status ddp_sweep_layers(ddp_state *s, const oit_scene *scene,
     GLuint *peel_framebuffer = distance ? s->distance_peel_framebuffer : s->peel_framebuffer;
 
     /* init: the nearest and farthest depth of all fragments. */
-    oit_timer_stage_begin(&s->timer, sweep == DDP_SWEEP_DISTANCE_MAX ? "distance_init" : "init");
+    oit_timer_stage_begin(&s->gpu.timer, sweep == DDP_SWEEP_DISTANCE_MAX ? "distance_init" : "init");
     glBindFramebuffer(GL_FRAMEBUFFER, s->back_framebuffer);
     glClearBufferfv(GL_COLOR, 0, empty_colour);
     glBindFramebuffer(GL_FRAMEBUFFER, peel_framebuffer[0]);
@@ -400,17 +374,17 @@ static oit_status ddp_sweep_layers(ddp_state *s, const oit_scene *scene,
     glDisable(GL_BLEND);
     bool any_left = false, two_left = false;
     ddp_probe(s, 0, &any_left, &two_left);
-    oit_timer_stage_end(&s->timer);
-    oit_status status = ddp_stage_check(s, "init", err);
+    oit_timer_stage_end(&s->gpu.timer);
+    oit_status status = oit_gpu_stage_check(&s->gpu, "init", err);
 
     /* no cap: every pass peels at least one more layer of some pixel */
-    const int limit = s->config.max_layers > 0 ? s->config.max_layers : INT_MAX;
+    const int limit = s->gpu.config.max_layers > 0 ? s->gpu.config.max_layers : INT_MAX;
     int layers = 0;
     for (int pass = 0; status == OIT_OK && any_left && layers < limit; ++pass) {
         char stage[OIT_STAGE_NAME_SIZE];
         snprintf(stage, sizeof stage, "%s_%d", sweep == DDP_SWEEP_DISTANCE_MAX ? "distance_peel" : "peel",
                  pass);
-        oit_timer_stage_begin(&s->timer, stage);
+        oit_timer_stage_begin(&s->gpu.timer, stage);
         const int current = pass & 1, next = current ^ 1;
         /* With one layer left under the limit, peel only the front one. */
         const bool peel_back = limit - layers >= 2;
@@ -442,13 +416,13 @@ static oit_status ddp_sweep_layers(ddp_state *s, const oit_scene *scene,
             glUseProgram(s->back_program);
             glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_LAYER);
             glBindTexture(GL_TEXTURE_2D, s->back_layer);
-            oit_gl_draw_fullscreen(&s->output);
+            oit_gl_draw_fullscreen(&s->gpu.output);
             glDisable(GL_BLEND);
         }
 
         ddp_probe(s, next, &any_left, &two_left);
-        oit_timer_stage_end(&s->timer);
-        status = ddp_stage_check(s, stage, err);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, stage, err);
     }
     /* the probe after the last pass already says whether the cap left any */
     if (status == OIT_OK && any_left)
@@ -470,49 +444,46 @@ static oit_status ddp_distance_norm(ddp_state *s, const oit_scene *scene,
     glClearBufferfv(GL_COLOR, 0, zero);
     int layers = 0;
     oit_status status = ddp_sweep_layers(s, scene, frame, DDP_SWEEP_DISTANCE_MAX, 1.0f, &layers,
-                                         &s->stats.truncated, err);
+                                         &s->gpu.stats.truncated, err);
     if (status != OIT_OK)
         return status;
-    oit_timer_stage_begin(&s->timer, "distance_max_read");
-    size_t pixels = (size_t)s->width * (size_t)s->height;
+    oit_timer_stage_begin(&s->gpu.timer, "distance_max_read");
+    size_t pixels = (size_t)s->gpu.output.width * (size_t)s->gpu.output.height;
     float *values = malloc(pixels * sizeof *values);
     if (!values)
         return oit_fail(err, OIT_E_RUNTIME, "ddp: out of memory for the distance maximum");
     glBindFramebuffer(GL_READ_FRAMEBUFFER, s->distance_max_framebuffer[0]);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, s->width, s->height, GL_RED, GL_FLOAT, values);
+    glReadPixels(0, 0, s->gpu.output.width, s->gpu.output.height, GL_RED, GL_FLOAT, values);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     float largest = 0.0f;
     for (size_t i = 0; i < pixels; ++i)
         largest = values[i] > largest ? values[i] : largest;
     free(values);
-    oit_timer_stage_end(&s->timer);
+    oit_timer_stage_end(&s->gpu.timer);
     *norm = largest > 0.0f ? largest : 1.0f;
-    return ddp_stage_check(s, "distance_max_read", err);
+    return oit_gpu_stage_check(&s->gpu, "distance_max_read", err);
 }
 
 static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,
                              const oit_frame_settings *frame, oit_error *err)
 {
     ddp_state *s = (ddp_state *)alg;
-    if (!scene->has_gpu)
-        return oit_fail(err, OIT_E_INPUT, "ddp: the scene has no GPU buffers");
     const oit_modulation *modulation = &frame->modulation;
     const bool distance = modulation->mode == OIT_MODULATE_DISTANCE;
-    if (frame->width != s->width || frame->height != s->height ||
+    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height ||
         (distance && !s->distance_targets)) {
         s->distance_targets = s->distance_targets || distance;
         oit_status status = ddp_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)
             return status;
     }
-    oit_status status = OIT_OK;
-    oit_stats_reset(&s->stats);
-    oit_timer_frame_begin(&s->timer, frame);
-    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+    oit_status status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    if (status != OIT_OK)
+        return status;
 
-    glViewport(0, 0, s->width, s->height);
+    glViewport(0, 0, s->gpu.output.width, s->gpu.output.height);
     glDisable(GL_CULL_FACE); /* both sides of every surface are layers */
     glDisable(GL_DEPTH_TEST); /* the min-max target does the depth work */
     glDisable(GL_BLEND);
@@ -525,44 +496,24 @@ static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,
     if (status == OIT_OK)
         status = ddp_sweep_layers(s, scene, frame,
                                   distance ? DDP_SWEEP_DISTANCE_BLEND : DDP_SWEEP_PLAIN,
-                                  distance_norm, &layers, &s->stats.truncated, err);
+                                  distance_norm, &layers, &s->gpu.stats.truncated, err);
 
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "compose");
-        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        oit_timer_stage_begin(&s->gpu.timer, "compose");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
         glUseProgram(s->compose_program);
         oit_gl_set_frame_uniforms(frame);
         glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM_FRONT);
         glBindTexture(GL_TEXTURE_2D, s->front);
         glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM_BACK);
         glBindTexture(GL_TEXTURE_2D, s->back);
-        oit_gl_draw_fullscreen(&s->output);
-        oit_timer_stage_end(&s->timer);
-        status = ddp_stage_check(s, "compose", err);
+        oit_gl_draw_fullscreen(&s->gpu.output);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "compose", err);
     }
 
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glUseProgram(0);
-    oit_timer_frame_end(&s->timer, &s->stats);
-    if (status == OIT_OK)
-        status = oit_gl_check("ddp: render", err);
-    s->stats.layers = layers;
-    s->stats.memory_bytes = ddp_memory(s);
-    s->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) /
-                               ((double)s->width * (double)s->height);
-    return status;
-}
-
-static oit_status ddp_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
-{
-    ddp_state *s = (ddp_state *)alg;
-    return oit_gl_output_read(&s->output, out, err);
-}
-
-static void ddp_stats(const oit_algorithm *alg, oit_stats *out)
-{
-    const ddp_state *s = (const ddp_state *)alg;
-    *out = s->stats;
+    s->gpu.stats.layers = layers;
+    return oit_gpu_frame_end(&s->gpu, status, err);
 }
 
 static void ddp_destroy(oit_algorithm *alg)
@@ -571,17 +522,8 @@ static void ddp_destroy(oit_algorithm *alg)
     if (!s)
         return;
     ddp_release_targets(s);
-    oit_gl_output_release(&s->output);
-    glDeleteProgram(s->init_program);
-    glDeleteProgram(s->peel_program);
-    glDeleteProgram(s->back_program);
-    glDeleteProgram(s->probe_program);
-    glDeleteProgram(s->compose_program);
-    glDeleteProgram(s->distance_programs[0]);
-    glDeleteProgram(s->distance_programs[1]);
     glDeleteQueries(2, s->probe_queries);
-    oit_timer_destroy(&s->timer);
-    free(s);
+    oit_gpu_destroy(&s->gpu);
 }
 
 /* ddp knows the adjacent distance (its blending delayed by a layer) and
@@ -606,7 +548,7 @@ const oit_algorithm_ops oit_algorithm_ddp = {
     .create = ddp_create,
     .resize = ddp_resize,
     .render = ddp_render,
-    .read_image = ddp_read_image,
-    .stats = ddp_stats,
+    .read_image = oit_gpu_read_image,
+    .stats = oit_gpu_stats,
     .destroy = ddp_destroy,
 };

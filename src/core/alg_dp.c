@@ -57,7 +57,7 @@
 #include <stdlib.h>
 
 #include "capabilities.h"
-#include "gl_util.h"
+#include "gpu_algorithm.h"
 
 _Static_assert(OIT_IB_MODE_CURVATURE == OIT_MODULATE_CURVATURE &&
                    OIT_IB_MODE_DIST_CURV == OIT_MODULATE_DIST_CURV &&
@@ -65,11 +65,7 @@ _Static_assert(OIT_IB_MODE_CURVATURE == OIT_MODULATE_CURVATURE &&
                "blend_curvature.frag's modes differ from oit_modulation_mode");
 
 typedef struct dp_state {
-    oit_algorithm_config config;
-    oit_gl_output output;
-    oit_gl_memory memory; /* every target below and the output (gl_util.h) */
-    oit_stage_timer timer;
-    oit_stats stats;
+    oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
 
     GLuint peel_program;    /* geometry.vert + dp/peel.frag */
     GLuint blend_program;   /* fullscreen.vert + dp/blend_layer.frag */
@@ -104,16 +100,15 @@ typedef struct dp_state {
     GLuint dist_curv_peel_framebuffer[2]; /* distance_colour[i], layer_normal[i], tie[i], depth[i] */
     GLuint accumulation;      /* GL_RGBA32F: rgb = sum T*a*c, a = T */
     GLuint accumulation_framebuffer;
-    int width, height;
 } dp_state;
 
-/* A screen-sized target, recorded in s->memory. Per pixel: 2 depth and 2 tie
+/* A screen-sized target, recorded in s->gpu.memory. Per pixel: 2 depth and 2 tie
  * (4 each), the layer colour and the accumulation (16 each), the RGBA8 output
  * (4); with the distance modulation two layer colours (16 each) and the R32F
  * maximum; with curvature two RG32UI normal + component targets (8 each). */
 static GLuint dp_target(dp_state *s, GLenum internal_format, int width, int height)
 {
-    return oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, internal_format, width,
+    return oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, internal_format, width,
                                     height);
 }
 
@@ -121,24 +116,24 @@ static void dp_release_targets(dp_state *s)
 {
     glDeleteFramebuffers(2, s->peel_framebuffer);
     glDeleteFramebuffers(1, &s->accumulation_framebuffer);
-    oit_gl_memory_delete_textures(&s->memory, 2, s->depth);
-    oit_gl_memory_delete_textures(&s->memory, 2, s->tie);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->layer_colour);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->accumulation);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 2, s->depth);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 2, s->tie);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->layer_colour);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->accumulation);
     glDeleteFramebuffers(2, s->distance_peel_framebuffer);
     glDeleteFramebuffers(1, &s->distance_max_framebuffer);
-    oit_gl_memory_delete_textures(&s->memory, 2, s->distance_colour);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->distance_max);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 2, s->distance_colour);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->distance_max);
     glDeleteFramebuffers(2, s->curvature_peel_framebuffer);
     glDeleteFramebuffers(2, s->dist_curv_peel_framebuffer);
-    oit_gl_memory_delete_textures(&s->memory, 2, s->layer_normal);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 2, s->layer_normal);
     for (int i = 0; i < 2; ++i)
         s->peel_framebuffer[i] = s->depth[i] = s->tie[i] = s->distance_peel_framebuffer[i] =
             s->distance_colour[i] = s->layer_normal[i] = s->curvature_peel_framebuffer[i] =
                 s->dist_curv_peel_framebuffer[i] = 0;
     s->distance_max = s->distance_max_framebuffer = 0;
     s->layer_colour = s->accumulation_framebuffer = s->accumulation = 0;
-    s->width = s->height = 0;
+    s->gpu.output.width = s->gpu.output.height = 0;
 }
 
 static oit_status dp_check_framebuffer(const dp_state *s, const char *what, int width, int height,
@@ -146,28 +141,10 @@ static oit_status dp_check_framebuffer(const dp_state *s, const char *what, int 
 {
     char name[64];
     snprintf(name, sizeof name, "dp: the %s framebuffer", what);
-    return oit_gl_check_framebuffer(name, width, height, &s->memory, err);
-}
-
-/* With config.debug, check for GL errors after each stage. */
-static oit_status dp_stage_check(const dp_state *s, const char *stage, oit_error *err)
-{
-    if (s->timer.cancelled)
-        return oit_timer_status(&s->timer, err);
-    if (!s->config.debug)
-        return OIT_OK;
-    char where[64];
-    snprintf(where, sizeof where, "dp: %s", stage);
-    return oit_gl_check(where, err);
+    return oit_gl_check_framebuffer(name, width, height, &s->gpu.memory, err);
 }
 
 static void dp_destroy(oit_algorithm *alg);
-
-/* What the targets and the output hold, as allocated (the tracker). */
-static uint64_t dp_memory(const dp_state *s)
-{
-    return oit_gl_memory_total(&s->memory);
-}
 
 static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **out,
                             oit_error *err)
@@ -176,35 +153,33 @@ static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **
     if (config->max_layers < 0 || config->max_layers > OIT_PEEL_LAYER_CAP_MAX)
         return oit_fail(err, OIT_E_INPUT, "dp: config.max_layers %d outside 0 (no cap)..%d",
                         config->max_layers, OIT_PEEL_LAYER_CAP_MAX);
-    dp_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_fail(err, OIT_E_RUNTIME, "dp: out of memory");
-    s->config = *config;
-    s->output.memory = &s->memory;
-    oit_stats_reset(&s->stats);
-    oit_timer_create(&s->timer);
+    oit_gpu_algorithm *gpu;
+    oit_status status = oit_gpu_create(sizeof(dp_state), "dp", config, &gpu, err);
+    if (status != OIT_OK)
+        return status;
+    dp_state *s = (dp_state *)gpu;
     glGenQueries(1, &s->samples_query);
 
-    oit_status status =
-        oit_gl_program(config->shader_dir, "common/geometry.vert", "dp/peel.frag",
+    status =
+        oit_gpu_program(&s->gpu, "common/geometry.vert", "dp/peel.frag",
                        &s->peel_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
                                 "dp/blend_layer.frag", &s->blend_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert", "dp/compose.frag",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "dp/compose.frag",
                                 &s->compose_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
                                 "dp/blend_distance.frag", &s->blend_distance_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
                                 "dp/distance_max.frag", &s->distance_max_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/geometry.vert",
+        status = oit_gpu_program(&s->gpu, "common/geometry.vert",
                                 "dp/peel_neighbours.frag", &s->peel_neighbours_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
                                 "dp/blend_curvature.frag", &s->blend_curvature_program, err);
     if (status == OIT_OK)
         status = oit_gl_check("dp: create", err);
@@ -222,7 +197,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
     if (width < 1 || height < 1)
         return oit_fail(err, OIT_E_INPUT, "dp: bad size %dx%d", width, height);
     dp_release_targets(s);
-    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)
         return status;
 
@@ -305,9 +280,9 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         dp_release_targets(s);
         return status;
     }
-    s->width = width;
-    s->height = height;
-    s->stats.memory_bytes = dp_memory(s);
+    s->gpu.output.width = width;
+    s->gpu.output.height = height;
+    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
     return OIT_OK;
 }
 
@@ -362,7 +337,7 @@ static void dp_blend_curvature(dp_state *s, const oit_frame_settings *frame, GLu
     glBindTexture(GL_TEXTURE_2D, dist_curv ? next_colour : colour);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_NEXT);
     glBindTexture(GL_TEXTURE_2D, dist_curv ? next_depth : s->depth[1]);
-    oit_gl_draw_fullscreen(&s->output);
+    oit_gl_draw_fullscreen(&s->gpu.output);
     glDisable(GL_BLEND);
 }
 
@@ -422,14 +397,14 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
     const char *prefix = sweep == DP_SWEEP_DISTANCE_MAX ? "distance_peel" : "peel";
     /* no cap: every pass peels one more layer of some pixel, so the loop ends
      * after the deepest pixel's last layer */
-    const int limit = s->config.max_layers > 0 ? s->config.max_layers : INT_MAX;
+    const int limit = s->gpu.config.max_layers > 0 ? s->gpu.config.max_layers : INT_MAX;
     int layers = 0;
     bool last_had_samples = false;
     oit_status status = OIT_OK;
     for (int layer = 0; layer < limit; ++layer) {
         char stage[OIT_STAGE_NAME_SIZE];
         snprintf(stage, sizeof stage, "%s_%d", prefix, layer);
-        oit_timer_stage_begin(&s->timer, stage);
+        oit_timer_stage_begin(&s->gpu.timer, stage);
         const int current = layer & 1, previous = current ^ 1;
 
         /* Peel: the next fragment after the previous layer in (depth, triangle) order. */
@@ -461,7 +436,7 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
             glUseProgram(s->blend_program);
             glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_LAYER);
             glBindTexture(GL_TEXTURE_2D, s->layer_colour);
-            oit_gl_draw_fullscreen(&s->output);
+            oit_gl_draw_fullscreen(&s->gpu.output);
             glDisable(GL_BLEND);
         } else if (any_samples && sweep == DP_SWEEP_CURVATURE) {
             /* The whole layer is peeled: each fragment's neighbours are known. */
@@ -497,35 +472,35 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
             glBindTexture(GL_TEXTURE_2D, s->distance_colour[current]);
             glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_NEXT);
             glBindTexture(GL_TEXTURE_2D, s->depth[current]);
-            oit_gl_draw_fullscreen(&s->output);
+            oit_gl_draw_fullscreen(&s->gpu.output);
             glBlendEquation(GL_FUNC_ADD);
             glDisable(GL_BLEND);
         }
         /* With no layer k, every layer k-1 was its pixel's last: distance 0, nothing to blend. */
-        oit_timer_stage_end(&s->timer);
-        if ((status = dp_stage_check(s, stage, err)) != OIT_OK)
+        oit_timer_stage_end(&s->gpu.timer);
+        if ((status = oit_gpu_stage_check(&s->gpu, stage, err)) != OIT_OK)
             break;
         if (!any_samples)
             break;
     }
     if (status == OIT_OK && layers == limit && last_had_samples) {
-        oit_timer_stage_begin(&s->timer, "cap_probe");
+        oit_timer_stage_begin(&s->gpu.timer, "cap_probe");
         *truncated = *truncated || dp_fragments_left(s, scene, frame, layers);
-        oit_timer_stage_end(&s->timer);
-        status = dp_stage_check(s, "cap_probe", err);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "cap_probe", err);
     }
     if (status == OIT_OK && sweep == DP_SWEEP_DISTANCE_BLEND && neighbours && last_had_samples) {
         /* dist-curv stopped by the layer limit: the last layer peeled still has to
          * be blended, with no next layer (the other colour target, cleared) */
-        oit_timer_stage_begin(&s->timer, "blend_last_layer");
+        oit_timer_stage_begin(&s->gpu.timer, "blend_last_layer");
         const int last = (layers - 1) & 1, other = last ^ 1;
         glBindFramebuffer(GL_FRAMEBUFFER, s->dist_curv_peel_framebuffer[other]);
         glClearBufferfv(GL_COLOR, 0, empty_layer);
         dp_blend_curvature(s, frame, s->distance_colour[last], s->layer_normal[last],
                            s->depth[last], s->distance_colour[other], s->depth[other],
                            distance_norm);
-        oit_timer_stage_end(&s->timer);
-        status = dp_stage_check(s, "blend_last_layer", err);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "blend_last_layer", err);
     }
     *layers_out = layers;
     return status;
@@ -544,39 +519,37 @@ static oit_status dp_distance_norm(dp_state *s, const oit_scene *scene,
     glClearBufferfv(GL_COLOR, 0, zero);
     int layers = 0;
     oit_status status = dp_peel_sweep(s, scene, frame, DP_SWEEP_DISTANCE_MAX, 1.0f, &layers,
-                                      &s->stats.truncated, err);
+                                      &s->gpu.stats.truncated, err);
     if (status != OIT_OK)
         return status;
-    oit_timer_stage_begin(&s->timer, "distance_max_read");
-    size_t pixels = (size_t)s->width * (size_t)s->height;
+    oit_timer_stage_begin(&s->gpu.timer, "distance_max_read");
+    size_t pixels = (size_t)s->gpu.output.width * (size_t)s->gpu.output.height;
     float *values = malloc(pixels * sizeof *values);
     if (!values)
         return oit_fail(err, OIT_E_RUNTIME, "dp: out of memory for the distance maximum");
     glBindFramebuffer(GL_READ_FRAMEBUFFER, s->distance_max_framebuffer);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, s->width, s->height, GL_RED, GL_FLOAT, values);
+    glReadPixels(0, 0, s->gpu.output.width, s->gpu.output.height, GL_RED, GL_FLOAT, values);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     float largest = 0.0f;
     for (size_t i = 0; i < pixels; ++i)
         largest = values[i] > largest ? values[i] : largest;
     free(values);
-    oit_timer_stage_end(&s->timer);
+    oit_timer_stage_end(&s->gpu.timer);
     *norm = largest > 0.0f ? largest : 1.0f;
-    return dp_stage_check(s, "distance_max_read", err);
+    return oit_gpu_stage_check(&s->gpu, "distance_max_read", err);
 }
 
 static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
                             const oit_frame_settings *frame, oit_error *err)
 {
     dp_state *s = (dp_state *)alg;
-    if (!scene->has_gpu)
-        return oit_fail(err, OIT_E_INPUT, "dp: the scene has no GPU buffers");
     const oit_modulation *m = &frame->modulation;
     /* dist-curv needs the distance (delayed blending) and the neighbours */
     const bool distance = m->mode == OIT_MODULATE_DISTANCE || m->mode == OIT_MODULATE_DIST_CURV;
     const bool neighbours = dp_needs_neighbours(frame);
-    if (frame->width != s->width || frame->height != s->height ||
+    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height ||
         (distance && !s->distance_targets) || (neighbours && !s->normal_targets)) {
         s->distance_targets = s->distance_targets || distance;
         s->normal_targets = s->normal_targets || neighbours;
@@ -584,12 +557,11 @@ static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
         if (status != OIT_OK)
             return status;
     }
-    oit_status status = OIT_OK;
-    oit_stats_reset(&s->stats);
-    oit_timer_frame_begin(&s->timer, frame);
-    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+    oit_status status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    if (status != OIT_OK)
+        return status;
 
-    glViewport(0, 0, s->width, s->height);
+    glViewport(0, 0, s->gpu.output.width, s->gpu.output.height);
     glDisable(GL_CULL_FACE); /* both sides of every surface are layers */
     glDisable(GL_BLEND);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
@@ -608,42 +580,22 @@ static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
                                distance     ? DP_SWEEP_DISTANCE_BLEND
                                : neighbours ? DP_SWEEP_CURVATURE
                                             : DP_SWEEP_PLAIN,
-                               distance_norm, &layers, &s->stats.truncated, err);
+                               distance_norm, &layers, &s->gpu.stats.truncated, err);
 
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "compose");
-        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        oit_timer_stage_begin(&s->gpu.timer, "compose");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
         glUseProgram(s->compose_program);
         oit_gl_set_frame_uniforms(frame);
         glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM_FRONT);
         glBindTexture(GL_TEXTURE_2D, s->accumulation);
-        oit_gl_draw_fullscreen(&s->output);
-        oit_timer_stage_end(&s->timer);
-        status = dp_stage_check(s, "compose", err);
+        oit_gl_draw_fullscreen(&s->gpu.output);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "compose", err);
     }
 
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glUseProgram(0);
-    oit_timer_frame_end(&s->timer, &s->stats);
-    if (status == OIT_OK)
-        status = oit_gl_check("dp: render", err);
-    s->stats.layers = layers;
-    s->stats.memory_bytes = dp_memory(s);
-    s->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) /
-                               ((double)s->width * (double)s->height);
-    return status;
-}
-
-static oit_status dp_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
-{
-    dp_state *s = (dp_state *)alg;
-    return oit_gl_output_read(&s->output, out, err);
-}
-
-static void dp_stats(const oit_algorithm *alg, oit_stats *out)
-{
-    const dp_state *s = (const dp_state *)alg;
-    *out = s->stats;
+    s->gpu.stats.layers = layers;
+    return oit_gpu_frame_end(&s->gpu, status, err);
 }
 
 static void dp_destroy(oit_algorithm *alg)
@@ -652,17 +604,8 @@ static void dp_destroy(oit_algorithm *alg)
     if (!s)
         return;
     dp_release_targets(s);
-    oit_gl_output_release(&s->output);
-    glDeleteProgram(s->peel_program);
-    glDeleteProgram(s->blend_program);
-    glDeleteProgram(s->compose_program);
-    glDeleteProgram(s->blend_distance_program);
-    glDeleteProgram(s->distance_max_program);
-    glDeleteProgram(s->peel_neighbours_program);
-    glDeleteProgram(s->blend_curvature_program);
     glDeleteQueries(1, &s->samples_query);
-    oit_timer_destroy(&s->timer);
-    free(s);
+    oit_gpu_destroy(&s->gpu);
 }
 
 /* dp knows the previous layer's depth (the adjacent distance) and, in a
@@ -688,7 +631,7 @@ const oit_algorithm_ops oit_algorithm_dp = {
     .create = dp_create,
     .resize = dp_resize,
     .render = dp_render,
-    .read_image = dp_read_image,
-    .stats = dp_stats,
+    .read_image = oit_gpu_read_image,
+    .stats = oit_gpu_stats,
     .destroy = dp_destroy,
 };

@@ -46,7 +46,7 @@
 #include <string.h>
 
 #include "bands.h"
-#include "gl_util.h"
+#include "gpu_algorithm.h"
 
 /* Pool bytes per fragment, for sizing the pool within the budget; the
  * figures in the stats come from what the tracker recorded (ib_fill_stats). */
@@ -118,11 +118,8 @@ static const char *const ib_shaders[IB_PROGRAM_COUNT] = {
 };
 
 typedef struct ib_state {
-    oit_algorithm_config config;
+    oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
     char *shader_dir;
-    oit_gl_output output;
-    oit_gl_memory memory; /* every buffer and texture below and the output (gl_util.h) */
-    oit_stage_timer timer;
     GLuint programs[IB_PROGRAM_COUNT];
 
     GLuint head_image, count_image;
@@ -151,7 +148,6 @@ typedef struct ib_state {
      * frame at the size with the same overlap starts from them (bands.h) */
     oit_band_plan band_plan;
     int band_plan_overlap;
-    oit_stats last_stats;
 } ib_state;
 
 static ib_state *ib_from(oit_algorithm *alg) { return (ib_state *)alg; }
@@ -160,7 +156,7 @@ static ib_state *ib_from(oit_algorithm *alg) { return (ib_state *)alg; }
 
 static uint64_t ib_budget_fragments(const ib_state *s)
 {
-    return s->config.max_memory_bytes / IB_BYTES_PER_FRAGMENT;
+    return s->gpu.config.max_memory_bytes / IB_BYTES_PER_FRAGMENT;
 }
 
 static uint64_t ib_fragment_limit(const ib_state *s)
@@ -182,7 +178,7 @@ static oit_status ib_allocate_pool(ib_state *s, uint64_t capacity, oit_error *er
                  {s->core_buffer, OIT_IB_RUN_CORE_BYTES},
                  {s->links_buffer, OIT_IB_RUN_LINKS_BYTES}};
     for (size_t i = 0; i < sizeof pools / sizeof pools[0]; ++i)
-        oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FRAGMENTS, GL_SHADER_STORAGE_BUFFER,
+        oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FRAGMENTS, GL_SHADER_STORAGE_BUFFER,
                                   pools[i].buffer, capacity * pools[i].bytes, NULL,
                                   GL_DYNAMIC_COPY);
     glBindTexture(GL_TEXTURE_BUFFER, s->core_texture);
@@ -215,7 +211,7 @@ static oit_status ib_grow_pool(ib_state *s, uint64_t needed, oit_error *err)
                         "budget of %.1f MB",
                         (unsigned long long)needed,
                         (double)(needed * IB_BYTES_PER_FRAGMENT) / IB_MEGABYTE,
-                        (double)s->config.max_memory_bytes / IB_MEGABYTE);
+                        (double)s->gpu.config.max_memory_bytes / IB_MEGABYTE);
     if (needed > s->gl_fragment_limit)
         return oit_fail(err, OIT_E_RUNTIME,
                         "ib: the frame needs %llu fragments, more than this GL can address in "
@@ -235,21 +231,17 @@ static void ib_destroy(oit_algorithm *alg)
     ib_state *s = ib_from(alg);
     if (!s)
         return;
-    for (int p = 0; p < IB_PROGRAM_COUNT; ++p)
-        glDeleteProgram(s->programs[p]);
     GLuint textures[] = {s->head_image, s->count_image, s->core_texture, s->links_texture,
                          s->triangle_texture, s->core_words_texture, s->nodes_texture,
                          s->components_texture, s->triangle_reach_texture};
-    oit_gl_memory_delete_textures(&s->memory, 9, textures);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 9, textures);
     GLuint buffers[] = {s->node_buffer,     s->core_buffer,  s->links_buffer,
                         s->counter_buffer,  s->param_buffer, s->triangle_buffer,
                         s->tile_buffer,     s->long_run_buffer};
-    oit_gl_memory_delete_buffers(&s->memory, 8, buffers);
+    oit_gl_memory_delete_buffers(&s->gpu.memory, 8, buffers);
     oit_band_plan_free(&s->band_plan);
-    oit_gl_output_release(&s->output);
-    oit_timer_destroy(&s->timer);
     free(s->shader_dir);
-    free(s);
+    oit_gpu_destroy(&s->gpu);
 }
 
 static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **out,
@@ -259,35 +251,31 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     if (!GLEW_VERSION_4_4 && !GLEW_ARB_clear_texture)
         return oit_fail(err, OIT_E_RUNTIME,
                         "ib: needs OpenGL 4.4 or GL_ARB_clear_texture to clear the list heads");
-    ib_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_fail(err, OIT_E_RUNTIME, "ib: out of memory");
-    s->config = *config;
+    oit_gpu_algorithm *gpu;
+    oit_status status = oit_gpu_create(sizeof(ib_state), "ib", config, &gpu, err);
+    if (status != OIT_OK)
+        return status;
+    ib_state *s = (ib_state *)gpu;
     const char *dir = config->shader_dir ? config->shader_dir : ".";
     s->shader_dir = malloc(strlen(dir) + 1);
     if (!s->shader_dir) {
-        free(s);
+        oit_gpu_destroy(gpu);
         return oit_fail(err, OIT_E_RUNTIME, "ib: out of memory");
     }
     strcpy(s->shader_dir, dir);
-    s->config.shader_dir = s->shader_dir;
-    s->output.memory = &s->memory;
-    oit_stats_reset(&s->last_stats);
-    oit_timer_create(&s->timer);
+    s->gpu.config.shader_dir = s->shader_dir;
 
-    oit_status status = OIT_OK;
     for (int p = 0; p < IB_PROGRAM_COUNT && status == OIT_OK; ++p) {
         if (p == IB_FILL)
-            status = oit_gl_program(s->shader_dir, "common/geometry.vert", ib_shaders[p],
-                                    &s->programs[p], err);
+            status = oit_gpu_program(gpu, "common/geometry.vert", ib_shaders[p], &s->programs[p], err);
         else if (p == IB_COMPOSE || p == IB_COMPOSE_PLAIN)
-            status = oit_gl_program_variant(
-                s->shader_dir, "ib/compose.vert", ib_shaders[p],
+            status = oit_gpu_program_variant(
+                gpu, "ib/compose.vert", ib_shaders[p],
                 p == IB_COMPOSE_PLAIN ? "#define OIT_VARIANT_VIEWS 0\n#define OIT_VARIANT_IB_MODES 0\n"
                                       : NULL,
                 &s->programs[p], err);
         else
-            status = oit_gl_compute_program(s->shader_dir, ib_shaders[p], &s->programs[p], err);
+            status = oit_gpu_compute_program(gpu, ib_shaders[p], &s->programs[p], err);
     }
     if (status != OIT_OK) {
         ib_destroy((oit_algorithm *)s);
@@ -326,10 +314,10 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     s->nodes_texture = buffer_textures[4];
     s->components_texture = buffer_textures[5];
     s->triangle_reach_texture = buffer_textures[6];
-    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+    oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                               s->counter_buffer, OIT_IB_COUNTER_COUNT * sizeof(GLuint), NULL,
                               GL_DYNAMIC_READ);
-    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+    oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                               s->param_buffer, sizeof(ib_params), NULL, GL_DYNAMIC_DRAW);
 
     status = oit_gl_check("ib create", err);
@@ -344,24 +332,24 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
 static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error *err)
 {
     ib_state *s = ib_from(alg);
-    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)
         return status;
     s->band_plan.count = 0; /* bands of the old size */
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->head_image);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->count_image);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->head_image);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->count_image);
     s->head_image =
-        oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+        oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
     s->count_image =
-        oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+        oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
     const uint64_t tiles = (uint64_t)((width + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE) *
                            (uint64_t)((height + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE);
-    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER,
+    oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER,
                               s->tile_buffer, (GLsizeiptr)(tiles * sizeof(GLuint)), NULL,
                               GL_DYNAMIC_COPY);
 
-    uint64_t initial = s->config.initial_fragment_capacity
-                           ? s->config.initial_fragment_capacity
+    uint64_t initial = s->gpu.config.initial_fragment_capacity
+                           ? s->gpu.config.initial_fragment_capacity
                            : IB_DEFAULT_FRAGMENTS_PER_PIXEL * (uint64_t)width * (uint64_t)height;
     uint64_t limit = ib_fragment_limit(s);
     if (initial > limit)
@@ -559,7 +547,7 @@ static oit_status ib_reserve_triangles(ib_state *s, uint64_t triangles, oit_erro
                         (unsigned long long)triangles, (unsigned long long)s->gl_texel_limit);
     while (glGetError() != GL_NO_ERROR) {
     }
-    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+    oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                               s->triangle_buffer, triangles * OIT_IB_TRIANGLE_BYTES, NULL,
                               GL_DYNAMIC_COPY);
     glBindTexture(GL_TEXTURE_BUFFER, s->triangle_texture);
@@ -577,13 +565,6 @@ static oit_status ib_reserve_triangles(ib_state *s, uint64_t triangles, oit_erro
     return OIT_OK;
 }
 
-
-static oit_status ib_check(const ib_state *s, const char *stage, oit_error *err)
-{
-    if (s->timer.cancelled)
-        return oit_timer_status(&s->timer, err);
-    return s->config.debug ? oit_gl_check(stage, err) : OIT_OK;
-}
 
 static void ib_barrier(void)
 {
@@ -666,12 +647,12 @@ static void ib_pass(ib_state *s, enum ib_program p, const oit_frame_settings *fr
         OIT_UNIFORM_IB_PASS)
         glUniform1i(OIT_UNIFORM_IB_PASS, pass_parameter);
     if (p == IB_COMPOSE || p == IB_COMPOSE_PLAIN) {
-        oit_gl_draw_fullscreen(&s->output);
+        oit_gl_draw_fullscreen(&s->gpu.output);
     } else {
         /* the work groups are tiles (ib_band_pixel in ib_common.glsl) */
         const int first_tile_row = s->band[0] / OIT_IB_TILE_SIZE;
         const int end_tile_row = (s->band[1] + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE;
-        glDispatchCompute((GLuint)(s->output.width + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE,
+        glDispatchCompute((GLuint)(s->gpu.output.width + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE,
                           (GLuint)(end_tile_row - first_tile_row), 1);
     }
 }
@@ -682,7 +663,7 @@ static void ib_stage(ib_state *s, const char *prefix, const char *name)
 {
     char full[OIT_STAGE_NAME_SIZE];
     snprintf(full, sizeof full, "%s%s", prefix, name);
-    oit_timer_stage_begin(&s->timer, full);
+    oit_timer_stage_begin(&s->gpu.timer, full);
 }
 
 /* The whole frame's figures a banded frame's compose reads before every band
@@ -701,13 +682,13 @@ static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_fra
 {
     ib_stage(s, prefix, retry ? "clear_retry" : "clear");
     const GLuint list_end = OIT_LIST_END;
-    if (s->band[0] == 0 && s->band[1] == s->output.height)
+    if (s->band[0] == 0 && s->band[1] == s->gpu.output.height)
         glClearTexImage(s->head_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
     else /* the passes read no row outside the band (ib_inside) */
-        glClearTexSubImage(s->head_image, 0, 0, s->band[0], 0, s->output.width,
+        glClearTexSubImage(s->head_image, 0, 0, s->band[0], 0, s->gpu.output.width,
                            s->band[1] - s->band[0], 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
     GLuint zeros[OIT_IB_COUNTER_COUNT] = {0};
-    zeros[OIT_FRAME_COUNTER_FRAGMENTS] = s->config.fragment_counter_start; /* 0 but in tests */
+    zeros[OIT_FRAME_COUNTER_FRAGMENTS] = s->gpu.config.fragment_counter_start; /* 0 but in tests */
     if (figures) { /* the passes only raise these with atomicMax */
         zeros[OIT_FRAME_COUNTER_MAX_LIST] = figures->longest;
         zeros[OIT_IB_COUNTER_MAX_DISTANCE] = figures->largest_distance;
@@ -723,7 +704,7 @@ static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_fra
     glUniform1ui(OIT_UNIFORM_IB_POOL_CAPACITY, (GLuint)s->pool_capacity);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     oit_gl_draw_scene(scene);
-    oit_timer_stage_end(&s->timer);
+    oit_timer_stage_end(&s->gpu.timer);
 }
 
 /* Clear, fill and read the fill's 64-bit count (the counter and its wraps). */
@@ -734,10 +715,10 @@ static oit_status ib_fill_and_count(ib_state *s, const oit_scene *scene,
 {
     ib_clear_and_fill(s, scene, frame, prefix, retry, figures);
     *needed = oit_gl_read_frame_fragments(s->counter_buffer, OIT_IB_COUNTER_FRAGMENTS_WRAPS);
-    oit_status status = ib_check(s, "ib fill", err);
+    oit_status status = oit_gpu_stage_check(&s->gpu, "fill", err);
     if (status != OIT_OK)
         return status;
-    return oit_gl_check_frame_fragments("ib", *needed, s->config.fragment_counter_start, err);
+    return oit_gl_check_frame_fragments("ib", *needed, s->gpu.config.fragment_counter_start, err);
 }
 
 /* Sort through compose, on the band's rows (the whole image in a frame drawn
@@ -763,12 +744,12 @@ static oit_status ib_resolve(ib_state *s, const oit_scene *scene, const oit_fram
         ib_count_groups(s, IB_EPSILON_DISPATCH);
         ib_indirect_pass(s, IB_NEIGHBOURS_EPSILON, OIT_IB_COUNTER_EPSILON_DISPATCH, frame);
     }
-    if (s->config.neighbour_quality) {
+    if (s->gpu.config.neighbour_quality) {
         /* diagnostics, not part of the frame: oit bench and oit measure turn it off */
         ib_stage(s, prefix, "neighbour_stats");
         ib_indirect_pass(s, IB_NEIGHBOUR_STATS, OIT_IB_COUNTER_TILE_DISPATCH, frame);
     }
-    oit_status status = ib_check(s, "ib neighbours", err);
+    oit_status status = oit_gpu_stage_check(&s->gpu, "neighbours", err);
     if (status != OIT_OK)
         return status;
 
@@ -791,14 +772,14 @@ static oit_status ib_resolve(ib_state *s, const oit_scene *scene, const oit_fram
                     fields_copy = 1 - fields_copy;
                 }
         }
-        status = ib_check(s, "ib fields", err);
+        status = oit_gpu_stage_check(&s->gpu, "fields", err);
         if (status != OIT_OK)
             return status;
     }
     if (plan->curvature_distance) {
         ib_stage(s, prefix, "curvature_distance");
         ib_pass(s, IB_CURVATURE_DISTANCE, frame, 0);
-        status = ib_check(s, "ib curvature_distance", err);
+        status = oit_gpu_stage_check(&s->gpu, "curvature_distance", err);
         if (status != OIT_OK)
             return status;
     }
@@ -806,7 +787,7 @@ static oit_status ib_resolve(ib_state *s, const oit_scene *scene, const oit_fram
     ib_stage(s, prefix, "compose");
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     if (band) {
-        glScissor(0, s->band[2], s->output.width, s->band[3] - s->band[2]);
+        glScissor(0, s->band[2], s->gpu.output.width, s->band[3] - s->band[2]);
     } else {
         /* compose discards the empty pixels: they keep this */
         glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
@@ -817,8 +798,8 @@ static oit_status ib_resolve(ib_state *s, const oit_scene *scene, const oit_fram
                 ? IB_COMPOSE_PLAIN
                 : IB_COMPOSE,
             frame, fields_copy);
-    oit_timer_stage_end(&s->timer);
-    return ib_check(s, "ib compose", err);
+    oit_timer_stage_end(&s->gpu.timer);
+    return oit_gpu_stage_check(&s->gpu, "compose", err);
 }
 
 /* The figures of a frame's counters, summed over its bands. */
@@ -840,7 +821,7 @@ static oit_status ib_add_counts(ib_state *s, uint64_t needed, ib_counts *sum,
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     /* the runs hold what the sort walked; the fill stored nodes
      * fragment_counter_start..needed - 1 (0 but in tests) */
-    oit_status status = oit_gl_check_sorted_fragments("ib", needed - s->config.fragment_counter_start,
+    oit_status status = oit_gl_check_sorted_fragments("ib", needed - s->gpu.config.fragment_counter_start,
                                                       counters[OIT_IB_COUNTER_RUN_ALLOCATOR], err);
     if (status != OIT_OK)
         return status;
@@ -879,15 +860,12 @@ static void ib_frame_stats(const ib_state *s, const ib_counts *sum, uint64_t fra
     stats->max_list = (int64_t)sum->longest;
     stats->overflow_retries = retries;
     stats->bands = bands;
-    uint64_t pixels = (uint64_t)s->output.width * (uint64_t)s->output.height;
-    /* as allocated (oit_stats in oit.h defines the figures): the pool at its
-     * capacity, head, count and output images, counters, parameters and the
-     * triangle table */
-    stats->memory_bytes = oit_gl_memory_total(&s->memory);
+    uint64_t pixels = (uint64_t)s->gpu.output.width * (uint64_t)s->gpu.output.height;
+    /* the pool's share of what is allocated (oit_stats in oit.h defines it; the
+     * rest, head, count and output images, counters, parameters and the
+     * triangle table, oit_gpu_frame_end counted) */
     stats->bytes_per_fragment =
-        (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_FRAGMENTS) / (double)s->pool_capacity;
-    stats->bytes_per_pixel =
-        (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) / (double)pixels;
+        (double)oit_gl_memory_bytes(&s->gpu.memory, OIT_GL_MEMORY_FRAGMENTS) / (double)s->pool_capacity;
     /* the sort counts non-empty pixels only (sort.comp): bin 0 is the rest */
     uint64_t nonempty = 0;
     for (int b = 1; b < OIT_HISTOGRAM_BINS; ++b)
@@ -898,7 +876,7 @@ static void ib_frame_stats(const ib_state *s, const ib_counts *sum, uint64_t fra
     stats->list_histogram[0] = pixels - nonempty;
     for (int b = 1; b < OIT_HISTOGRAM_BINS; ++b)
         stats->list_histogram[b] = sum->histogram[b];
-    if (!s->config.neighbour_quality)
+    if (!s->gpu.config.neighbour_quality)
         return; /* the neighbours_* figures stay n/a */
     stats->neighbours_four_share = fragments ? (double)sum->four / (double)fragments : 0.0;
     stats->neighbours_symmetric_share =
@@ -913,7 +891,7 @@ static void ib_pool_limit_text(const ib_state *s, char *out, size_t size)
 {
     if (ib_budget_fragments(s) < s->gl_fragment_limit)
         snprintf(out, size, "the --max-memory budget of %.1f MB holds (%llu)",
-                 (double)s->config.max_memory_bytes / IB_MEGABYTE,
+                 (double)s->gpu.config.max_memory_bytes / IB_MEGABYTE,
                  (unsigned long long)ib_budget_fragments(s));
     else
         snprintf(out, size, "this GL can address in one shader storage buffer (%llu)",
@@ -984,7 +962,7 @@ static oit_status ib_sweep(ib_state *s, const oit_scene *scene, const oit_frame_
                            const ib_plan *plan, uint64_t frame_needed, ib_frame_figures *figures,
                            oit_error *err)
 {
-    const int width = s->output.width, height = s->output.height;
+    const int width = s->gpu.output.width, height = s->gpu.output.height;
     oit_band_walk walk;
     oit_status status = oit_bands_begin(&walk, &s->band_plan, height, 0, frame_needed,
                                         s->pool_capacity, "ib", err);
@@ -1010,7 +988,7 @@ static oit_status ib_sweep(ib_state *s, const oit_scene *scene, const oit_frame_
             ib_stage(s, "sweep_", "distance");
             ib_pass(s, IB_DISTANCE_MAX, frame, 0);
         }
-        oit_timer_stage_end(&s->timer);
+        oit_timer_stage_end(&s->gpu.timer);
         ib_counts unused;
         memset(&unused, 0, sizeof unused);
         GLuint counters[OIT_IB_COUNTER_COUNT];
@@ -1042,7 +1020,7 @@ static oit_status ib_render_bands(ib_state *s, const oit_scene *scene,
                                   uint64_t *psi_pixels, int *band_count, oit_error *err)
 {
     oit_status status = OIT_OK;
-    const int width = s->output.width, height = s->output.height;
+    const int width = s->gpu.output.width, height = s->gpu.output.height;
     if (s->pool_capacity < ib_fragment_limit(s)) {
         status = ib_allocate_pool(s, ib_fragment_limit(s), err);
         if (status != OIT_OK)
@@ -1051,7 +1029,7 @@ static oit_status ib_render_bands(ib_state *s, const oit_scene *scene,
     }
     if (!s->long_run_buffer) {
         glGenBuffers(1, &s->long_run_buffer);
-        oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+        oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                                   s->long_run_buffer, OIT_IB_LONG_RUN_LENGTHS * sizeof(GLuint),
                                   NULL, GL_DYNAMIC_READ);
     }
@@ -1169,13 +1147,13 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
 {
     ib_state *s = ib_from(alg);
     oit_status status;
-    if (!scene->has_gpu)
-        return oit_fail(err, OIT_E_INPUT, "ib: the scene has not been uploaded to the GPU");
+    if (!scene->has_gpu) /* before the triangle table: its size is the scene's */
+        return oit_fail(err, OIT_E_INPUT, "ib: the scene has no GPU buffers");
     ib_plan plan;
     status = ib_make_plan(frame, scene, &plan, err);
     if (status != OIT_OK)
         return status;
-    if (frame->width != s->output.width || frame->height != s->output.height || !s->head_image) {
+    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height || !s->head_image) {
         status = ib_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)
             return status;
@@ -1185,13 +1163,12 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     if (status != OIT_OK)
         return status;
 
-    oit_stats stats;
-    oit_stats_reset(&stats);
-    oit_timer_frame_begin(&s->timer, frame);
-    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+    status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    if (status != OIT_OK)
+        return status;
 
-    glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
-    glViewport(0, 0, s->output.width, s->output.height);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
+    glViewport(0, 0, s->gpu.output.width, s->gpu.output.height);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDisable(GL_BLEND);
@@ -1200,7 +1177,7 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof plan.params, &plan.params);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     ib_bind(s, scene);
-    ib_set_band(s, 0, s->output.height, 0, s->output.height);
+    ib_set_band(s, 0, s->gpu.output.height, 0, s->gpu.output.height);
 
     /* Fill until the pool holds the whole frame, or draw it in bands of rows
      * when no pool may (straight away when the last frame was banded with the
@@ -1225,13 +1202,13 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
         }
         if (needed > ib_fragment_limit(s)) {
             /* bands, unless even one row per band would be over the pool on average */
-            if (needed > (uint64_t)s->output.height * ib_fragment_limit(s)) {
+            if (needed > (uint64_t)s->gpu.output.height * ib_fragment_limit(s)) {
                 char limit[128];
                 ib_pool_limit_text(s, limit, sizeof limit);
                 status = oit_fail(err, OIT_E_RUNTIME,
                                   "ib: the frame needs %llu fragments, more than bands of rows "
                                   "can hold: its %d rows need more on average than %s",
-                                  (unsigned long long)needed, s->output.height, limit);
+                                  (unsigned long long)needed, s->gpu.output.height, limit);
                 goto failed;
             }
             break;
@@ -1248,42 +1225,28 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
         if (status != OIT_OK)
             goto failed;
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glUseProgram(0);
-        oit_timer_frame_end(&s->timer, &stats);
+        status = oit_gpu_frame_end(&s->gpu, status, err);
     } else {
         s->band_plan.count = 0;
         status = ib_resolve(s, scene, frame, &plan, false, true, err);
         if (status != OIT_OK)
             goto failed;
         GLuint counters[OIT_IB_COUNTER_COUNT];
-        glUseProgram(0);
-        oit_timer_frame_end(&s->timer, &stats);
-        status = ib_add_counts(s, needed, &sum, counters, err);
+        status = oit_gpu_frame_end(&s->gpu, status, err);
+        if (status == OIT_OK)
+            status = ib_add_counts(s, needed, &sum, counters, err);
         if (status != OIT_OK)
             return status;
         fragments = counters[OIT_FRAME_COUNTER_FRAGMENTS];
         psi_pixels = counters[OIT_IB_COUNTER_PSI_PIXELS]; /* compose counted them */
     }
-    ib_frame_stats(s, &sum, fragments, psi_pixels, retries, bands, &stats);
-    s->last_stats = stats;
-    return oit_gl_check("ib render", err);
+    ib_frame_stats(s, &sum, fragments, psi_pixels, retries, bands, &s->gpu.stats);
+    return status;
 
 failed:
-    oit_timer_stage_end(&s->timer);
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glUseProgram(0);
-    return status;
-}
-
-static oit_status ib_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
-{
-    return oit_gl_output_read(&ib_from(alg)->output, out, err);
-}
-
-static void ib_stats(const oit_algorithm *alg, oit_stats *out)
-{
-    *out = ((const ib_state *)alg)->last_stats;
+    return oit_gpu_frame_end(&s->gpu, status, err);
 }
 
 /* ib renders every view, modulation and distance. */
@@ -1300,7 +1263,7 @@ const oit_algorithm_ops oit_algorithm_ib = {
     .create = ib_create,
     .resize = ib_resize,
     .render = ib_render,
-    .read_image = ib_read_image,
-    .stats = ib_stats,
+    .read_image = oit_gpu_read_image,
+    .stats = oit_gpu_stats,
     .destroy = ib_destroy,
 };

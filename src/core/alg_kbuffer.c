@@ -37,7 +37,7 @@ const oit_algorithm_ops oit_algorithm_kbuffer = {
     .create = kbuffer_create,
     .resize = closest_layers_resize,
     .render = closest_layers_render,
-    .read_image = closest_layers_read_image,
-    .stats = closest_layers_stats,
+    .read_image = oit_gpu_read_image,
+    .stats = oit_gpu_stats,
     .destroy = closest_layers_destroy,
 };

@@ -46,7 +46,7 @@
  * Statistics: fragments = fragments stored; overflow_retries = fills repeated
  * in this frame; memory_bytes = output + heads + pool (at its capacity, headroom
  * included) + counters, as allocated: every buffer and texture goes through
- * the tracker s->memory (gl_util.h). bytes_per_fragment = the pool buffers'
+ * the tracker s->gpu.memory (gl_util.h). bytes_per_fragment = the pool buffers'
  * bytes / pool_capacity, bytes_per_pixel = heads + output / pixels.
  */
 #include <stdio.h>
@@ -55,7 +55,7 @@
 
 #include "bands.h"
 #include "capabilities.h"
-#include "gl_util.h"
+#include "gpu_algorithm.h"
 
 /* Pool bytes per fragment: the node and its two next pointers. */
 #define LL_POOL_BYTES_PER_FRAGMENT ((uint64_t)OIT_LL_NODE_BYTES + 2u * OIT_LL_NEXT_BYTES)
@@ -72,11 +72,8 @@ static const char *const ll_variant_defines[LL_VARIANT_COUNT] = {
     "#define OIT_VARIANT_DISTANCE 0\n#define OIT_VARIANT_VIEWS 0\n", NULL};
 
 typedef struct ll_state {
-    oit_algorithm_config config; /* config.shader_dir points at shader_dir below */
+    oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
     char *shader_dir;
-    oit_gl_output output;
-    oit_gl_memory memory; /* every buffer and texture below and the output (gl_util.h) */
-    oit_stage_timer timer;
 
     /* fill and compose in two variants (common/variants.glsl): [LL_PLAIN] the
      * colour image without the distance modulation, compiled at create;
@@ -98,17 +95,15 @@ typedef struct ll_state {
 
     int64_t overflow_retries_total; /* since create; stats report the last frame's */
     uint32_t long_list_pixels;      /* last frame: pixels the local-array sort could not hold */
-    oit_stats last_stats;
 } ll_state;
 
 static ll_state *ll_from(oit_algorithm *alg) { return (ll_state *)alg; }
-static const ll_state *ll_from_const(const oit_algorithm *alg) { return (const ll_state *)alg; }
 
 /* ------------------------------------------------------------- the pool */
 
 static uint64_t ll_budget_nodes(const ll_state *s)
 {
-    return s->config.max_memory_bytes / LL_POOL_BYTES_PER_FRAGMENT;
+    return s->gpu.config.max_memory_bytes / LL_POOL_BYTES_PER_FRAGMENT;
 }
 
 static uint64_t ll_node_limit(const ll_state *s)
@@ -135,7 +130,7 @@ static oit_status ll_allocate_pool(ll_state *s, uint64_t capacity, oit_error *er
                 {s->next_buffer, OIT_LL_NEXT_BYTES},
                 {s->sorted_next_buffer, OIT_LL_NEXT_BYTES}};
     for (size_t i = 0; i < sizeof pool / sizeof pool[0]; ++i)
-        oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FRAGMENTS, GL_SHADER_STORAGE_BUFFER,
+        oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FRAGMENTS, GL_SHADER_STORAGE_BUFFER,
                                   pool[i].buffer, capacity * pool[i].bytes, NULL, GL_DYNAMIC_COPY);
     const struct {
         GLuint texture, buffer;
@@ -171,7 +166,7 @@ static oit_status ll_grow_pool(ll_state *s, uint64_t needed, oit_error *err)
                         "budget of %.1f MB",
                         (unsigned long long)needed,
                         (double)(needed * LL_POOL_BYTES_PER_FRAGMENT) / LL_MEGABYTE,
-                        (double)s->config.max_memory_bytes / LL_MEGABYTE);
+                        (double)s->gpu.config.max_memory_bytes / LL_MEGABYTE);
     if (needed > s->gl_node_limit)
         return oit_fail(err, OIT_E_RUNTIME,
                         "ll: the frame needs %llu fragments, more than this GL can address in "
@@ -192,20 +187,13 @@ static void ll_destroy(oit_algorithm *alg)
     ll_state *s = ll_from(alg);
     if (!s)
         return;
-    for (int variant = 0; variant < LL_VARIANT_COUNT; ++variant) {
-        glDeleteProgram(s->fill_programs[variant]);
-        glDeleteProgram(s->compose_programs[variant]);
-    }
-    glDeleteProgram(s->sort_program);
     oit_band_plan_free(&s->band_plan);
     GLuint textures[] = {s->head_image, s->node_texture, s->next_texture, s->sorted_next_texture};
-    oit_gl_memory_delete_textures(&s->memory, 4, textures);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 4, textures);
     GLuint buffers[] = {s->node_buffer, s->next_buffer, s->sorted_next_buffer, s->counter_buffer};
-    oit_gl_memory_delete_buffers(&s->memory, 4, buffers);
-    oit_gl_output_release(&s->output);
-    oit_timer_destroy(&s->timer);
+    oit_gl_memory_delete_buffers(&s->gpu.memory, 4, buffers);
     free(s->shader_dir);
-    free(s);
+    oit_gpu_destroy(&s->gpu);
 }
 
 /* The fill and compose programs of `variant`, compiled on first use. */
@@ -214,11 +202,11 @@ static oit_status ll_programs(ll_state *s, int variant, GLuint *fill, GLuint *co
 {
     oit_status status = OIT_OK;
     if (!s->fill_programs[variant])
-        status = oit_gl_program_variant(s->shader_dir, "common/geometry.vert", "ll/fill.frag",
+        status = oit_gpu_program_variant(&s->gpu, "common/geometry.vert", "ll/fill.frag",
                                         ll_variant_defines[variant], &s->fill_programs[variant],
                                         err);
     if (status == OIT_OK && !s->compose_programs[variant])
-        status = oit_gl_program_variant(s->shader_dir, "common/fullscreen.vert", "ll/compose.frag",
+        status = oit_gpu_program_variant(&s->gpu, "common/fullscreen.vert", "ll/compose.frag",
                                         ll_variant_defines[variant],
                                         &s->compose_programs[variant], err);
     *fill = s->fill_programs[variant];
@@ -233,30 +221,27 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
     if (!GLEW_VERSION_4_4 && !GLEW_ARB_clear_texture)
         return oit_fail(err, OIT_E_RUNTIME,
                         "ll: needs OpenGL 4.4 or GL_ARB_clear_texture to clear the list heads");
-    ll_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_fail(err, OIT_E_RUNTIME, "ll: out of memory");
-    s->config = *config;
+    oit_gpu_algorithm *gpu;
+    oit_status status = oit_gpu_create(sizeof(ll_state), "ll", config, &gpu, err);
+    if (status != OIT_OK)
+        return status;
+    ll_state *s = (ll_state *)gpu;
     const char *dir = config->shader_dir ? config->shader_dir : ".";
     s->shader_dir = malloc(strlen(dir) + 1);
     if (!s->shader_dir) {
-        free(s);
+        oit_gpu_destroy(gpu);
         return oit_fail(err, OIT_E_RUNTIME, "ll: out of memory");
     }
     strcpy(s->shader_dir, dir);
-    s->config.shader_dir = s->shader_dir;
-    s->output.memory = &s->memory;
-    oit_stats_reset(&s->last_stats);
-    oit_timer_create(&s->timer);
+    s->gpu.config.shader_dir = s->shader_dir; /* the programs compiled on first use need it */
 
     const char *sort_shader = config->ll_sort == OIT_LL_SORT_LOCAL_ARRAY
                                   ? "ll/sort_local_array.frag"
                                   : "ll/sort_insertion.frag";
     GLuint unused;
-    oit_status status = ll_programs(s, LL_PLAIN, &unused, &unused, err);
+    status = ll_programs(s, LL_PLAIN, &unused, &unused, err);
     if (status == OIT_OK)
-        status = oit_gl_program(s->shader_dir, "common/fullscreen.vert", sort_shader,
-                                &s->sort_program, err);
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", sort_shader, &s->sort_program, err);
     if (status != OIT_OK) {
         ll_destroy((oit_algorithm *)s);
         return status;
@@ -285,7 +270,7 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
     s->next_buffer = buffers[1];
     s->sorted_next_buffer = buffers[2];
     s->counter_buffer = buffers[3];
-    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+    oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                               s->counter_buffer, OIT_LL_COUNTER_COUNT * sizeof(GLuint), NULL,
                               GL_DYNAMIC_READ);
 
@@ -301,18 +286,18 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
 static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error *err)
 {
     ll_state *s = ll_from(alg);
-    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)
         return status;
     s->band_plan.count = 0; /* bands of the old size */
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->head_image);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->head_image);
     s->head_image =
-        oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+        oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
 
     /* The first pool: a few fragments per pixel (or what the config asks for),
      * within the budget. Frames that need more grow it in render(). */
-    uint64_t initial = s->config.initial_fragment_capacity
-                           ? s->config.initial_fragment_capacity
+    uint64_t initial = s->gpu.config.initial_fragment_capacity
+                           ? s->gpu.config.initial_fragment_capacity
                            : LL_DEFAULT_FRAGMENTS_PER_PIXEL * (uint64_t)width * (uint64_t)height;
     uint64_t limit = ll_node_limit(s);
     if (initial > limit)
@@ -349,23 +334,15 @@ static void ll_bind_pool(const ll_state *s)
     glActiveTexture(GL_TEXTURE0);
 }
 
-/* In debug mode, check for GL errors after each stage. */
-static oit_status ll_check(const ll_state *s, const char *stage, oit_error *err)
-{
-    if (s->timer.cancelled)
-        return oit_timer_status(&s->timer, err);
-    return s->config.debug ? oit_gl_check(stage, err) : OIT_OK;
-}
-
 /* Clear heads and counters, then draw every fragment into the lists. */
 static void ll_clear_and_fill(ll_state *s, GLuint fill_program, const oit_scene *scene,
                               const oit_frame_settings *frame, const char *const names[2])
 {
-    oit_timer_stage_begin(&s->timer, names[0]);
+    oit_timer_stage_begin(&s->gpu.timer, names[0]);
     const GLuint list_end = OIT_LIST_END;
     glClearTexImage(s->head_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &list_end);
     GLuint zeros[OIT_LL_COUNTER_COUNT] = {0};
-    zeros[OIT_FRAME_COUNTER_FRAGMENTS] = s->config.fragment_counter_start; /* 0 but in tests */
+    zeros[OIT_FRAME_COUNTER_FRAGMENTS] = s->gpu.config.fragment_counter_start; /* 0 but in tests */
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zeros, zeros);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
@@ -373,13 +350,13 @@ static void ll_clear_and_fill(ll_state *s, GLuint fill_program, const oit_scene 
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
 
-    oit_timer_stage_begin(&s->timer, names[1]);
+    oit_timer_stage_begin(&s->gpu.timer, names[1]);
     glUseProgram(fill_program);
     oit_gl_set_frame_uniforms(frame);
     glUniform1ui(OIT_UNIFORM_LL_POOL_CAPACITY, (GLuint)s->pool_capacity);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     oit_gl_draw_scene(scene);
-    oit_timer_stage_end(&s->timer);
+    oit_timer_stage_end(&s->gpu.timer);
 }
 
 /* The figures one sort (and compose) counted, summed over the bands of a frame. */
@@ -418,7 +395,7 @@ static oit_status ll_add_counts(ll_state *s, uint64_t needed, ll_counts *sum, oi
     if (longest >= (uint64_t)open_bin)
         psi_pixels = counters[OIT_LL_COUNTER_PSI_PIXELS]; /* compose counted them */
     /* the fill stored nodes fragment_counter_start..needed - 1 (0 but in tests) */
-    const uint64_t stored = needed - s->config.fragment_counter_start;
+    const uint64_t stored = needed - s->gpu.config.fragment_counter_start;
     oit_status status = oit_gl_check_sorted_fragments("ll", stored, sorted, err);
     if (status != OIT_OK)
         return status;
@@ -438,12 +415,12 @@ static oit_status ll_sort_and_compose(ll_state *s, GLuint compose_program,
                                       const oit_frame_settings *frame, bool clear,
                                       const char *const names[2], oit_error *err)
 {
-    oit_timer_stage_begin(&s->timer, names[0]);
+    oit_timer_stage_begin(&s->gpu.timer, names[0]);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(s->sort_program);
-    oit_gl_draw_fullscreen(&s->output); /* colour writes are still off */
-    oit_status status = ll_check(s, "ll sort", err);
+    oit_gl_draw_fullscreen(&s->gpu.output); /* colour writes are still off */
+    oit_status status = oit_gpu_stage_check(&s->gpu, "sort", err);
     if (status != OIT_OK)
         return status;
 
@@ -452,7 +429,7 @@ static oit_status ll_sort_and_compose(ll_state *s, GLuint compose_program,
     const bool distance = frame->modulation.mode == OIT_MODULATE_DISTANCE;
     const bool auto_region = distance && !(frame->modulation.focus_region > 0.0f);
     if (auto_region) {
-        oit_timer_stage_begin(&s->timer, "distance_max");
+        oit_timer_stage_begin(&s->gpu.timer, "distance_max");
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
         glUseProgram(compose_program);
@@ -460,13 +437,13 @@ static oit_status ll_sort_and_compose(ll_state *s, GLuint compose_program,
         glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view);
         glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
         glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, 1);
-        oit_gl_draw_fullscreen(&s->output); /* colour writes are still off */
-        status = ll_check(s, "ll distance_max", err);
+        oit_gl_draw_fullscreen(&s->gpu.output); /* colour writes are still off */
+        status = oit_gpu_stage_check(&s->gpu, "distance_max", err);
         if (status != OIT_OK)
             return status;
     }
 
-    oit_timer_stage_begin(&s->timer, names[1]);
+    oit_timer_stage_begin(&s->gpu.timer, names[1]);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(compose_program);
@@ -480,10 +457,10 @@ static oit_status ll_sort_and_compose(ll_state *s, GLuint compose_program,
         glClearColor(frame->background[0], frame->background[1], frame->background[2], 1.0f);
         glClear(GL_COLOR_BUFFER_BIT);
     }
-    oit_gl_draw_fullscreen(&s->output);
-    oit_timer_stage_end(&s->timer);
+    oit_gl_draw_fullscreen(&s->gpu.output);
+    oit_timer_stage_end(&s->gpu.timer);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    return ll_check(s, "ll compose", err);
+    return oit_gpu_stage_check(&s->gpu, "compose", err);
 }
 
 /* Clear, fill and read the fill's 64-bit count (the counter and the times it wrapped). */
@@ -493,10 +470,10 @@ static oit_status ll_fill_and_count(ll_state *s, GLuint fill_program, const oit_
 {
     ll_clear_and_fill(s, fill_program, scene, frame, names);
     *needed = oit_gl_read_frame_fragments(s->counter_buffer, OIT_LL_COUNTER_FRAGMENTS_WRAPS);
-    oit_status status = ll_check(s, "ll fill", err);
+    oit_status status = oit_gpu_stage_check(&s->gpu, "fill", err);
     if (status != OIT_OK)
         return status;
-    return oit_gl_check_frame_fragments("ll", *needed, s->config.fragment_counter_start, err);
+    return oit_gl_check_frame_fragments("ll", *needed, s->gpu.config.fragment_counter_start, err);
 }
 
 static bool ll_bands_allowed(const oit_frame_settings *frame)
@@ -539,7 +516,7 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
             return status;
         ll_bind_pool(s);
     }
-    const int height = s->output.height, width = s->output.width;
+    const int height = s->gpu.output.height, width = s->gpu.output.width;
     oit_band_walk walk; /* from the last frame's bands when frame_needed is 0 */
     status = oit_bands_begin(&walk, &s->band_plan, height, 0, frame_needed, s->pool_capacity, "ll",
                              err);
@@ -594,9 +571,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
 {
     ll_state *s = ll_from(alg);
     oit_status status;
-    if (!scene->has_gpu)
-        return oit_fail(err, OIT_E_INPUT, "ll: the scene has not been uploaded to the GPU");
-    if (frame->width != s->output.width || frame->height != s->output.height ||
+    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height ||
         !s->head_image) {
         status = ll_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)
@@ -614,13 +589,13 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     if (status != OIT_OK)
         return status;
 
-    oit_stats stats;
-    oit_stats_reset(&stats);
-    oit_timer_frame_begin(&s->timer, frame);
-    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+    status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    if (status != OIT_OK)
+        return status;
+    oit_stats *stats = &s->gpu.stats;
 
-    glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
-    glViewport(0, 0, s->output.width, s->output.height);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
+    glViewport(0, 0, s->gpu.output.width, s->gpu.output.height);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDisable(GL_BLEND);
@@ -679,17 +654,16 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
     if (status != OIT_OK)
         goto failed;
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glUseProgram(0);
-    oit_timer_frame_end(&s->timer, &stats);
+    status = oit_gpu_frame_end(&s->gpu, status, err);
 
     s->overflow_retries_total += retries;
     s->long_list_pixels = (uint32_t)sum.long_list_pixels;
-    stats.fragments = (int64_t)sum.counted;
-    stats.max_list = (int64_t)sum.longest;
-    stats.overflow_retries = retries; /* this frame's */
-    stats.bands = bands;
-    const uint64_t pixels = (uint64_t)s->output.width * (uint64_t)s->output.height;
-    stats.mean_list = sum.non_empty ? (double)stats.fragments / (double)sum.non_empty : 0.0;
+    stats->fragments = (int64_t)sum.counted;
+    stats->max_list = (int64_t)sum.longest;
+    stats->overflow_retries = retries; /* this frame's */
+    stats->bands = bands;
+    const uint64_t pixels = (uint64_t)s->gpu.output.width * (uint64_t)s->gpu.output.height;
+    stats->mean_list = sum.non_empty ? (double)stats->fragments / (double)sum.non_empty : 0.0;
     /* A banded frame: psi from the summed histogram against the frame's longest
      * list, unless that list is in the open last bin; then each band's compose
      * counted psi against the band's own longest list (docs/algorithms.md, Limits). */
@@ -700,36 +674,20 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
             if (3 * bin > 2 * sum.longest)
                 psi_pixels += sum.histogram[bin];
     }
-    stats.psi = sum.non_empty ? (double)psi_pixels / (double)sum.non_empty : 0.0;
-    stats.histogram_bins = OIT_HISTOGRAM_BINS;
-    stats.list_histogram[0] = pixels - sum.non_empty;
+    stats->psi = sum.non_empty ? (double)psi_pixels / (double)sum.non_empty : 0.0;
+    stats->histogram_bins = OIT_HISTOGRAM_BINS;
+    stats->list_histogram[0] = pixels - sum.non_empty;
     for (int bin = 1; bin < OIT_HISTOGRAM_BINS; ++bin)
-        stats.list_histogram[bin] = sum.histogram[bin];
-    /* the figures of what is allocated (oit_stats in oit.h defines them) */
-    stats.memory_bytes = oit_gl_memory_total(&s->memory);
-    stats.bytes_per_fragment = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_FRAGMENTS) /
-                               (double)s->pool_capacity;
-    stats.bytes_per_pixel =
-        (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) / (double)pixels;
-    s->last_stats = stats;
-    return oit_gl_check("ll render", err);
+        stats->list_histogram[bin] = sum.histogram[bin];
+    /* the pool's share of what is allocated (oit_stats in oit.h defines it) */
+    stats->bytes_per_fragment = (double)oit_gl_memory_bytes(&s->gpu.memory, OIT_GL_MEMORY_FRAGMENTS) /
+                                (double)s->pool_capacity;
+    return status;
 
 failed:
-    oit_timer_stage_end(&s->timer);
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glUseProgram(0);
-    return status;
-}
-
-static oit_status ll_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
-{
-    return oit_gl_output_read(&ll_from(alg)->output, out, err);
-}
-
-static void ll_stats(const oit_algorithm *alg, oit_stats *out)
-{
-    *out = ll_from_const(alg)->last_stats;
+    return oit_gpu_frame_end(&s->gpu, status, err);
 }
 
 /* ll shows the colour image and the list views, and every local modulation
@@ -753,7 +711,7 @@ const oit_algorithm_ops oit_algorithm_ll = {
     .create = ll_create,
     .resize = ll_resize,
     .render = ll_render,
-    .read_image = ll_read_image,
-    .stats = ll_stats,
+    .read_image = oit_gpu_read_image,
+    .stats = oit_gpu_stats,
     .destroy = ll_destroy,
 };

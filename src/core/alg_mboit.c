@@ -31,16 +31,11 @@
 #include <stdlib.h>
 
 #include "capabilities.h"
-#include "gl_util.h"
-#include "oit.h"
+#include "gpu_algorithm.h"
 
 typedef struct mboit_state {
-    oit_algorithm_config config;
+    oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
     oit_moments moments; /* config.moments resolved: never OIT_MOMENTS_DEFAULT */
-    oit_gl_output output;
-    oit_gl_memory memory; /* the targets and the output */
-    oit_stage_timer timer;
-    oit_stats stats;
 
     GLuint moments_program;       /* geometry.vert + mboit/moments_<variant>.frag */
     GLuint transmittance_program; /* geometry.vert + mboit/transmittance_<variant>.frag */
@@ -52,7 +47,6 @@ typedef struct mboit_state {
     GLuint accumulation; /* GL_RGBA32F: (sum T a c, sum T a) */
     GLuint moments_framebuffer;       /* attachments OIT_MBOIT_TARGET_* */
     GLuint transmittance_framebuffer; /* attachment 0: accumulation */
-    int width, height;
 } mboit_state;
 
 /* The moments other than power4 need the third target. */
@@ -65,24 +59,12 @@ static void mboit_release_targets(mboit_state *s)
 {
     glDeleteFramebuffers(1, &s->moments_framebuffer);
     glDeleteFramebuffers(1, &s->transmittance_framebuffer);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->b0);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->moment_sums);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->extra_sums);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->accumulation);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->b0);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->moment_sums);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->extra_sums);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->accumulation);
     s->moments_framebuffer = s->transmittance_framebuffer = 0;
-    s->width = s->height = 0;
-}
-
-/* With config.debug, check for GL errors after each stage. */
-static oit_status mboit_stage_check(const mboit_state *s, const char *stage, oit_error *err)
-{
-    if (s->timer.cancelled)
-        return oit_timer_status(&s->timer, err);
-    if (!s->config.debug)
-        return OIT_OK;
-    char where[64];
-    snprintf(where, sizeof where, "mboit: %s", stage);
-    return oit_gl_check(where, err);
+    s->gpu.output.width = s->gpu.output.height = 0;
 }
 
 static void mboit_destroy(oit_algorithm *alg);
@@ -97,26 +79,24 @@ static oit_status mboit_create(const oit_algorithm_config *config, oit_algorithm
     if (moments != OIT_MOMENTS_POWER4 && moments != OIT_MOMENTS_POWER6 && moments != OIT_MOMENTS_TRIG3)
         return oit_fail(err, OIT_E_INPUT, "mboit: moments must be power4, power6 or trig3 (got %d)",
                         (int)config->moments);
-    mboit_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_fail(err, OIT_E_RUNTIME, "mboit: out of memory");
-    s->config = *config;
+    oit_gpu_algorithm *gpu;
+    oit_status status = oit_gpu_create(sizeof(mboit_state), "mboit", config, &gpu, err);
+    if (status != OIT_OK)
+        return status;
+    mboit_state *s = (mboit_state *)gpu;
     s->moments = moments;
-    s->output.memory = &s->memory;
-    oit_stats_reset(&s->stats);
-    oit_timer_create(&s->timer);
 
     const char *variant = oit_moments_name(moments);
     char moments_path[64], transmittance_path[64];
     snprintf(moments_path, sizeof moments_path, "mboit/moments_%s.frag", variant);
     snprintf(transmittance_path, sizeof transmittance_path, "mboit/transmittance_%s.frag", variant);
-    oit_status status = oit_gl_program(config->shader_dir, "common/geometry.vert", moments_path,
+    status = oit_gpu_program(&s->gpu, "common/geometry.vert", moments_path,
                                        &s->moments_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/geometry.vert", transmittance_path,
+        status = oit_gpu_program(&s->gpu, "common/geometry.vert", transmittance_path,
                                 &s->transmittance_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert", "mboit/compose.frag",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "mboit/compose.frag",
                                 &s->compose_program, err);
     if (status == OIT_OK)
         status = oit_gl_check("mboit: create", err);
@@ -141,7 +121,7 @@ static oit_status mboit_framebuffer(const mboit_state *s, GLuint *framebuffer, c
     glDrawBuffers(count, buffers);
     char what[64];
     snprintf(what, sizeof what, "mboit: the %s framebuffer", name);
-    oit_status status = oit_gl_check_framebuffer(what, width, height, &s->memory, err);
+    oit_status status = oit_gl_check_framebuffer(what, width, height, &s->gpu.memory, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return status;
 }
@@ -152,16 +132,16 @@ static oit_status mboit_resize(oit_algorithm *alg, int width, int height, oit_er
     if (width < 1 || height < 1)
         return oit_fail(err, OIT_E_INPUT, "mboit: bad size %dx%d", width, height);
     mboit_release_targets(s);
-    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)
         return status;
 
     const oit_gl_memory_use pixels = OIT_GL_MEMORY_PIXELS;
-    s->b0 = oit_gl_memory_texture_2d(&s->memory, pixels, GL_R32F, width, height);
-    s->moment_sums = oit_gl_memory_texture_2d(&s->memory, pixels, GL_RGBA32F, width, height);
+    s->b0 = oit_gl_memory_texture_2d(&s->gpu.memory, pixels, GL_R32F, width, height);
+    s->moment_sums = oit_gl_memory_texture_2d(&s->gpu.memory, pixels, GL_RGBA32F, width, height);
     if (mboit_has_extra(s->moments))
-        s->extra_sums = oit_gl_memory_texture_2d(&s->memory, pixels, GL_RG32F, width, height);
-    s->accumulation = oit_gl_memory_texture_2d(&s->memory, pixels, GL_RGBA32F, width, height);
+        s->extra_sums = oit_gl_memory_texture_2d(&s->gpu.memory, pixels, GL_RG32F, width, height);
+    s->accumulation = oit_gl_memory_texture_2d(&s->gpu.memory, pixels, GL_RGBA32F, width, height);
 
     GLuint targets[3];
     targets[OIT_MBOIT_TARGET_B0] = s->b0;
@@ -178,9 +158,9 @@ static oit_status mboit_resize(oit_algorithm *alg, int width, int height, oit_er
         mboit_release_targets(s);
         return status;
     }
-    s->width = width;
-    s->height = height;
-    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    s->gpu.output.width = width;
+    s->gpu.output.height = height;
+    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
     return OIT_OK;
 }
 
@@ -194,19 +174,15 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
                                const oit_frame_settings *frame, oit_error *err)
 {
     mboit_state *s = (mboit_state *)alg;
-    if (!scene->has_gpu)
-        return oit_fail(err, OIT_E_INPUT, "mboit: the scene has no GPU buffers");
     oit_status status = OIT_OK;
-    if (frame->width != s->width || frame->height != s->height) {
+    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height)
         status = mboit_resize(alg, frame->width, frame->height, err);
-        if (status != OIT_OK)
-            return status;
-    }
-    oit_stats_reset(&s->stats);
-    oit_timer_frame_begin(&s->timer, frame);
-    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+    if (status == OIT_OK)
+        status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    if (status != OIT_OK)
+        return status;
 
-    glViewport(0, 0, s->width, s->height);
+    glViewport(0, 0, s->gpu.output.width, s->gpu.output.height);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST); /* every fragment counts, in any order */
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
@@ -216,7 +192,7 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
     glBlendFunc(GL_ONE, GL_ONE);
 
     /* 1. the moments of the optical depth over depth */
-    oit_timer_stage_begin(&s->timer, "moments");
+    oit_timer_stage_begin(&s->gpu.timer, "moments");
     glBindFramebuffer(GL_FRAMEBUFFER, s->moments_framebuffer);
     glClearBufferfv(GL_COLOR, OIT_MBOIT_TARGET_B0, zeros);
     glClearBufferfv(GL_COLOR, OIT_MBOIT_TARGET_MOMENTS, zeros);
@@ -225,12 +201,12 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
     glUseProgram(s->moments_program);
     oit_gl_set_frame_uniforms(frame);
     oit_gl_draw_scene(scene);
-    oit_timer_stage_end(&s->timer);
-    status = mboit_stage_check(s, "moments", err);
+    oit_timer_stage_end(&s->gpu.timer);
+    status = oit_gpu_stage_check(&s->gpu, "moments", err);
 
     /* 2. every fragment weighted by the transmittance reconstructed in front of it */
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "transmittance");
+        oit_timer_stage_begin(&s->gpu.timer, "transmittance");
         glBindFramebuffer(GL_FRAMEBUFFER, s->transmittance_framebuffer);
         glClearBufferfv(GL_COLOR, 0, zeros);
         glUseProgram(s->transmittance_program);
@@ -240,47 +216,25 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
         if (mboit_has_extra(s->moments))
             mboit_bind_texture(OIT_TEXUNIT_MBOIT_EXTRA, s->extra_sums);
         oit_gl_draw_scene(scene);
-        oit_timer_stage_end(&s->timer);
-        status = mboit_stage_check(s, "transmittance", err);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "transmittance", err);
     }
     glDisable(GL_BLEND);
 
     /* 3. the normalised composite over the background */
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "compose");
-        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        oit_timer_stage_begin(&s->gpu.timer, "compose");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
         glUseProgram(s->compose_program);
         oit_gl_set_frame_uniforms(frame);
         mboit_bind_texture(OIT_TEXUNIT_MBOIT_B0, s->b0);
         mboit_bind_texture(OIT_TEXUNIT_MBOIT_ACCUM, s->accumulation);
-        oit_gl_draw_fullscreen(&s->output);
-        oit_timer_stage_end(&s->timer);
-        status = mboit_stage_check(s, "compose", err);
+        oit_gl_draw_fullscreen(&s->gpu.output);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "compose", err);
     }
     glActiveTexture(GL_TEXTURE0);
-
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glUseProgram(0);
-    oit_timer_frame_end(&s->timer, &s->stats);
-    if (status == OIT_OK)
-        status = oit_gl_check("mboit: render", err);
-    /* what the targets and the output hold (the tracker, gl_util.h) */
-    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
-    s->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) /
-                               ((double)s->width * (double)s->height);
-    return status;
-}
-
-static oit_status mboit_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
-{
-    mboit_state *s = (mboit_state *)alg;
-    return oit_gl_output_read(&s->output, out, err);
-}
-
-static void mboit_stats(const oit_algorithm *alg, oit_stats *out)
-{
-    const mboit_state *s = (const mboit_state *)alg;
-    *out = s->stats;
+    return oit_gpu_frame_end(&s->gpu, status, err);
 }
 
 static void mboit_destroy(oit_algorithm *alg)
@@ -289,12 +243,7 @@ static void mboit_destroy(oit_algorithm *alg)
     if (!s)
         return;
     mboit_release_targets(s);
-    oit_gl_output_release(&s->output);
-    glDeleteProgram(s->moments_program);
-    glDeleteProgram(s->transmittance_program);
-    glDeleteProgram(s->compose_program);
-    oit_timer_destroy(&s->timer);
-    free(s);
+    oit_gpu_destroy(&s->gpu);
 }
 
 static const oit_capabilities mboit_capabilities = {
@@ -315,7 +264,7 @@ const oit_algorithm_ops oit_algorithm_mboit = {
     .create = mboit_create,
     .resize = mboit_resize,
     .render = mboit_render,
-    .read_image = mboit_read_image,
-    .stats = mboit_stats,
+    .read_image = oit_gpu_read_image,
+    .stats = oit_gpu_stats,
     .destroy = mboit_destroy,
 };

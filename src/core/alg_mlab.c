@@ -48,20 +48,15 @@
 #include <stdlib.h>
 
 #include "capabilities.h"
-#include "gl_util.h"
-#include "oit.h"
+#include "gpu_algorithm.h"
 
 #define MLAB_MEGABYTE (1024.0 * 1024.0)
 /* per pixel: the layers, the count, the lock and the RGBA8 output */
 #define MLAB_PIXEL_FIXED_BYTES ((uint64_t)OIT_MLAB_COUNT_BYTES + OIT_MLAB_LOCK_BYTES + 4u)
 
 typedef struct mlab_state {
-    oit_algorithm_config config; /* shader_dir is only used by create */
+    oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
     int layers;                  /* k */
-    oit_gl_output output;
-    oit_gl_memory memory; /* every buffer and texture below and the output */
-    oit_stage_timer timer;
-    oit_stats stats;
 
     GLuint insert_program;  /* geometry.vert + mlab/insert.frag */
     GLuint resolve_program; /* fullscreen.vert + mlab/resolve.frag */
@@ -71,27 +66,14 @@ typedef struct mlab_state {
     GLuint count_image, lock_image;
     GLuint counter_buffer;
     uint64_t gl_layer_limit; /* most layers one SSBO binding and one buffer texture address */
-    int width, height;
 } mlab_state;
 
 static void mlab_release_targets(mlab_state *s)
 {
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->count_image);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->lock_image);
-    oit_gl_memory_delete_buffers(&s->memory, 1, &s->layer_buffer);
-    s->width = s->height = 0;
-}
-
-/* With config.debug, check for GL errors after each stage. */
-static oit_status mlab_stage_check(const mlab_state *s, const char *stage, oit_error *err)
-{
-    if (s->timer.cancelled)
-        return oit_timer_status(&s->timer, err);
-    if (!s->config.debug)
-        return OIT_OK;
-    char where[64];
-    snprintf(where, sizeof where, "mlab: %s", stage);
-    return oit_gl_check(where, err);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->count_image);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->lock_image);
+    oit_gl_memory_delete_buffers(&s->gpu.memory, 1, &s->layer_buffer);
+    s->gpu.output.width = s->gpu.output.height = 0;
 }
 
 static void mlab_destroy(oit_algorithm *alg);
@@ -107,21 +89,19 @@ static oit_status mlab_create(const oit_algorithm_config *config, oit_algorithm 
     if (!GLEW_VERSION_4_4 && !GLEW_ARB_clear_texture)
         return oit_fail(err, OIT_E_RUNTIME,
                         "mlab: needs OpenGL 4.4 or GL_ARB_clear_texture to clear the counts and locks");
-    mlab_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_fail(err, OIT_E_RUNTIME, "mlab: out of memory");
-    s->config = *config;
+    oit_gpu_algorithm *gpu;
+    oit_status status = oit_gpu_create(sizeof(mlab_state), "mlab", config, &gpu, err);
+    if (status != OIT_OK)
+        return status;
+    mlab_state *s = (mlab_state *)gpu;
     s->layers = layers;
-    s->output.memory = &s->memory;
-    oit_stats_reset(&s->stats);
-    oit_timer_create(&s->timer);
 
-    oit_status status = oit_gl_program(config->shader_dir, "common/geometry.vert",
+    status = oit_gpu_program(&s->gpu, "common/geometry.vert",
                                        "mlab/insert.frag", &s->insert_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
+        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
                                 "mlab/resolve.frag", &s->resolve_program, err);
-    s->config.shader_dir = NULL; /* the caller's string; not kept */
+    s->gpu.config.shader_dir = NULL; /* the caller's string; not kept */
     if (status != OIT_OK) {
         mlab_destroy((oit_algorithm *)s);
         return status;
@@ -138,7 +118,7 @@ static oit_status mlab_create(const oit_algorithm_config *config, oit_algorithm 
 
     glGenTextures(1, &s->layer_texture);
     glGenBuffers(1, &s->counter_buffer);
-    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+    oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                               s->counter_buffer, OIT_MLAB_COUNTER_COUNT * sizeof(GLuint), NULL,
                               GL_DYNAMIC_READ);
     status = oit_gl_check("mlab: create", err);
@@ -160,7 +140,7 @@ static oit_status mlab_resize(oit_algorithm *alg, int width, int height, oit_err
     const uint64_t layer_count = pixels * (uint64_t)s->layers;
     const uint64_t needed = layer_count * OIT_MLAB_LAYER_BYTES + pixels * MLAB_PIXEL_FIXED_BYTES +
                             OIT_MLAB_COUNTER_COUNT * sizeof(GLuint);
-    if (needed > s->config.max_memory_bytes)
+    if (needed > s->gpu.config.max_memory_bytes)
         return oit_fail(err, OIT_E_RUNTIME,
                         "mlab: %d layers per pixel at %dx%d need %llu bytes (%.1f MB: %d x %d bytes "
                         "of layers + %d of count, lock and output per pixel), over the --max-memory "
@@ -168,7 +148,7 @@ static oit_status mlab_resize(oit_algorithm *alg, int width, int height, oit_err
                         s->layers, width, height, (unsigned long long)needed,
                         (double)needed / MLAB_MEGABYTE, s->layers, OIT_MLAB_LAYER_BYTES,
                         (int)MLAB_PIXEL_FIXED_BYTES,
-                        (double)s->config.max_memory_bytes / MLAB_MEGABYTE);
+                        (double)s->gpu.config.max_memory_bytes / MLAB_MEGABYTE);
     if (layer_count > s->gl_layer_limit)
         return oit_fail(err, OIT_E_RUNTIME,
                         "mlab: %d layers per pixel at %dx%d are %llu layers, more than this GL can "
@@ -178,20 +158,20 @@ static oit_status mlab_resize(oit_algorithm *alg, int width, int height, oit_err
                         (unsigned long long)s->gl_layer_limit);
 
     mlab_release_targets(s);
-    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)
         return status;
     while (glGetError() != GL_NO_ERROR) {
     }
     glGenBuffers(1, &s->layer_buffer);
-    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER,
+    oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER,
                               s->layer_buffer, layer_count * OIT_MLAB_LAYER_BYTES, NULL,
                               GL_DYNAMIC_COPY);
     glBindTexture(GL_TEXTURE_BUFFER, s->layer_texture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, s->layer_buffer);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
-    s->count_image = oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
-    s->lock_image = oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+    s->count_image = oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+    s->lock_image = oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
     GLenum error = glGetError();
     if (error != GL_NO_ERROR) {
         mlab_release_targets(s);
@@ -200,9 +180,9 @@ static oit_status mlab_resize(oit_algorithm *alg, int width, int height, oit_err
                         "0x%04x",
                         s->layers, width, height, (double)needed / MLAB_MEGABYTE, (unsigned)error);
     }
-    s->width = width;
-    s->height = height;
-    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    s->gpu.output.width = width;
+    s->gpu.output.height = height;
+    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
     return OIT_OK;
 }
 
@@ -210,20 +190,16 @@ static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,
                               const oit_frame_settings *frame, oit_error *err)
 {
     mlab_state *s = (mlab_state *)alg;
-    if (!scene->has_gpu)
-        return oit_fail(err, OIT_E_INPUT, "mlab: the scene has no GPU buffers");
     oit_status status = OIT_OK;
-    if (frame->width != s->width || frame->height != s->height) {
+    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height)
         status = mlab_resize(alg, frame->width, frame->height, err);
-        if (status != OIT_OK)
-            return status;
-    }
-    oit_stats_reset(&s->stats);
-    oit_timer_frame_begin(&s->timer, frame);
-    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+    if (status == OIT_OK)
+        status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    if (status != OIT_OK)
+        return status;
 
-    glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
-    glViewport(0, 0, s->width, s->height);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
+    glViewport(0, 0, s->gpu.output.width, s->gpu.output.height);
     glDisable(GL_DEPTH_TEST); /* every fragment is inserted */
     glDepthMask(GL_FALSE);
     glDisable(GL_BLEND);
@@ -237,21 +213,21 @@ static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,
     glBindTexture(GL_TEXTURE_BUFFER, s->layer_texture);
     glActiveTexture(GL_TEXTURE0);
 
-    oit_timer_stage_begin(&s->timer, "clear");
+    oit_timer_stage_begin(&s->gpu.timer, "clear");
     const GLuint zero = 0;
     /* tests only: every lock starts taken, as if held by a fragment outside the frame */
-    const GLuint lock_start = s->config.locks_held ? 1u : 0u;
+    const GLuint lock_start = s->gpu.config.locks_held ? 1u : 0u;
     glClearTexImage(s->count_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glClearTexImage(s->lock_image, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &lock_start);
     const GLuint zeros[OIT_MLAB_COUNTER_COUNT] = {0};
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zeros, zeros);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    oit_timer_stage_end(&s->timer);
-    status = mlab_stage_check(s, "clear", err);
+    oit_timer_stage_end(&s->gpu.timer);
+    status = oit_gpu_stage_check(&s->gpu, "clear", err);
 
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "insert");
+        oit_timer_stage_begin(&s->gpu.timer, "insert");
         /* the clears land before the insert's image and buffer atomics */
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         glUseProgram(s->insert_program);
@@ -260,20 +236,20 @@ static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         oit_gl_draw_scene(scene);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        oit_timer_stage_end(&s->timer);
-        status = mlab_stage_check(s, "insert", err);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "insert", err);
     }
 
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "resolve");
+        oit_timer_stage_begin(&s->gpu.timer, "resolve");
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                         GL_TEXTURE_FETCH_BARRIER_BIT);
         glUseProgram(s->resolve_program);
         oit_gl_set_frame_uniforms(frame);
         glUniform1ui(OIT_UNIFORM_MLAB_LAYERS, (GLuint)s->layers);
-        oit_gl_draw_fullscreen(&s->output);
-        oit_timer_stage_end(&s->timer);
-        status = mlab_stage_check(s, "resolve", err);
+        oit_gl_draw_fullscreen(&s->gpu.output);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "resolve", err);
     }
 
     GLuint counters[OIT_MLAB_COUNTER_COUNT] = {0};
@@ -283,12 +259,7 @@ static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,
         glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counters, counters);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glUseProgram(0);
-    oit_timer_frame_end(&s->timer, &s->stats);
-    if (status == OIT_OK)
-        status = oit_gl_check("mlab: render", err);
-    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    status = oit_gpu_frame_end(&s->gpu, status, err);
     if (status != OIT_OK)
         return status;
 
@@ -300,33 +271,18 @@ static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,
                         "lock after %d tries each%s; the image would miss them",
                         counters[OIT_MLAB_COUNTER_GAVE_UP], (unsigned long long)fragments,
                         OIT_MLAB_LOCK_TRIES,
-                        s->config.locks_held ? " (config.locks_held: every lock started taken)" : "");
+                        s->gpu.config.locks_held ? " (config.locks_held: every lock started taken)" : "");
     if (counters[OIT_MLAB_COUNTER_RESOLVED] != counters[OIT_MLAB_COUNTER_FRAGMENTS])
         return oit_fail(err, OIT_E_RUNTIME,
                         "mlab: the pixels' counts sum to %u (mod 2^32) but the insert counted %u: a "
                         "pixel's lock did not exclude another fragment and an update was lost",
                         counters[OIT_MLAB_COUNTER_RESOLVED], counters[OIT_MLAB_COUNTER_FRAGMENTS]);
 
-    const uint64_t pixels = (uint64_t)s->width * (uint64_t)s->height;
     const uint64_t non_empty = counters[OIT_MLAB_COUNTER_NONEMPTY_PIXELS];
-    s->stats.fragments = (int64_t)fragments;
-    s->stats.max_list = counters[OIT_MLAB_COUNTER_MAX_LIST];
-    s->stats.mean_list = non_empty ? (double)fragments / (double)non_empty : 0.0;
-    s->stats.bytes_per_pixel =
-        (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) / (double)pixels;
+    s->gpu.stats.fragments = (int64_t)fragments;
+    s->gpu.stats.max_list = counters[OIT_MLAB_COUNTER_MAX_LIST];
+    s->gpu.stats.mean_list = non_empty ? (double)fragments / (double)non_empty : 0.0;
     return OIT_OK;
-}
-
-static oit_status mlab_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
-{
-    mlab_state *s = (mlab_state *)alg;
-    return oit_gl_output_read(&s->output, out, err);
-}
-
-static void mlab_stats(const oit_algorithm *alg, oit_stats *out)
-{
-    const mlab_state *s = (const mlab_state *)alg;
-    *out = s->stats;
 }
 
 static void mlab_destroy(oit_algorithm *alg)
@@ -335,13 +291,9 @@ static void mlab_destroy(oit_algorithm *alg)
     if (!s)
         return;
     mlab_release_targets(s);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->layer_texture);
-    oit_gl_memory_delete_buffers(&s->memory, 1, &s->counter_buffer);
-    oit_gl_output_release(&s->output);
-    glDeleteProgram(s->insert_program);
-    glDeleteProgram(s->resolve_program);
-    oit_timer_destroy(&s->timer);
-    free(s);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->layer_texture);
+    oit_gl_memory_delete_buffers(&s->gpu.memory, 1, &s->counter_buffer);
+    oit_gpu_destroy(&s->gpu);
 }
 
 static const oit_capabilities mlab_capabilities = {
@@ -364,7 +316,7 @@ const oit_algorithm_ops oit_algorithm_mlab = {
     .create = mlab_create,
     .resize = mlab_resize,
     .render = mlab_render,
-    .read_image = mlab_read_image,
-    .stats = mlab_stats,
+    .read_image = oit_gpu_read_image,
+    .stats = oit_gpu_stats,
     .destroy = mlab_destroy,
 };

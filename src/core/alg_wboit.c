@@ -9,69 +9,49 @@
  * * (1 - revealage) + background * revealage. Float targets throughout (32 bit,
  * so that sums of large weights cannot overflow as they can in 16 bit).
  */
-#include <stdio.h>
 #include <stdlib.h>
 
 #include "capabilities.h"
-#include "gl_util.h"
-#include "oit.h"
+#include "gpu_algorithm.h"
 
 typedef struct wboit_state {
-    oit_algorithm_config config;
-    oit_gl_output output;
-    oit_gl_memory memory; /* the targets and the output */
-    oit_stage_timer timer;
-    oit_stats stats;
-
+    oit_gpu_algorithm gpu;     /* first: output, memory, timer, statistics, programs */
     GLuint accumulate_program; /* geometry.vert + wboit/accumulate.frag */
     GLuint compose_program;    /* fullscreen.vert + wboit/compose.frag */
 
     GLuint accumulation; /* GL_RGBA32F: rgb = sum w*a*c, a = sum w*a */
     GLuint revealage;    /* GL_R32F: product of (1 - a) */
     GLuint accumulate_framebuffer; /* colour attachments 0 = accumulation, 1 = revealage */
-    int width, height;
 } wboit_state;
 
 static void wboit_release_targets(wboit_state *s)
 {
     glDeleteFramebuffers(1, &s->accumulate_framebuffer);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->accumulation);
-    oit_gl_memory_delete_textures(&s->memory, 1, &s->revealage);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->accumulation);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->revealage);
     s->accumulate_framebuffer = 0;
-    s->width = s->height = 0;
 }
 
-/* With config.debug, check for GL errors after each stage. */
-static oit_status wboit_stage_check(const wboit_state *s, const char *stage, oit_error *err)
+static void wboit_destroy(oit_algorithm *alg)
 {
-    if (s->timer.cancelled)
-        return oit_timer_status(&s->timer, err);
-    if (!s->config.debug)
-        return OIT_OK;
-    char where[64];
-    snprintf(where, sizeof where, "wboit: %s", stage);
-    return oit_gl_check(where, err);
+    wboit_state *s = (wboit_state *)alg;
+    if (!s)
+        return;
+    wboit_release_targets(s);
+    oit_gpu_destroy(&s->gpu);
 }
-
-static void wboit_destroy(oit_algorithm *alg);
 
 static oit_status wboit_create(const oit_algorithm_config *config, oit_algorithm **out,
                                oit_error *err)
 {
-    *out = NULL;
-    wboit_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_fail(err, OIT_E_RUNTIME, "wboit: out of memory");
-    s->config = *config;
-    s->output.memory = &s->memory;
-    oit_stats_reset(&s->stats);
-    oit_timer_create(&s->timer);
-
-    oit_status status = oit_gl_program(config->shader_dir, "common/geometry.vert",
-                                       "wboit/accumulate.frag", &s->accumulate_program, err);
+    oit_gpu_algorithm *gpu;
+    oit_status status = oit_gpu_create(sizeof(wboit_state), "wboit", config, &gpu, err);
+    if (status != OIT_OK)
+        return status;
+    wboit_state *s = (wboit_state *)gpu;
+    status = oit_gpu_program(gpu, "common/geometry.vert", "wboit/accumulate.frag", &s->accumulate_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(config->shader_dir, "common/fullscreen.vert",
-                                "wboit/compose.frag", &s->compose_program, err);
+        status = oit_gpu_program(gpu, "common/fullscreen.vert", "wboit/compose.frag", &s->compose_program, err);
     if (status == OIT_OK)
         status = oit_gl_check("wboit: create", err);
     if (status != OIT_OK) {
@@ -88,13 +68,13 @@ static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_er
     if (width < 1 || height < 1)
         return oit_fail(err, OIT_E_INPUT, "wboit: bad size %dx%d", width, height);
     wboit_release_targets(s);
-    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)
         return status;
 
-    s->accumulation =
-        oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_RGBA32F, width, height);
-    s->revealage = oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS, GL_R32F, width, height);
+    oit_gl_memory *memory = &s->gpu.memory;
+    s->accumulation = oit_gl_memory_texture_2d(memory, OIT_GL_MEMORY_PIXELS, GL_RGBA32F, width, height);
+    s->revealage = oit_gl_memory_texture_2d(memory, OIT_GL_MEMORY_PIXELS, GL_R32F, width, height);
     glGenFramebuffers(1, &s->accumulate_framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, s->accumulate_framebuffer);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->accumulation,
@@ -102,17 +82,16 @@ static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_er
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, s->revealage, 0);
     static const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, buffers);
-    status = oit_gl_check_framebuffer("wboit: the accumulation framebuffer", width, height, &s->memory, err);
+    status = oit_gl_check_framebuffer("wboit: the accumulation framebuffer", width, height, memory, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status == OIT_OK)
         status = oit_gl_check("wboit: resize", err);
     if (status != OIT_OK) {
         wboit_release_targets(s);
+        s->gpu.output.width = s->gpu.output.height = 0;
         return status;
     }
-    s->width = width;
-    s->height = height;
-    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    s->gpu.stats.memory_bytes = oit_gl_memory_total(memory);
     return OIT_OK;
 }
 
@@ -120,24 +99,20 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
                                const oit_frame_settings *frame, oit_error *err)
 {
     wboit_state *s = (wboit_state *)alg;
-    if (!scene->has_gpu)
-        return oit_fail(err, OIT_E_INPUT, "wboit: the scene has no GPU buffers");
-    if (frame->width != s->width || frame->height != s->height) {
-        oit_status status = wboit_resize(alg, frame->width, frame->height, err);
-        if (status != OIT_OK)
-            return status;
-    }
     oit_status status = OIT_OK;
-    oit_stats_reset(&s->stats);
-    oit_timer_frame_begin(&s->timer, frame);
-    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height)
+        status = wboit_resize(alg, frame->width, frame->height, err);
+    if (status == OIT_OK)
+        status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    if (status != OIT_OK)
+        return status;
 
-    glViewport(0, 0, s->width, s->height);
+    glViewport(0, 0, frame->width, frame->height);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST); /* every fragment counts, in any order */
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
 
-    oit_timer_stage_begin(&s->timer, "accumulate");
+    oit_timer_stage_begin(&s->gpu.timer, "accumulate");
     static const GLfloat empty_accumulation[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     static const GLfloat empty_revealage[4] = {1.0f, 0.0f, 0.0f, 0.0f};
     glBindFramebuffer(GL_FRAMEBUFFER, s->accumulate_framebuffer);
@@ -152,58 +127,23 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
     oit_gl_set_frame_uniforms(frame);
     oit_gl_draw_scene(scene);
     glDisable(GL_BLEND);
-    oit_timer_stage_end(&s->timer);
-    status = wboit_stage_check(s, "accumulate", err);
+    oit_timer_stage_end(&s->gpu.timer);
+    status = oit_gpu_stage_check(&s->gpu, "accumulate", err);
 
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "compose");
-        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        oit_timer_stage_begin(&s->gpu.timer, "compose");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
         glUseProgram(s->compose_program);
         oit_gl_set_frame_uniforms(frame);
         glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM);
         glBindTexture(GL_TEXTURE_2D, s->accumulation);
         glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_REVEALAGE);
         glBindTexture(GL_TEXTURE_2D, s->revealage);
-        oit_gl_draw_fullscreen(&s->output);
-        oit_timer_stage_end(&s->timer);
-        status = wboit_stage_check(s, "compose", err);
+        oit_gl_draw_fullscreen(&s->gpu.output);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "compose", err);
     }
-
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glUseProgram(0);
-    oit_timer_frame_end(&s->timer, &s->stats);
-    if (status == OIT_OK)
-        status = oit_gl_check("wboit: render", err);
-    /* what the targets and the output hold (the tracker, gl_util.h) */
-    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
-    s->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) /
-                               ((double)s->width * (double)s->height);
-    return status;
-}
-
-static oit_status wboit_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
-{
-    wboit_state *s = (wboit_state *)alg;
-    return oit_gl_output_read(&s->output, out, err);
-}
-
-static void wboit_stats(const oit_algorithm *alg, oit_stats *out)
-{
-    const wboit_state *s = (const wboit_state *)alg;
-    *out = s->stats;
-}
-
-static void wboit_destroy(oit_algorithm *alg)
-{
-    wboit_state *s = (wboit_state *)alg;
-    if (!s)
-        return;
-    wboit_release_targets(s);
-    oit_gl_output_release(&s->output);
-    glDeleteProgram(s->accumulate_program);
-    glDeleteProgram(s->compose_program);
-    oit_timer_destroy(&s->timer);
-    free(s);
+    return oit_gpu_frame_end(&s->gpu, status, err);
 }
 
 static const oit_capabilities wboit_capabilities = {
@@ -223,7 +163,7 @@ const oit_algorithm_ops oit_algorithm_wboit = {
     .create = wboit_create,
     .resize = wboit_resize,
     .render = wboit_render,
-    .read_image = wboit_read_image,
-    .stats = wboit_stats,
+    .read_image = oit_gpu_read_image,
+    .stats = oit_gpu_stats,
     .destroy = wboit_destroy,
 };

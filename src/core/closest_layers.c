@@ -68,14 +68,10 @@ _Static_assert(OIT_CLOSEST_COUNTER_HISTOGRAM + OIT_CLOSEST_HISTOGRAM_BINS == OIT
 #define CLOSEST_LAYERS_OUTPUT_BYTES 4u /* RGBA8 */
 
 typedef struct closest_layers_state {
+    oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
     const closest_layers_tail *tail;
-    oit_algorithm_config config; /* config.shader_dir points at shader_dir below */
     char *shader_dir;
     int layers; /* k */
-    oit_gl_output output;
-    oit_gl_memory memory; /* every buffer and texture below and the output (gl_util.h) */
-    oit_stage_timer timer;
-    oit_stats stats;
 
     GLuint select_program;  /* geometry.vert + closest_layers/select.frag */
     GLuint store_program;   /* geometry.vert + tail->store_shader */
@@ -85,7 +81,6 @@ typedef struct closest_layers_state {
     GLuint tail_textures[CLOSEST_LAYERS_MAX_TAIL_TARGETS];
     GLuint tail_framebuffer;
     uint64_t max_block_bytes; /* GL_MAX_SHADER_STORAGE_BLOCK_SIZE */
-    int width, height;        /* of the allocated buffers; 0 before the first resize */
 } closest_layers_state;
 
 static closest_layers_state *closest_from(oit_algorithm *alg) { return (closest_layers_state *)alg; }
@@ -96,11 +91,11 @@ static void closest_release_targets(closest_layers_state *s)
 {
     glDeleteFramebuffers(1, &s->tail_framebuffer);
     s->tail_framebuffer = 0;
-    oit_gl_memory_delete_textures(&s->memory, s->tail->target_count, s->tail_textures);
+    oit_gl_memory_delete_textures(&s->gpu.memory, s->tail->target_count, s->tail_textures);
     GLuint buffers[2] = {s->slot_buffer, s->tail_count_buffer};
-    oit_gl_memory_delete_buffers(&s->memory, 2, buffers);
+    oit_gl_memory_delete_buffers(&s->gpu.memory, 2, buffers);
     s->slot_buffer = s->tail_count_buffer = 0;
-    s->width = s->height = 0;
+    s->gpu.output.width = s->gpu.output.height = 0;
 }
 
 void closest_layers_destroy(oit_algorithm *alg)
@@ -109,14 +104,9 @@ void closest_layers_destroy(oit_algorithm *alg)
     if (!s)
         return;
     closest_release_targets(s);
-    oit_gl_memory_delete_buffers(&s->memory, 1, &s->counter_buffer);
-    oit_gl_output_release(&s->output);
-    glDeleteProgram(s->select_program);
-    glDeleteProgram(s->store_program);
-    glDeleteProgram(s->compose_program);
-    oit_timer_destroy(&s->timer);
+    oit_gl_memory_delete_buffers(&s->gpu.memory, 1, &s->counter_buffer);
     free(s->shader_dir);
-    free(s);
+    oit_gpu_destroy(&s->gpu);
 }
 
 oit_status closest_layers_create(const closest_layers_tail *tail, const oit_algorithm_config *config,
@@ -127,38 +117,33 @@ oit_status closest_layers_create(const closest_layers_tail *tail, const oit_algo
         return oit_fail(err, OIT_E_INPUT, "%s: config.layers (k) %d outside 1..%d (0: the default %d)",
                         tail->algorithm, config->layers, OIT_APPROX_LAYERS_MAX,
                         OIT_APPROX_LAYERS_DEFAULT);
-    closest_layers_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", tail->algorithm);
+    oit_gpu_algorithm *gpu;
+    oit_status status = oit_gpu_create(sizeof(closest_layers_state), tail->algorithm, config, &gpu, err);
+    if (status != OIT_OK)
+        return status;
+    closest_layers_state *s = (closest_layers_state *)gpu;
     s->tail = tail;
-    s->config = *config;
     s->layers = config->layers ? config->layers : OIT_APPROX_LAYERS_DEFAULT;
     const char *dir = config->shader_dir ? config->shader_dir : ".";
     s->shader_dir = malloc(strlen(dir) + 1);
     if (!s->shader_dir) {
-        free(s);
+        oit_gpu_destroy(gpu);
         return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", tail->algorithm);
     }
     strcpy(s->shader_dir, dir);
-    s->config.shader_dir = s->shader_dir;
-    s->output.memory = &s->memory;
-    oit_stats_reset(&s->stats);
-    oit_timer_create(&s->timer);
+    s->gpu.config.shader_dir = s->shader_dir;
 
-    oit_status status = oit_gl_program(s->shader_dir, "common/geometry.vert",
-                                       "closest_layers/select.frag", &s->select_program, err);
+    status = oit_gpu_program(gpu, "common/geometry.vert", "closest_layers/select.frag", &s->select_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(s->shader_dir, "common/geometry.vert", tail->store_shader,
-                                &s->store_program, err);
+        status = oit_gpu_program(gpu, "common/geometry.vert", tail->store_shader, &s->store_program, err);
     if (status == OIT_OK)
-        status = oit_gl_program(s->shader_dir, "common/fullscreen.vert", tail->compose_shader,
-                                &s->compose_program, err);
+        status = oit_gpu_program(gpu, "common/fullscreen.vert", tail->compose_shader, &s->compose_program, err);
     if (status == OIT_OK) {
         GLint64 max_block_bytes = 0;
         glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
         s->max_block_bytes = max_block_bytes > 0 ? (uint64_t)max_block_bytes : 0;
         glGenBuffers(1, &s->counter_buffer);
-        oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
+        oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                                   s->counter_buffer, OIT_CLOSEST_COUNTER_COUNT * sizeof(GLuint), NULL,
                                   GL_DYNAMIC_READ);
         char where[64];
@@ -193,14 +178,14 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
     if (width < 1 || height < 1)
         return oit_fail(err, OIT_E_INPUT, "%s: bad size %dx%d", name, width, height);
     const uint64_t needed = closest_bytes_needed(s, width, height);
-    if (needed > s->config.max_memory_bytes)
+    if (needed > s->gpu.config.max_memory_bytes)
         return oit_fail(err, OIT_E_RUNTIME,
                         "%s: %dx%d with k = %d layers needs %llu bytes (%.1f MB), over the --max-memory "
                         "budget of %llu bytes (%.1f MB)",
                         name, width, height, s->layers, (unsigned long long)needed,
                         (double)needed / CLOSEST_LAYERS_MEGABYTE,
-                        (unsigned long long)s->config.max_memory_bytes,
-                        (double)s->config.max_memory_bytes / CLOSEST_LAYERS_MEGABYTE);
+                        (unsigned long long)s->gpu.config.max_memory_bytes,
+                        (double)s->gpu.config.max_memory_bytes / CLOSEST_LAYERS_MEGABYTE);
     const uint64_t pixels = (uint64_t)width * (uint64_t)height;
     const uint64_t slot_bytes = pixels * (uint64_t)s->layers * OIT_CLOSEST_SLOT_BYTES;
     if (slot_bytes > s->max_block_bytes)
@@ -211,7 +196,7 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
                         (unsigned long long)s->max_block_bytes);
 
     closest_release_targets(s);
-    oit_status status = oit_gl_output_resize(&s->output, width, height, err);
+    oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)
         return status;
     while (glGetError() != GL_NO_ERROR) {
@@ -220,9 +205,9 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
     glGenBuffers(2, buffers);
     s->slot_buffer = buffers[0];
     s->tail_count_buffer = buffers[1];
-    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER, s->slot_buffer,
+    oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER, s->slot_buffer,
                               slot_bytes, NULL, GL_DYNAMIC_COPY);
-    oit_gl_memory_buffer_data(&s->memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER,
+    oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER,
                               s->tail_count_buffer, pixels * OIT_CLOSEST_TAIL_COUNT_BYTES, NULL,
                               GL_DYNAMIC_COPY);
     GLenum error = glGetError();
@@ -236,7 +221,7 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
     glBindFramebuffer(GL_FRAMEBUFFER, s->tail_framebuffer);
     GLenum draw_buffers[CLOSEST_LAYERS_MAX_TAIL_TARGETS];
     for (int t = 0; t < s->tail->target_count; ++t) {
-        s->tail_textures[t] = oit_gl_memory_texture_2d(&s->memory, OIT_GL_MEMORY_PIXELS,
+        s->tail_textures[t] = oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS,
                                                        s->tail->targets[t].format, width, height);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)t, GL_TEXTURE_2D,
                                s->tail_textures[t], 0);
@@ -245,7 +230,7 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
     glDrawBuffers(s->tail->target_count, draw_buffers);
     char what[64];
     snprintf(what, sizeof what, "%s: the tail framebuffer", name);
-    status = oit_gl_check_framebuffer(what, width, height, &s->memory, err);
+    status = oit_gl_check_framebuffer(what, width, height, &s->gpu.memory, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status == OIT_OK) {
         char where[64];
@@ -256,25 +241,13 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
         closest_release_targets(s);
         return status;
     }
-    s->width = width;
-    s->height = height;
-    s->stats.memory_bytes = oit_gl_memory_total(&s->memory);
+    s->gpu.output.width = width;
+    s->gpu.output.height = height;
+    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
     return OIT_OK;
 }
 
 /* ------------------------------------------------------------ render */
-
-/* With config.debug, check for GL errors after each stage; stop if cancelled. */
-static oit_status closest_stage_check(const closest_layers_state *s, const char *stage, oit_error *err)
-{
-    if (s->timer.cancelled)
-        return oit_timer_status(&s->timer, err);
-    if (!s->config.debug)
-        return OIT_OK;
-    char where[64];
-    snprintf(where, sizeof where, "%s: %s", s->tail->algorithm, stage);
-    return oit_gl_check(where, err);
-}
 
 static void closest_bind(const closest_layers_state *s, const oit_scene *scene)
 {
@@ -319,7 +292,7 @@ static void closest_finish_stats(closest_layers_state *s, oit_stats *stats)
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->counter_buffer);
     glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counters, counters);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    const uint64_t pixels = (uint64_t)s->width * (uint64_t)s->height;
+    const uint64_t pixels = (uint64_t)s->gpu.output.width * (uint64_t)s->gpu.output.height;
     const uint64_t non_empty = counters[OIT_CLOSEST_COUNTER_NONEMPTY_PIXELS];
     /* every fragment with alpha > 0: those in the core and those in the tail */
     stats->fragments = (int64_t)counters[OIT_CLOSEST_COUNTER_CORE] + counters[OIT_CLOSEST_COUNTER_TAIL];
@@ -329,52 +302,44 @@ static void closest_finish_stats(closest_layers_state *s, oit_stats *stats)
     stats->list_histogram[0] = pixels - non_empty;
     for (int bin = 1; bin < OIT_HISTOGRAM_BINS; ++bin)
         stats->list_histogram[bin] = counters[OIT_CLOSEST_COUNTER_HISTOGRAM + bin];
-    stats->memory_bytes = oit_gl_memory_total(&s->memory);
-    stats->bytes_per_pixel =
-        (double)oit_gl_memory_bytes(&s->memory, OIT_GL_MEMORY_PIXELS) / (double)pixels;
 }
 
 oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
                                  const oit_frame_settings *frame, oit_error *err)
 {
     closest_layers_state *s = closest_from(alg);
-    if (!scene->has_gpu)
-        return oit_fail(err, OIT_E_INPUT, "%s: the scene has no GPU buffers", s->tail->algorithm);
     oit_status status = OIT_OK;
-    if (frame->width != s->width || frame->height != s->height) {
+    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height)
         status = closest_layers_resize(alg, frame->width, frame->height, err);
-        if (status != OIT_OK)
-            return status;
-    }
-    oit_stats stats;
-    oit_stats_reset(&stats);
-    oit_timer_frame_begin(&s->timer, frame);
-    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+    if (status == OIT_OK)
+        status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    if (status != OIT_OK)
+        return status;
 
-    glViewport(0, 0, s->width, s->height);
+    glViewport(0, 0, s->gpu.output.width, s->gpu.output.height);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST); /* every fragment counts, in any order */
     glDepthMask(GL_FALSE);
     glDisable(GL_BLEND);
     closest_bind(s, scene);
 
-    oit_timer_stage_begin(&s->timer, "clear");
+    oit_timer_stage_begin(&s->gpu.timer, "clear");
     closest_clear(s);
-    status = closest_stage_check(s, "clear", err);
+    status = oit_gpu_stage_check(&s->gpu, "clear", err);
 
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "select");
-        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        oit_timer_stage_begin(&s->gpu.timer, "select");
+        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glUseProgram(s->select_program);
         oit_gl_set_frame_uniforms(frame);
         glUniform1i(OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
         oit_gl_draw_scene(scene);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        status = closest_stage_check(s, "select", err);
+        status = oit_gpu_stage_check(&s->gpu, "select", err);
     }
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "store");
+        oit_timer_stage_begin(&s->gpu.timer, "store");
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); /* the keys are final */
         glBindFramebuffer(GL_FRAMEBUFFER, s->tail_framebuffer);
         closest_set_tail_blending(s);
@@ -383,13 +348,13 @@ oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
         glUniform1i(OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
         oit_gl_draw_scene(scene);
         glDisable(GL_BLEND);
-        status = closest_stage_check(s, "store", err);
+        status = oit_gpu_stage_check(&s->gpu, "store", err);
     }
     if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->timer, "compose");
+        oit_timer_stage_begin(&s->gpu.timer, "compose");
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                         GL_FRAMEBUFFER_BARRIER_BIT);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->output.framebuffer);
+        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
         glUseProgram(s->compose_program);
         oit_gl_set_frame_uniforms(frame);
         glUniform1i(OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
@@ -398,31 +363,14 @@ oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
             glBindTexture(GL_TEXTURE_2D, s->tail_textures[t]);
         }
         glActiveTexture(GL_TEXTURE0);
-        oit_gl_draw_fullscreen(&s->output);
-        oit_timer_stage_end(&s->timer);
-        status = closest_stage_check(s, "compose", err);
+        oit_gl_draw_fullscreen(&s->gpu.output);
+        oit_timer_stage_end(&s->gpu.timer);
+        status = oit_gpu_stage_check(&s->gpu, "compose", err);
     }
-    oit_timer_stage_end(&s->timer);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glUseProgram(0);
-    if (status != OIT_OK)
-        return status;
-    closest_finish_stats(s, &stats);
-    oit_timer_frame_end(&s->timer, &stats);
-    s->stats = stats;
-    char where[64];
-    snprintf(where, sizeof where, "%s: render", s->tail->algorithm);
-    return oit_gl_check(where, err);
+    if (status == OIT_OK)
+        closest_finish_stats(s, &s->gpu.stats);
+    return oit_gpu_frame_end(&s->gpu, status, err);
 }
 
 /* ------------------------------------------------------------ the rest */
 
-oit_status closest_layers_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
-{
-    return oit_gl_output_read(&closest_from(alg)->output, out, err);
-}
-
-void closest_layers_stats(const oit_algorithm *alg, oit_stats *out)
-{
-    *out = ((const closest_layers_state *)alg)->stats;
-}

@@ -7,7 +7,7 @@
 #ifndef OIT_CLOSEST_LAYERS_H
 #define OIT_CLOSEST_LAYERS_H
 
-#include "gl_util.h"
+#include "gpu_algorithm.h"
 
 #define CLOSEST_LAYERS_MAX_TAIL_TARGETS 2
 
@@ -38,8 +38,6 @@ oit_status closest_layers_create(const closest_layers_tail *tail, const oit_algo
 oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_error *err);
 oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
                                  const oit_frame_settings *frame, oit_error *err);
-oit_status closest_layers_read_image(oit_algorithm *alg, oit_image *out, oit_error *err);
-void closest_layers_stats(const oit_algorithm *alg, oit_stats *out);
 void closest_layers_destroy(oit_algorithm *alg);
 
 #endif

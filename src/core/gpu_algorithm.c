@@ -1,0 +1,121 @@
+/* gpu_algorithm.c: see gpu_algorithm.h. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "gpu_algorithm.h"
+
+oit_status oit_gpu_create(size_t state_size, const char *name, const oit_algorithm_config *config,
+                          oit_gpu_algorithm **out, oit_error *err)
+{
+    *out = NULL;
+    oit_gpu_algorithm *gpu = calloc(1, state_size);
+    if (!gpu)
+        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
+    gpu->name = name;
+    gpu->config = *config;
+    gpu->output.memory = &gpu->memory;
+    oit_stats_reset(&gpu->stats);
+    oit_timer_create(&gpu->timer);
+    *out = gpu;
+    return OIT_OK;
+}
+
+void oit_gpu_destroy(oit_gpu_algorithm *gpu)
+{
+    if (!gpu)
+        return;
+    for (int i = 0; i < gpu->program_count; ++i)
+        glDeleteProgram(gpu->programs[i]);
+    oit_gl_output_release(&gpu->output);
+    oit_timer_destroy(&gpu->timer);
+    free(gpu);
+}
+
+static oit_status keep_program(oit_gpu_algorithm *gpu, oit_status status, GLuint program, GLuint *out,
+                               oit_error *err)
+{
+    if (status != OIT_OK)
+        return status;
+    if (gpu->program_count == OIT_GPU_PROGRAMS_MAX) {
+        glDeleteProgram(program);
+        return oit_fail(err, OIT_E_RUNTIME, "%s: more than %d programs", gpu->name, OIT_GPU_PROGRAMS_MAX);
+    }
+    gpu->programs[gpu->program_count++] = program;
+    *out = program;
+    return OIT_OK;
+}
+
+oit_status oit_gpu_program(oit_gpu_algorithm *gpu, const char *vertex_path, const char *fragment_path,
+                           GLuint *out, oit_error *err)
+{
+    GLuint program = 0;
+    oit_status status = oit_gl_program(gpu->config.shader_dir, vertex_path, fragment_path, &program, err);
+    return keep_program(gpu, status, program, out, err);
+}
+
+oit_status oit_gpu_program_variant(oit_gpu_algorithm *gpu, const char *vertex_path, const char *fragment_path,
+                                   const char *defines, GLuint *out, oit_error *err)
+{
+    GLuint program = 0;
+    oit_status status =
+        oit_gl_program_variant(gpu->config.shader_dir, vertex_path, fragment_path, defines, &program, err);
+    return keep_program(gpu, status, program, out, err);
+}
+
+oit_status oit_gpu_compute_program(oit_gpu_algorithm *gpu, const char *compute_path, GLuint *out,
+                                   oit_error *err)
+{
+    GLuint program = 0;
+    oit_status status = oit_gl_compute_program(gpu->config.shader_dir, compute_path, &program, err);
+    return keep_program(gpu, status, program, out, err);
+}
+
+oit_status oit_gpu_stage_check(const oit_gpu_algorithm *gpu, const char *stage, oit_error *err)
+{
+    if (gpu->timer.cancelled)
+        return oit_timer_status(&gpu->timer, err);
+    if (!gpu->config.debug)
+        return OIT_OK;
+    char where[96];
+    snprintf(where, sizeof where, "%s: %s", gpu->name, stage);
+    return oit_gl_check(where, err);
+}
+
+oit_status oit_gpu_frame_begin(oit_gpu_algorithm *gpu, const oit_scene *scene, const oit_frame_settings *frame,
+                               oit_error *err)
+{
+    if (!scene->has_gpu)
+        return oit_fail(err, OIT_E_INPUT, "%s: the scene has no GPU buffers", gpu->name);
+    oit_stats_reset(&gpu->stats);
+    gpu->stats.memory_bytes = oit_gl_memory_total(&gpu->memory);
+    oit_timer_frame_begin(&gpu->timer, frame);
+    oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
+    return OIT_OK;
+}
+
+oit_status oit_gpu_frame_end(oit_gpu_algorithm *gpu, oit_status status, oit_error *err)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    oit_timer_frame_end(&gpu->timer, &gpu->stats);
+    if (status == OIT_OK) {
+        char where[64];
+        snprintf(where, sizeof where, "%s: render", gpu->name);
+        status = oit_gl_check(where, err);
+    }
+    /* what the targets, buffers and the output hold (the tracker, gl_util.h) */
+    gpu->stats.memory_bytes = oit_gl_memory_total(&gpu->memory);
+    gpu->stats.bytes_per_pixel = (double)oit_gl_memory_bytes(&gpu->memory, OIT_GL_MEMORY_PIXELS) /
+                                 ((double)gpu->output.width * (double)gpu->output.height);
+    return status;
+}
+
+oit_status oit_gpu_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
+{
+    return oit_gl_output_read(&((oit_gpu_algorithm *)alg)->output, out, err);
+}
+
+void oit_gpu_stats(const oit_algorithm *alg, oit_stats *out)
+{
+    *out = ((const oit_gpu_algorithm *)alg)->stats;
+}

@@ -1,0 +1,62 @@
+/*
+ * gpu_algorithm.h: what every GPU algorithm holds and does the same way
+ * (core-internal). An algorithm's state starts with an oit_gpu_algorithm, so
+ * the generic entries of its operations table (read_image, stats) and the
+ * frame's prologue and epilogue take it as such; the algorithm file keeps
+ * only its passes, its targets and what its statistics add.
+ */
+#ifndef OIT_GPU_ALGORITHM_H
+#define OIT_GPU_ALGORITHM_H
+
+#include "gl_util.h"
+
+#define OIT_GPU_PROGRAMS_MAX 32
+
+typedef struct oit_gpu_algorithm {
+    const char *name; /* as on the command line; messages start with it */
+    oit_algorithm_config config;
+    oit_gl_output output; /* the RGBA8 output; output.width, .height: the size resized to */
+    oit_gl_memory memory; /* every texture and buffer the algorithm allocates, the output's too */
+    oit_stage_timer timer;
+    oit_stats stats;
+    GLuint programs[OIT_GPU_PROGRAMS_MAX]; /* built by oit_gpu_program*, deleted with the algorithm */
+    int program_count;
+} oit_gpu_algorithm;
+
+/* A zeroed state of state_size bytes that starts with the base, set up
+ * (configuration, output tracked by its memory, timer, statistics reset). */
+oit_status oit_gpu_create(size_t state_size, const char *name, const oit_algorithm_config *config,
+                          oit_gpu_algorithm **out, oit_error *err);
+/* Frees what the base holds (programs, output, timer) and the state; the
+ * algorithm frees its own objects first. NULL is allowed. */
+void oit_gpu_destroy(oit_gpu_algorithm *gpu);
+
+/* Programs from the shader tree (oit_gl_program, _variant, _compute_program),
+ * kept for oit_gpu_destroy. */
+oit_status oit_gpu_program(oit_gpu_algorithm *gpu, const char *vertex_path, const char *fragment_path,
+                           GLuint *out, oit_error *err);
+oit_status oit_gpu_program_variant(oit_gpu_algorithm *gpu, const char *vertex_path, const char *fragment_path,
+                                   const char *defines, GLuint *out, oit_error *err);
+oit_status oit_gpu_compute_program(oit_gpu_algorithm *gpu, const char *compute_path, GLuint *out,
+                                   oit_error *err);
+
+/* After a stage: OIT_CANCELLED once the frame's progress callback asked to
+ * stop; with config.debug, GL errors named "NAME: stage". */
+oit_status oit_gpu_stage_check(const oit_gpu_algorithm *gpu, const char *stage, oit_error *err);
+
+/* A frame's prologue: the scene must be on the GPU; statistics reset, the
+ * memory held so far, the timer started (with the frame's progress
+ * callback), the per-part opacity bound. */
+oit_status oit_gpu_frame_begin(oit_gpu_algorithm *gpu, const oit_scene *scene, const oit_frame_settings *frame,
+                               oit_error *err);
+/* Its epilogue: default framebuffer and program, the timer stopped (stage
+ * times into the statistics), GL errors of the frame, the memory held and
+ * the bytes per pixel of the image-sized allocations. Returns status, or the
+ * GL error where status was OIT_OK. */
+oit_status oit_gpu_frame_end(oit_gpu_algorithm *gpu, oit_status status, oit_error *err);
+
+/* The operations table's read_image and stats, for every GPU algorithm. */
+oit_status oit_gpu_read_image(oit_algorithm *alg, oit_image *out, oit_error *err);
+void oit_gpu_stats(const oit_algorithm *alg, oit_stats *out);
+
+#endif
