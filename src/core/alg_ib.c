@@ -46,15 +46,16 @@
 #include <string.h>
 
 #include "bands.h"
+#include "fragment_pool.h"
 #include "gpu_algorithm.h"
 
-/* Pool bytes per fragment, for sizing the pool within the budget; the
+/* The pool's buffers per fragment: its node, its run's core and links; the
  * figures in the stats come from what the tracker recorded (ib_fill_stats). */
-#define IB_BYTES_PER_FRAGMENT \
-    ((uint64_t)OIT_IB_NODE_BYTES + OIT_IB_RUN_CORE_BYTES + OIT_IB_RUN_LINKS_BYTES)
+enum { IB_NODES, IB_CORE, IB_LINKS, IB_POOL_BUFFERS };
+/* Its buffer-texture views: the core as records and as words, the links, the nodes. */
+enum { IB_VIEW_CORE, IB_VIEW_LINKS, IB_VIEW_CORE_WORDS, IB_VIEW_NODES, IB_POOL_VIEWS };
 #define IB_DEFAULT_FRAGMENTS_PER_PIXEL 4u
 #define IB_MAX_FILLS 3
-#define IB_MEGABYTE (1024.0 * 1024.0)
 
 _Static_assert(OIT_IB_HISTOGRAM_BINS == OIT_HISTOGRAM_BINS, "histogram bins differ");
 _Static_assert(OIT_IB_COUNTER_HISTOGRAM + OIT_IB_HISTOGRAM_BINS <= OIT_IB_COUNTER_COUNT,
@@ -123,7 +124,7 @@ typedef struct ib_state {
     GLuint programs[IB_PROGRAM_COUNT];
 
     GLuint head_image, count_image;
-    GLuint node_buffer, core_buffer, links_buffer;
+    oit_fragment_pool pool;
     GLuint counter_buffer, param_buffer;
     /* the triangle table (ib/triangles.comp): 2 uvec4 per triangle */
     GLuint triangle_buffer;
@@ -131,12 +132,9 @@ typedef struct ib_state {
     GLuint tile_buffer;
     uint64_t triangle_capacity;
     /* read-only buffer-texture views of core, links and the triangle table */
-    GLuint core_texture, links_texture, triangle_texture, core_words_texture;
-    GLuint nodes_texture, components_texture;
+    GLuint triangle_texture, components_texture;
     /* view of the scene's triangle reach (oit_model.triangle_reach): the id search's window */
     GLuint triangle_reach_texture;
-    uint64_t pool_capacity;
-    uint64_t gl_fragment_limit;
     uint64_t gl_texel_limit; /* GL_MAX_TEXTURE_BUFFER_SIZE */
     /* frames drawn in bands: the runs of the histogram's open bin by length
      * (OIT_SSBO_IB_LONG_RUNS), allocated with the first such frame */
@@ -152,78 +150,6 @@ typedef struct ib_state {
 
 static ib_state *ib_from(oit_algorithm *alg) { return (ib_state *)alg; }
 
-/* ------------------------------------------------------------- the pool */
-
-static uint64_t ib_budget_fragments(const ib_state *s)
-{
-    return s->gpu.config.max_memory_bytes / IB_BYTES_PER_FRAGMENT;
-}
-
-static uint64_t ib_fragment_limit(const ib_state *s)
-{
-    uint64_t limit = ib_budget_fragments(s);
-    return limit < s->gl_fragment_limit ? limit : s->gl_fragment_limit;
-}
-
-static oit_status ib_allocate_pool(ib_state *s, uint64_t capacity, oit_error *err)
-{
-    if (capacity == 0)
-        capacity = 1;
-    while (glGetError() != GL_NO_ERROR) {
-    }
-    const struct {
-        GLuint buffer;
-        uint64_t bytes;
-    } pools[] = {{s->node_buffer, OIT_IB_NODE_BYTES},
-                 {s->core_buffer, OIT_IB_RUN_CORE_BYTES},
-                 {s->links_buffer, OIT_IB_RUN_LINKS_BYTES}};
-    for (size_t i = 0; i < sizeof pools / sizeof pools[0]; ++i)
-        oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FRAGMENTS, GL_SHADER_STORAGE_BUFFER,
-                                  pools[i].buffer, capacity * pools[i].bytes, NULL,
-                                  GL_DYNAMIC_COPY);
-    glBindTexture(GL_TEXTURE_BUFFER, s->core_texture);
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, s->core_buffer);
-    glBindTexture(GL_TEXTURE_BUFFER, s->links_texture);
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_RG32UI, s->links_buffer);
-    glBindTexture(GL_TEXTURE_BUFFER, s->core_words_texture);
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32UI, s->core_buffer);
-    glBindTexture(GL_TEXTURE_BUFFER, s->nodes_texture);
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, s->node_buffer);
-    glBindTexture(GL_TEXTURE_BUFFER, 0);
-    GLenum error = glGetError();
-    if (error != GL_NO_ERROR) {
-        s->pool_capacity = 0;
-        return oit_fail(err, OIT_E_RUNTIME,
-                        "ib: could not allocate buffers for %llu fragments (%.1f MB): GL error "
-                        "0x%04x",
-                        (unsigned long long)capacity,
-                        (double)(capacity * IB_BYTES_PER_FRAGMENT) / IB_MEGABYTE, (unsigned)error);
-    }
-    s->pool_capacity = capacity;
-    return OIT_OK;
-}
-
-static oit_status ib_grow_pool(ib_state *s, uint64_t needed, oit_error *err)
-{
-    if (needed > ib_budget_fragments(s))
-        return oit_fail(err, OIT_E_RUNTIME,
-                        "ib: the frame needs %llu fragments (%.1f MB), over the --max-memory "
-                        "budget of %.1f MB",
-                        (unsigned long long)needed,
-                        (double)(needed * IB_BYTES_PER_FRAGMENT) / IB_MEGABYTE,
-                        (double)s->gpu.config.max_memory_bytes / IB_MEGABYTE);
-    if (needed > s->gl_fragment_limit)
-        return oit_fail(err, OIT_E_RUNTIME,
-                        "ib: the frame needs %llu fragments, more than this GL can address in "
-                        "one shader storage buffer (%llu)",
-                        (unsigned long long)needed, (unsigned long long)s->gl_fragment_limit);
-    uint64_t capacity = needed + needed / 4;
-    uint64_t limit = ib_fragment_limit(s);
-    if (capacity > limit)
-        capacity = limit;
-    return ib_allocate_pool(s, capacity, err);
-}
-
 /* --------------------------------------------------------------- create */
 
 static void ib_destroy(oit_algorithm *alg)
@@ -231,14 +157,14 @@ static void ib_destroy(oit_algorithm *alg)
     ib_state *s = ib_from(alg);
     if (!s)
         return;
-    GLuint textures[] = {s->head_image, s->count_image, s->core_texture, s->links_texture,
-                         s->triangle_texture, s->core_words_texture, s->nodes_texture,
+    GLuint textures[] = {s->head_image, s->count_image, s->triangle_texture,
                          s->components_texture, s->triangle_reach_texture};
-    oit_gl_memory_delete_textures(&s->gpu.memory, 9, textures);
-    GLuint buffers[] = {s->node_buffer,     s->core_buffer,  s->links_buffer,
-                        s->counter_buffer,  s->param_buffer, s->triangle_buffer,
-                        s->tile_buffer,     s->long_run_buffer};
-    oit_gl_memory_delete_buffers(&s->gpu.memory, 8, buffers);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 5, textures);
+    oit_gl_memory_delete_textures(&s->gpu.memory, IB_POOL_VIEWS, s->pool.views);
+    oit_gl_memory_delete_buffers(&s->gpu.memory, IB_POOL_BUFFERS, s->pool.buffers);
+    GLuint buffers[] = {s->counter_buffer, s->param_buffer, s->triangle_buffer, s->tile_buffer,
+                        s->long_run_buffer};
+    oit_gl_memory_delete_buffers(&s->gpu.memory, 5, buffers);
     oit_band_plan_free(&s->band_plan);
     free(s->shader_dir);
     oit_gpu_destroy(&s->gpu);
@@ -282,38 +208,48 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
         return status;
     }
 
+    s->pool = (oit_fragment_pool){
+        .algorithm = "ib",
+        .gl_binding = "one shader storage buffer",
+        .gl_binding_note = "",
+        .memory = &s->gpu.memory,
+        .budget_bytes = config->max_memory_bytes,
+        .buffer_count = IB_POOL_BUFFERS,
+        .buffer_bytes = {[IB_NODES] = OIT_IB_NODE_BYTES, [IB_CORE] = OIT_IB_RUN_CORE_BYTES,
+                         [IB_LINKS] = OIT_IB_RUN_LINKS_BYTES},
+        .view_count = IB_POOL_VIEWS,
+        .view_buffer = {[IB_VIEW_CORE] = IB_CORE, [IB_VIEW_LINKS] = IB_LINKS,
+                        [IB_VIEW_CORE_WORDS] = IB_CORE, [IB_VIEW_NODES] = IB_NODES},
+        .view_format = {[IB_VIEW_CORE] = GL_RGBA32UI, [IB_VIEW_LINKS] = GL_RG32UI,
+                        [IB_VIEW_CORE_WORDS] = GL_R32UI, [IB_VIEW_NODES] = GL_RGBA32UI},
+    };
     GLint64 max_block_bytes = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
-    s->gl_fragment_limit = (uint64_t)max_block_bytes / OIT_IB_NODE_BYTES;
-    if (s->gl_fragment_limit >= OIT_LIST_END)
-        s->gl_fragment_limit = OIT_LIST_END - 1u;
+    s->pool.gl_limit = (uint64_t)max_block_bytes / OIT_IB_NODE_BYTES;
+    if (s->pool.gl_limit >= OIT_LIST_END)
+        s->pool.gl_limit = OIT_LIST_END - 1u;
     /* the run core is also read as buffer textures, up to 4 texels per fragment */
     GLint max_texels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
     s->gl_texel_limit = max_texels > 0 ? (uint64_t)max_texels : 0;
-    if (s->gl_fragment_limit > s->gl_texel_limit / 4u)
-        s->gl_fragment_limit = s->gl_texel_limit / 4u;
-    if (config->buffer_fragment_limit && s->gl_fragment_limit > config->buffer_fragment_limit)
-        s->gl_fragment_limit = config->buffer_fragment_limit; /* tests: bands without 8M fragments */
+    if (s->pool.gl_limit > s->gl_texel_limit / 4u)
+        s->pool.gl_limit = s->gl_texel_limit / 4u;
+    if (config->buffer_fragment_limit && s->pool.gl_limit > config->buffer_fragment_limit)
+        s->pool.gl_limit = config->buffer_fragment_limit; /* tests: bands without 8M fragments */
 
-    GLuint buffers[7];
-    glGenBuffers(7, buffers);
-    s->node_buffer = buffers[0];
-    s->core_buffer = buffers[1];
-    s->links_buffer = buffers[2];
-    s->counter_buffer = buffers[3];
-    s->param_buffer = buffers[4];
-    s->triangle_buffer = buffers[5];
-    s->tile_buffer = buffers[6];
-    GLuint buffer_textures[7];
-    glGenTextures(7, buffer_textures);
-    s->core_texture = buffer_textures[0];
-    s->links_texture = buffer_textures[1];
-    s->triangle_texture = buffer_textures[2];
-    s->core_words_texture = buffer_textures[3];
-    s->nodes_texture = buffer_textures[4];
-    s->components_texture = buffer_textures[5];
-    s->triangle_reach_texture = buffer_textures[6];
+    glGenBuffers(IB_POOL_BUFFERS, s->pool.buffers);
+    glGenTextures(IB_POOL_VIEWS, s->pool.views);
+    GLuint buffers[4];
+    glGenBuffers(4, buffers);
+    s->counter_buffer = buffers[0];
+    s->param_buffer = buffers[1];
+    s->triangle_buffer = buffers[2];
+    s->tile_buffer = buffers[3];
+    GLuint buffer_textures[3];
+    glGenTextures(3, buffer_textures);
+    s->triangle_texture = buffer_textures[0];
+    s->components_texture = buffer_textures[1];
+    s->triangle_reach_texture = buffer_textures[2];
     oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                               s->counter_buffer, OIT_IB_COUNTER_COUNT * sizeof(GLuint), NULL,
                               GL_DYNAMIC_READ);
@@ -351,11 +287,11 @@ static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error
     uint64_t initial = s->gpu.config.initial_fragment_capacity
                            ? s->gpu.config.initial_fragment_capacity
                            : IB_DEFAULT_FRAGMENTS_PER_PIXEL * (uint64_t)width * (uint64_t)height;
-    uint64_t limit = ib_fragment_limit(s);
+    uint64_t limit = oit_pool_limit(&s->pool);
     if (initial > limit)
         initial = limit;
-    if (s->pool_capacity < initial || s->pool_capacity == 0) {
-        status = ib_allocate_pool(s, initial, err);
+    if (s->pool.capacity < initial || s->pool.capacity == 0) {
+        status = oit_pool_allocate(&s->pool, initial, err);
         if (status != OIT_OK)
             return status;
     }
@@ -495,9 +431,9 @@ static oit_status ib_make_plan(const oit_frame_settings *frame, const oit_scene 
 static void ib_bind(const ib_state *s, const oit_scene *scene)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_COMPONENTS, scene->component_buffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_NODES, s->node_buffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_RUN_CORE, s->core_buffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_RUN_LINKS, s->links_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_NODES, s->pool.buffers[IB_NODES]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_RUN_CORE, s->pool.buffers[IB_CORE]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_RUN_LINKS, s->pool.buffers[IB_LINKS]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_COUNTERS, s->counter_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_PARAMS, s->param_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_IB_TILES, s->tile_buffer);
@@ -514,11 +450,11 @@ static void ib_bind(const ib_state *s, const oit_scene *scene)
     const struct {
         GLenum unit;
         GLuint texture;
-    } views[] = {{OIT_TEXUNIT_IB_RUN_CORE, s->core_texture},
-                 {OIT_TEXUNIT_IB_RUN_LINKS, s->links_texture},
+    } views[] = {{OIT_TEXUNIT_IB_RUN_CORE, s->pool.views[IB_VIEW_CORE]},
+                 {OIT_TEXUNIT_IB_RUN_LINKS, s->pool.views[IB_VIEW_LINKS]},
                  {OIT_TEXUNIT_IB_TRIANGLES, s->triangle_texture},
-                 {OIT_TEXUNIT_IB_RUN_WORDS, s->core_words_texture},
-                 {OIT_TEXUNIT_IB_NODES, s->nodes_texture},
+                 {OIT_TEXUNIT_IB_RUN_WORDS, s->pool.views[IB_VIEW_CORE_WORDS]},
+                 {OIT_TEXUNIT_IB_NODES, s->pool.views[IB_VIEW_NODES]},
                  {OIT_TEXUNIT_IB_COMPONENTS, s->components_texture},
                  {OIT_TEXUNIT_IB_TRIANGLE_REACH, s->triangle_reach_texture}};
     glBindTexture(GL_TEXTURE_BUFFER, s->components_texture);
@@ -701,7 +637,7 @@ static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_fra
     ib_stage(s, prefix, retry ? "fill_retry" : "fill");
     glUseProgram(s->programs[IB_FILL]);
     oit_gl_set_frame_uniforms(frame);
-    glUniform1ui(OIT_UNIFORM_IB_POOL_CAPACITY, (GLuint)s->pool_capacity);
+    glUniform1ui(OIT_UNIFORM_IB_POOL_CAPACITY, (GLuint)s->pool.capacity);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     oit_gl_draw_scene(scene);
     oit_timer_stage_end(&s->gpu.timer);
@@ -865,7 +801,7 @@ static void ib_frame_stats(const ib_state *s, const ib_counts *sum, uint64_t fra
      * rest, head, count and output images, counters, parameters and the
      * triangle table, oit_gpu_frame_end counted) */
     stats->bytes_per_fragment =
-        (double)oit_gl_memory_bytes(&s->gpu.memory, OIT_GL_MEMORY_FRAGMENTS) / (double)s->pool_capacity;
+        (double)oit_gl_memory_bytes(&s->gpu.memory, OIT_GL_MEMORY_FRAGMENTS) / (double)s->pool.capacity;
     /* the sort counts non-empty pixels only (sort.comp): bin 0 is the rest */
     uint64_t nonempty = 0;
     for (int b = 1; b < OIT_HISTOGRAM_BINS; ++b)
@@ -885,24 +821,11 @@ static void ib_frame_stats(const ib_state *s, const ib_counts *sum, uint64_t fra
         sum->links ? (double)sum->same_component / (double)sum->links : 0.0;
 }
 
-/* "<what holds the pool> (<fragments>)" for the messages of a frame or a row
- * that one pool cannot hold: the GL's reach or the memory budget. */
-static void ib_pool_limit_text(const ib_state *s, char *out, size_t size)
-{
-    if (ib_budget_fragments(s) < s->gl_fragment_limit)
-        snprintf(out, size, "the --max-memory budget of %.1f MB holds (%llu)",
-                 (double)s->gpu.config.max_memory_bytes / IB_MEGABYTE,
-                 (unsigned long long)ib_budget_fragments(s));
-    else
-        snprintf(out, size, "this GL can address in one shader storage buffer (%llu)",
-                 (unsigned long long)s->gl_fragment_limit);
-}
-
 static oit_status ib_row_error(const ib_state *s, int row, int overlap, uint64_t needed,
                                oit_error *err)
 {
     char limit[128];
-    ib_pool_limit_text(s, limit, sizeof limit);
+    oit_pool_limit_text(&s->pool, limit, sizeof limit);
     if (overlap == 0)
         return oit_fail(err, OIT_E_RUNTIME,
                         "ib: row %d of the image alone needs %llu fragments, more than %s", row,
@@ -965,7 +888,7 @@ static oit_status ib_sweep(ib_state *s, const oit_scene *scene, const oit_frame_
     const int width = s->gpu.output.width, height = s->gpu.output.height;
     oit_band_walk walk;
     oit_status status = oit_bands_begin(&walk, &s->band_plan, height, 0, frame_needed,
-                                        s->pool_capacity, "ib", err);
+                                        s->pool.capacity, "ib", err);
     if (status != OIT_OK)
         return status;
     figures->longest = figures->largest_distance = 0;
@@ -977,7 +900,7 @@ static oit_status ib_sweep(ib_state *s, const oit_scene *scene, const oit_frame_
         status = ib_fill_and_count(s, scene, frame, "sweep_", 0, NULL, &needed, err);
         if (status != OIT_OK)
             break;
-        if (needed > s->pool_capacity) {
+        if (needed > s->pool.capacity) {
             if (!oit_bands_halve(&walk, &band))
                 status = ib_row_error(s, band.first, 0, needed, err);
             continue;
@@ -1005,7 +928,7 @@ static oit_status ib_sweep(ib_state *s, const oit_scene *scene, const oit_frame_
     return status;
 }
 
-/* A frame whose fragments exceed what one pool holds (ib_fragment_limit: one
+/* A frame whose fragments exceed what one pool holds (oit_pool_limit: one
  * storage buffer's reach or the memory budget) is drawn in bands of rows under
  * the scissor test (bands.h): each band clears, fills and resolves the rows it
  * composes and ib_band_overlap rows either side, in a pool at the largest size
@@ -1021,8 +944,8 @@ static oit_status ib_render_bands(ib_state *s, const oit_scene *scene,
 {
     oit_status status = OIT_OK;
     const int width = s->gpu.output.width, height = s->gpu.output.height;
-    if (s->pool_capacity < ib_fragment_limit(s)) {
-        status = ib_allocate_pool(s, ib_fragment_limit(s), err);
+    if (s->pool.capacity < oit_pool_limit(&s->pool)) {
+        status = oit_pool_allocate(&s->pool, oit_pool_limit(&s->pool), err);
         if (status != OIT_OK)
             return status;
         ib_bind(s, scene);
@@ -1061,7 +984,7 @@ static oit_status ib_render_bands(ib_state *s, const oit_scene *scene,
 
     const int overlap = ib_band_overlap(plan);
     oit_band_walk walk; /* from the last frame's bands when frame_needed is 0 */
-    status = oit_bands_begin(&walk, &s->band_plan, height, overlap, frame_needed, s->pool_capacity,
+    status = oit_bands_begin(&walk, &s->band_plan, height, overlap, frame_needed, s->pool.capacity,
                              "ib", err);
     if (status != OIT_OK) {
         glDisable(GL_SCISSOR_TEST);
@@ -1084,7 +1007,7 @@ static oit_status ib_render_bands(ib_state *s, const oit_scene *scene,
                                    err);
         if (status != OIT_OK)
             break;
-        if (needed > s->pool_capacity) {
+        if (needed > s->pool.capacity) {
             if (!oit_bands_halve(&walk, &band)) {
                 status = ib_row_error(s, band.first, overlap, needed, err);
                 break;
@@ -1137,7 +1060,7 @@ static oit_status ib_render_bands(ib_state *s, const oit_scene *scene,
     /* the next frame at this size starts from the bands that fitted, unless this
      * one failed or would have fitted whole with room to spare (the camera moved away) */
     oit_bands_end(&walk, &s->band_plan,
-                  status == OIT_OK && *fragments + *fragments / 4 > ib_fragment_limit(s));
+                  status == OIT_OK && *fragments + *fragments / 4 > oit_pool_limit(&s->pool));
     s->band_plan_overlap = overlap;
     return status;
 }
@@ -1191,20 +1114,20 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
         status = ib_fill_and_count(s, scene, frame, "", retries, NULL, &needed, err);
         if (status != OIT_OK)
             goto failed;
-        if (needed <= s->pool_capacity)
+        if (needed <= s->pool.capacity)
             break;
         if (retries + 1 >= IB_MAX_FILLS) {
             status = oit_fail(err, OIT_E_RUNTIME,
                               "ib: the frame still needs %llu fragments after growing the pool to "
                               "%llu",
-                              (unsigned long long)needed, (unsigned long long)s->pool_capacity);
+                              (unsigned long long)needed, (unsigned long long)s->pool.capacity);
             goto failed;
         }
-        if (needed > ib_fragment_limit(s)) {
+        if (needed > oit_pool_limit(&s->pool)) {
             /* bands, unless even one row per band would be over the pool on average */
-            if (needed > (uint64_t)s->gpu.output.height * ib_fragment_limit(s)) {
+            if (needed > (uint64_t)s->gpu.output.height * oit_pool_limit(&s->pool)) {
                 char limit[128];
-                ib_pool_limit_text(s, limit, sizeof limit);
+                oit_pool_limit_text(&s->pool, limit, sizeof limit);
                 status = oit_fail(err, OIT_E_RUNTIME,
                                   "ib: the frame needs %llu fragments, more than bands of rows "
                                   "can hold: its %d rows need more on average than %s",
@@ -1213,13 +1136,13 @@ static oit_status ib_render(oit_algorithm *alg, const oit_scene *scene,
             }
             break;
         }
-        status = ib_grow_pool(s, needed, err);
+        status = oit_pool_grow(&s->pool, needed, err);
         if (status != OIT_OK)
             goto failed;
         ++retries;
     }
 
-    if (planned || needed > s->pool_capacity) {
+    if (planned || needed > s->pool.capacity) {
         status = ib_render_bands(s, scene, frame, &plan, planned ? 0 : needed, &sum, &fragments,
                                  &psi_pixels, &bands, err);
         if (status != OIT_OK)

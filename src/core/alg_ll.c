@@ -55,15 +55,15 @@
 
 #include "bands.h"
 #include "capabilities.h"
+#include "fragment_pool.h"
 #include "gpu_algorithm.h"
 
-/* Pool bytes per fragment: the node and its two next pointers. */
-#define LL_POOL_BYTES_PER_FRAGMENT ((uint64_t)OIT_LL_NODE_BYTES + 2u * OIT_LL_NEXT_BYTES)
+/* The pool's buffers: the node and its two next pointers per fragment. */
+enum { LL_NODES, LL_NEXT, LL_SORTED_NEXT, LL_POOL_BUFFERS };
 #define LL_DEFAULT_FRAGMENTS_PER_PIXEL 4u
 /* Fills per frame: the first plus retries. One retry suffices because a fill's
  * count does not depend on the pool; the rest is a guard against a loop. */
 #define LL_MAX_FILLS 3
-#define LL_MEGABYTE (1024.0 * 1024.0)
 
 _Static_assert(OIT_LL_HISTOGRAM_BINS == OIT_HISTOGRAM_BINS, "oit_shared.h and oit.h disagree");
 
@@ -83,12 +83,10 @@ typedef struct ll_state {
     GLuint compose_programs[LL_VARIANT_COUNT];
 
     GLuint head_image;
-    GLuint node_buffer, next_buffer, sorted_next_buffer;
-    /* buffer-texture views of the three (OIT_TEXUNIT_LL_*): the sort and compose read through them */
-    GLuint node_texture, next_texture, sorted_next_texture;
+    /* the nodes, the fill's next pointers and the sort's, and buffer-texture
+     * views of the three (OIT_TEXUNIT_LL_*) the sort and compose read through */
+    oit_fragment_pool pool;
     GLuint counter_buffer;
-    uint64_t pool_capacity;  /* nodes the pool holds */
-    uint64_t gl_node_limit;  /* most nodes one SSBO binding and one buffer texture can address */
     /* the bands of rows the last frame was drawn in (count 0: it was whole): the next
      * frame at the size starts from them instead of from a fill that only counts */
     oit_band_plan band_plan;
@@ -99,87 +97,6 @@ typedef struct ll_state {
 
 static ll_state *ll_from(oit_algorithm *alg) { return (ll_state *)alg; }
 
-/* ------------------------------------------------------------- the pool */
-
-static uint64_t ll_budget_nodes(const ll_state *s)
-{
-    return s->gpu.config.max_memory_bytes / LL_POOL_BYTES_PER_FRAGMENT;
-}
-
-static uint64_t ll_node_limit(const ll_state *s)
-{
-    uint64_t limit = ll_budget_nodes(s);
-    if (limit > s->gl_node_limit)
-        limit = s->gl_node_limit;
-    return limit;
-}
-
-/* (Re)specify the three pool buffers for `capacity` nodes. The buffer names stay,
- * so bindings made earlier remain valid; the contents are undefined until the
- * next fill. */
-static oit_status ll_allocate_pool(ll_state *s, uint64_t capacity, oit_error *err)
-{
-    if (capacity == 0)
-        capacity = 1; /* zero-sized buffers cannot be bound */
-    while (glGetError() != GL_NO_ERROR) {
-    }
-    const struct {
-        GLuint buffer;
-        uint64_t bytes;
-    } pool[] = {{s->node_buffer, OIT_LL_NODE_BYTES},
-                {s->next_buffer, OIT_LL_NEXT_BYTES},
-                {s->sorted_next_buffer, OIT_LL_NEXT_BYTES}};
-    for (size_t i = 0; i < sizeof pool / sizeof pool[0]; ++i)
-        oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FRAGMENTS, GL_SHADER_STORAGE_BUFFER,
-                                  pool[i].buffer, capacity * pool[i].bytes, NULL, GL_DYNAMIC_COPY);
-    const struct {
-        GLuint texture, buffer;
-        GLenum format;
-    } views[] = {{s->node_texture, s->node_buffer, GL_RGBA32UI},
-                 {s->next_texture, s->next_buffer, GL_R32UI},
-                 {s->sorted_next_texture, s->sorted_next_buffer, GL_R32UI}};
-    for (size_t i = 0; i < sizeof views / sizeof views[0]; ++i) {
-        glBindTexture(GL_TEXTURE_BUFFER, views[i].texture);
-        glTexBuffer(GL_TEXTURE_BUFFER, views[i].format, views[i].buffer);
-    }
-    glBindTexture(GL_TEXTURE_BUFFER, 0);
-    GLenum error = glGetError();
-    if (error != GL_NO_ERROR) {
-        s->pool_capacity = 0;
-        return oit_fail(err, OIT_E_RUNTIME,
-                        "ll: could not allocate a fragment pool of %llu fragments (%.1f MB): "
-                        "GL error 0x%04x",
-                        (unsigned long long)capacity,
-                        (double)(capacity * LL_POOL_BYTES_PER_FRAGMENT) / LL_MEGABYTE,
-                        (unsigned)error);
-    }
-    s->pool_capacity = capacity;
-    return OIT_OK;
-}
-
-/* Grow the pool so that `needed` fragments fit, with headroom, or explain why not. */
-static oit_status ll_grow_pool(ll_state *s, uint64_t needed, oit_error *err)
-{
-    if (needed > ll_budget_nodes(s))
-        return oit_fail(err, OIT_E_RUNTIME,
-                        "ll: the frame needs %llu fragments (%.1f MB), over the --max-memory "
-                        "budget of %.1f MB",
-                        (unsigned long long)needed,
-                        (double)(needed * LL_POOL_BYTES_PER_FRAGMENT) / LL_MEGABYTE,
-                        (double)s->gpu.config.max_memory_bytes / LL_MEGABYTE);
-    if (needed > s->gl_node_limit)
-        return oit_fail(err, OIT_E_RUNTIME,
-                        "ll: the frame needs %llu fragments, more than this GL can address in "
-                        "one shader storage buffer or buffer texture (%llu; "
-                        "GL_MAX_SHADER_STORAGE_BLOCK_SIZE, GL_MAX_TEXTURE_BUFFER_SIZE)",
-                        (unsigned long long)needed, (unsigned long long)s->gl_node_limit);
-    uint64_t capacity = needed + needed / 4; /* headroom, so a camera move rarely refills */
-    uint64_t limit = ll_node_limit(s);
-    if (capacity > limit)
-        capacity = limit;
-    return ll_allocate_pool(s, capacity, err);
-}
-
 /* --------------------------------------------------------------- create */
 
 static void ll_destroy(oit_algorithm *alg)
@@ -188,10 +105,10 @@ static void ll_destroy(oit_algorithm *alg)
     if (!s)
         return;
     oit_band_plan_free(&s->band_plan);
-    GLuint textures[] = {s->head_image, s->node_texture, s->next_texture, s->sorted_next_texture};
-    oit_gl_memory_delete_textures(&s->gpu.memory, 4, textures);
-    GLuint buffers[] = {s->node_buffer, s->next_buffer, s->sorted_next_buffer, s->counter_buffer};
-    oit_gl_memory_delete_buffers(&s->gpu.memory, 4, buffers);
+    oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->head_image);
+    oit_gl_memory_delete_textures(&s->gpu.memory, LL_POOL_BUFFERS, s->pool.views);
+    oit_gl_memory_delete_buffers(&s->gpu.memory, LL_POOL_BUFFERS, s->pool.buffers);
+    oit_gl_memory_delete_buffers(&s->gpu.memory, 1, &s->counter_buffer);
     free(s->shader_dir);
     oit_gpu_destroy(&s->gpu);
 }
@@ -247,29 +164,33 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
         return status;
     }
 
+    s->pool = (oit_fragment_pool){
+        .algorithm = "ll",
+        .gl_binding = "one shader storage buffer or buffer texture",
+        .gl_binding_note = "; GL_MAX_SHADER_STORAGE_BLOCK_SIZE, GL_MAX_TEXTURE_BUFFER_SIZE",
+        .memory = &s->gpu.memory,
+        .budget_bytes = config->max_memory_bytes,
+        .buffer_count = LL_POOL_BUFFERS,
+        .buffer_bytes = {[LL_NODES] = OIT_LL_NODE_BYTES, [LL_NEXT] = OIT_LL_NEXT_BYTES,
+                         [LL_SORTED_NEXT] = OIT_LL_NEXT_BYTES},
+        .view_count = LL_POOL_BUFFERS,
+        .view_buffer = {LL_NODES, LL_NEXT, LL_SORTED_NEXT},
+        .view_format = {GL_RGBA32UI, GL_R32UI, GL_R32UI},
+    };
     GLint64 max_block_bytes = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
-    s->gl_node_limit = (uint64_t)max_block_bytes / OIT_LL_NODE_BYTES;
+    s->pool.gl_limit = (uint64_t)max_block_bytes / OIT_LL_NODE_BYTES;
     GLint max_texels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-    if (s->gl_node_limit > (uint64_t)max_texels)
-        s->gl_node_limit = (uint64_t)max_texels;
-    if (s->gl_node_limit >= OIT_LIST_END)
-        s->gl_node_limit = OIT_LIST_END - 1u; /* node indices are uint, END is reserved */
-    if (config->buffer_fragment_limit && s->gl_node_limit > config->buffer_fragment_limit)
-        s->gl_node_limit = config->buffer_fragment_limit; /* tests: bands without 8M fragments */
-    GLuint textures[3];
-    glGenTextures(3, textures);
-    s->node_texture = textures[0];
-    s->next_texture = textures[1];
-    s->sorted_next_texture = textures[2];
-
-    GLuint buffers[4];
-    glGenBuffers(4, buffers);
-    s->node_buffer = buffers[0];
-    s->next_buffer = buffers[1];
-    s->sorted_next_buffer = buffers[2];
-    s->counter_buffer = buffers[3];
+    if (s->pool.gl_limit > (uint64_t)max_texels)
+        s->pool.gl_limit = (uint64_t)max_texels;
+    if (s->pool.gl_limit >= OIT_LIST_END)
+        s->pool.gl_limit = OIT_LIST_END - 1u; /* node indices are uint, END is reserved */
+    if (config->buffer_fragment_limit && s->pool.gl_limit > config->buffer_fragment_limit)
+        s->pool.gl_limit = config->buffer_fragment_limit; /* tests: bands without 8M fragments */
+    glGenTextures(LL_POOL_BUFFERS, s->pool.views); /* one view over each buffer */
+    glGenBuffers(LL_POOL_BUFFERS, s->pool.buffers);
+    glGenBuffers(1, &s->counter_buffer);
     oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                               s->counter_buffer, OIT_LL_COUNTER_COUNT * sizeof(GLuint), NULL,
                               GL_DYNAMIC_READ);
@@ -299,11 +220,11 @@ static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error
     uint64_t initial = s->gpu.config.initial_fragment_capacity
                            ? s->gpu.config.initial_fragment_capacity
                            : LL_DEFAULT_FRAGMENTS_PER_PIXEL * (uint64_t)width * (uint64_t)height;
-    uint64_t limit = ll_node_limit(s);
+    uint64_t limit = oit_pool_limit(&s->pool);
     if (initial > limit)
         initial = limit;
-    if (s->pool_capacity < initial || s->pool_capacity == 0) {
-        status = ll_allocate_pool(s, initial, err);
+    if (s->pool.capacity < initial || s->pool.capacity == 0) {
+        status = oit_pool_allocate(&s->pool, initial, err);
         if (status != OIT_OK)
             return status;
     }
@@ -314,19 +235,19 @@ static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error
 
 static void ll_bind_pool(const ll_state *s)
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_FRAGMENT_NODES, s->node_buffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_FRAGMENT_NEXT, s->next_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_FRAGMENT_NODES, s->pool.buffers[LL_NODES]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_FRAGMENT_NEXT, s->pool.buffers[LL_NEXT]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_FRAGMENT_SORTED_NEXT,
-                     s->sorted_next_buffer);
+                     s->pool.buffers[LL_SORTED_NEXT]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_SSBO_FRAME_COUNTERS, s->counter_buffer);
     glBindImageTexture(OIT_IMAGE_LIST_HEAD, s->head_image, 0, GL_FALSE, 0, GL_READ_WRITE,
                        GL_R32UI);
     const struct {
         GLenum unit;
         GLuint texture;
-    } views[] = {{OIT_TEXUNIT_LL_NODES, s->node_texture},
-                 {OIT_TEXUNIT_LL_NEXT, s->next_texture},
-                 {OIT_TEXUNIT_LL_SORTED_NEXT, s->sorted_next_texture}};
+    } views[] = {{OIT_TEXUNIT_LL_NODES, s->pool.views[LL_NODES]},
+                 {OIT_TEXUNIT_LL_NEXT, s->pool.views[LL_NEXT]},
+                 {OIT_TEXUNIT_LL_SORTED_NEXT, s->pool.views[LL_SORTED_NEXT]}};
     for (size_t i = 0; i < sizeof views / sizeof views[0]; ++i) {
         glActiveTexture(GL_TEXTURE0 + views[i].unit);
         glBindTexture(GL_TEXTURE_BUFFER, views[i].texture);
@@ -353,7 +274,7 @@ static void ll_clear_and_fill(ll_state *s, GLuint fill_program, const oit_scene 
     oit_timer_stage_begin(&s->gpu.timer, names[1]);
     glUseProgram(fill_program);
     oit_gl_set_frame_uniforms(frame);
-    glUniform1ui(OIT_UNIFORM_LL_POOL_CAPACITY, (GLuint)s->pool_capacity);
+    glUniform1ui(OIT_UNIFORM_LL_POOL_CAPACITY, (GLuint)s->pool.capacity);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     oit_gl_draw_scene(scene);
     oit_timer_stage_end(&s->gpu.timer);
@@ -484,7 +405,7 @@ static bool ll_bands_allowed(const oit_frame_settings *frame)
 }
 
 /* A frame that needs more fragments than one storage-buffer binding or buffer
- * texture can address (llvmpipe: 128 MiB, 8M nodes; s->gl_node_limit) but fits
+ * texture can address (llvmpipe: 128 MiB, 8M nodes; s->pool.gl_limit) but fits
  * the memory budget is rendered in bands of rows under the scissor test: each
  * band clears, fills, sorts and composes alone in a pool at the largest size the
  * GL addresses. Every band draws the whole scene again, so a frame of B bands
@@ -506,19 +427,19 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
                         "ll: the frame needs %llu fragments, more than this GL can address in "
                         "one shader storage buffer or buffer texture (%llu); it could be drawn in "
                         "bands of rows, but not with %s, which needs the whole frame's figures",
-                        (unsigned long long)frame_needed, (unsigned long long)s->gl_node_limit,
+                        (unsigned long long)frame_needed, (unsigned long long)s->pool.gl_limit,
                         auto_region ? "the distance modulation's automatic region"
                                     : "the heat map view");
     oit_status status = OIT_OK;
-    if (s->pool_capacity < s->gl_node_limit) {
-        status = ll_allocate_pool(s, ll_node_limit(s), err);
+    if (s->pool.capacity < s->pool.gl_limit) {
+        status = oit_pool_allocate(&s->pool, oit_pool_limit(&s->pool), err);
         if (status != OIT_OK)
             return status;
         ll_bind_pool(s);
     }
     const int height = s->gpu.output.height, width = s->gpu.output.width;
     oit_band_walk walk; /* from the last frame's bands when frame_needed is 0 */
-    status = oit_bands_begin(&walk, &s->band_plan, height, 0, frame_needed, s->pool_capacity, "ll",
+    status = oit_bands_begin(&walk, &s->band_plan, height, 0, frame_needed, s->pool.capacity, "ll",
                              err);
     if (status != OIT_OK)
         return status;
@@ -539,13 +460,13 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
         status = ll_fill_and_count(s, fill_program, scene, frame, band_fill_names, &needed, err);
         if (status != OIT_OK)
             break;
-        if (needed > s->pool_capacity) {
+        if (needed > s->pool.capacity) {
             if (!oit_bands_halve(&walk, &band)) {
                 status = oit_fail(err, OIT_E_RUNTIME,
                                   "ll: row %d of the image alone needs %llu fragments, more than "
                                   "this GL can address in one buffer (%llu)",
                                   band.first, (unsigned long long)needed,
-                                  (unsigned long long)s->pool_capacity);
+                                  (unsigned long long)s->pool.capacity);
                 break;
             }
             continue;
@@ -561,7 +482,7 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
     /* the next frame at this size starts from the bands that fitted, unless this
      * one failed or would have fitted whole with room to spare (the camera moved away) */
     oit_bands_end(&walk, &s->band_plan,
-                  status == OIT_OK && sum->counted + sum->counted / 4 > s->gl_node_limit);
+                  status == OIT_OK && sum->counted + sum->counted / 4 > s->pool.gl_limit);
     glDisable(GL_SCISSOR_TEST);
     return status;
 }
@@ -622,18 +543,18 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
                                    err);
         if (status != OIT_OK)
             goto failed;
-        if (needed <= s->pool_capacity)
+        if (needed <= s->pool.capacity)
             break;
         if (retries + 1 >= LL_MAX_FILLS) {
             status = oit_fail(err, OIT_E_RUNTIME,
                               "ll: the frame still needs %llu fragments after growing the pool to "
                               "%llu",
-                              (unsigned long long)needed, (unsigned long long)s->pool_capacity);
+                              (unsigned long long)needed, (unsigned long long)s->pool.capacity);
             goto failed;
         }
-        if (needed > s->gl_node_limit && needed <= ll_budget_nodes(s))
+        if (needed > s->pool.gl_limit && needed <= oit_pool_budget(&s->pool))
             break; /* bands */
-        status = ll_grow_pool(s, needed, err);
+        status = oit_pool_grow(&s->pool, needed, err);
         if (status != OIT_OK)
             goto failed;
         ++retries;
@@ -641,7 +562,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
 
     if (planned) {
         /* drawn above */
-    } else if (needed > s->pool_capacity) {
+    } else if (needed > s->pool.capacity) {
         status = ll_render_bands(s, fill_program, compose_program, scene, frame, needed, &sum,
                                  &bands, err);
     } else {
@@ -681,7 +602,7 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
         stats->list_histogram[bin] = sum.histogram[bin];
     /* the pool's share of what is allocated (oit_stats in oit.h defines it) */
     stats->bytes_per_fragment = (double)oit_gl_memory_bytes(&s->gpu.memory, OIT_GL_MEMORY_FRAGMENTS) /
-                                (double)s->pool_capacity;
+                                (double)s->pool.capacity;
     return status;
 
 failed:
