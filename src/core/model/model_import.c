@@ -24,8 +24,8 @@ const char *oit_path_basename(const char *path)
 
 /* ------------------------------------------------------------- warnings */
 
-/* Warnings gathered during one import: Assimp's own (through its log) and
- * ours. Lines that differ only in their numbers ("vertex 12", "vertex 13")
+/* Warnings gathered during one import: the reader's own (Assimp's log, the
+ * OBJ reader's) and ours. Lines that differ only in their numbers ("vertex 12", "vertex 13")
  * are one warning with a count. */
 struct import_warnings {
     char text[OIT_MODEL_WARNING_LIMIT][OIT_ERROR_MESSAGE_SIZE];
