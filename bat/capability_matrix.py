@@ -105,7 +105,7 @@ LOCAL = {"parts", "point", "plane", "box", "contrast", "light"}
 LOCAL_CODE = "[local_modulation.glsl](../../shaders/common/local_modulation.glsl)"
 # Where each supported cell is implemented, and what the implementation changes.
 CODE = {
-    ("reference", "local"): "[alg_reference.c](../../src/core/alg_reference.c), "
+    ("reference", "local"): "[reference_raster.c](../../src/core/reference_raster.c), "
                             "[local_modulation.c](../../src/core/local_modulation.c)",
     ("reference", "distance"): "[alg_reference.c](../../src/core/alg_reference.c) `distances()`",
     ("dp", "distance"): "[alg_dp.c](../../src/core/alg_dp.c), "

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # import_overhead.sh [BUILD_DIR]: what importing in a contained worker process
-# costs (src/core/model_contained.c), side by side with importing in the calling
+# costs (src/core/model/model_contained.c), side by side with importing in the calling
 # process (OIT_IMPORT=in-process), on models from 6k to 1.7M triangles: the
 # median wall time of 5 `oit info` runs each, alternating the two ways.
 set -euo pipefail

@@ -4,7 +4,7 @@ fuzzer over small OBJ, PLY, STL, glTF (text, with its .bin beside), GLB,
 COLLADA, FBX, 3DS and IFC files.
 
 Every mutant goes through `oit info --model MUTANT`, which imports it in a
-contained worker process (src/core/model_contained.c). Each run must end in
+contained worker process (src/core/model/model_contained.c). Each run must end in
 exit 0, or exit 2 with exactly one `oit: error:` line naming the file (import
 warnings, `oit: warning:` lines, may come before it): never a signal, never
 another status, never a timeout. The mutants are the same for a given seed,

@@ -1,4 +1,4 @@
-/* model_obj.h: the OBJ reader (model_obj.cpp), used by model.c in place of
+/* model_obj.h: the OBJ reader (model_obj.cpp), used by model_import.c in place of
  * Assimp's OBJ importer. Internal to the core. */
 #ifndef OIT_MODEL_OBJ_H
 #define OIT_MODEL_OBJ_H

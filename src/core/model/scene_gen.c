@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "oit.h"
+#include "model_internal.h" /* oit_path_basename */
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -799,12 +799,6 @@ const oit_scene_generator *oit_scene_generator_list(size_t *count)
     return list;
 }
 
-static const char *path_basename(const char *path)
-{
-    const char *slash = strrchr(path, '/');
-    return slash && slash[1] ? slash + 1 : path;
-}
-
 oit_status oit_scene_generate(const char *name, int complexity, const char *obj_path,
                               oit_error *err)
 {
@@ -836,7 +830,7 @@ oit_status oit_scene_generate(const char *name, int complexity, const char *obj_
     if (!mtl_path)
         return oit_fail(err, OIT_E_RUNTIME, "out of memory");
     memcpy(mtl_path, obj_path, length + 1);
-    const char *base = path_basename(obj_path);
+    const char *base = oit_path_basename(obj_path);
     char *dot = strrchr(mtl_path, '.');
     if (dot && dot >= mtl_path + (base - obj_path) && dot != mtl_path + (base - obj_path))
         strcpy(dot, ".mtl");
@@ -864,7 +858,7 @@ oit_status oit_scene_generate(const char *name, int complexity, const char *obj_
     w.obj = oit_atomic_file_stream(obj_file);
     w.mtl = oit_atomic_file_stream(mtl_file);
     fprintf(w.obj, "# oit-workbench scene '%s', complexity %d\nmtllib %s\n", entry->info.name,
-            complexity, path_basename(mtl_path));
+            complexity, oit_path_basename(mtl_path));
     fprintf(w.mtl, "# oit-workbench scene '%s', complexity %d\n\n", entry->info.name, complexity);
 
     part p = {0};

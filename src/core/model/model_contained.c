@@ -16,7 +16,7 @@
  * array with its byte length, each length checked against the counts.
  */
 #define _GNU_SOURCE
-#include "oit.h"
+#include "model_internal.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -315,12 +315,9 @@ oit_status oit_model_load_contained(const char *path, const oit_import_limits *l
     const char *name = base_name(path);
     /* what the worker would refuse first, refused here without a process */
     struct stat info;
-    if (stat(path, &info) != 0)
-        return oit_fail(err, OIT_E_INPUT, "%s: cannot open: %s", name, strerror(errno));
-    if (S_ISDIR(info.st_mode))
-        return oit_fail(err, OIT_E_INPUT, "%s: is a directory, not a model file", name);
-    if (!S_ISREG(info.st_mode))
-        return oit_fail(err, OIT_E_INPUT, "%s: not a regular file", name);
+    oit_status status = oit_model_check_regular_file(path, name, &info, err);
+    if (status != OIT_OK)
+        return status;
 
     oit_import_limits limits;
     if (limits_in)
@@ -364,7 +361,7 @@ oit_status oit_model_load_contained(const char *path, const oit_import_limits *l
     stream s = {pipe_fds[0], monotonic_ms() + limits.wall_seconds * 1e3, false};
     bool broken = true;
     oit_error received = {{0}};
-    oit_status status = receive_model(&s, out, &broken, &received);
+    status = receive_model(&s, out, &broken, &received);
     if (s.timed_out)
         kill(child, SIGKILL);
     close(pipe_fds[0]);
