@@ -31,7 +31,6 @@
 #include <unistd.h>
 
 #include "bench.h"
-#include "gl_util.h" /* glGetString (the bundle's driver), OIT_APPROX_LAYERS_MAX */
 #include "render_session.h"
 
 #define BENCH_DEFAULT_FRAMES 10
@@ -393,10 +392,10 @@ static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err
     const oit_algorithm_ops *ops = a->ops;
     if (numeric && oit_algorithm_reads(ops, OIT_OPTION_LAYERS)) {
         long layers;
-        if (!parse_int(parameter, 1, OIT_APPROX_LAYERS_MAX, &layers))
+        if (!parse_int(parameter, 1, oit_approx_layers_max(), &layers))
             return oit_fail(err, OIT_E_INPUT,
                             "--algorithms: '%s': layers must be a whole number from 1 to %d", a->label,
-                            OIT_APPROX_LAYERS_MAX);
+                            oit_approx_layers_max());
         a->layers = (int)layers;
     } else if (moments >= 0 && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS)) {
         a->moments = moments_values[moments];
@@ -1427,8 +1426,8 @@ static void bundle_driver(bench_bundle *bundle, bool has_gl)
     const char *strings[3] = {"", "", ""};
     if (has_gl) {
         strings[0] = oit_gl_renderer_string();
-        strings[1] = (const char *)glGetString(GL_VERSION);
-        strings[2] = (const char *)glGetString(GL_VENDOR);
+        strings[1] = oit_gl_version_string();
+        strings[2] = oit_gl_vendor_string();
     }
     snprintf(bundle->renderer, sizeof bundle->renderer, "%s", strings[0] ? strings[0] : "");
     snprintf(bundle->gl_version, sizeof bundle->gl_version, "%s", strings[1] ? strings[1] : "");

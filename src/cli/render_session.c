@@ -12,7 +12,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "gl_util.h" /* oit_gl_enumerate_allocated_bytes, for --json */
 #include "local_options.h"
 #include "modulation_options.h"
 #include "render_session.h"
@@ -303,9 +302,9 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     } else if (strcmp(flag, "--layers") == 0) {
         NEED_VALUE();
         long layers;
-        if (!parse_int(value, 1, OIT_APPROX_LAYERS_MAX, &layers)) {
+        if (!parse_int(value, 1, oit_approx_layers_max(), &layers)) {
             *status = oit_fail(err, OIT_E_INPUT, "--layers must be a whole number from 1 to %d, got '%s'",
-                               OIT_APPROX_LAYERS_MAX, value);
+                               oit_approx_layers_max(), value);
             return -1;
         }
         o->config.layers = (int)layers;
