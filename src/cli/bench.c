@@ -31,6 +31,7 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "json_output.h"
 #include "render_session.h"
 
 #define BENCH_DEFAULT_FRAMES 10
@@ -871,37 +872,15 @@ static void write_json_row(FILE *f, const bench_scene *scene, const session *s,
                 r->stages[j].name, r->stages[j].ms.median, r->stages[j].ms.min, r->stages[j].ms.max);
     fprintf(f, "], \"memory_bytes\": %llu, \"scene_bytes\": %llu", (unsigned long long)r->memory_max,
             (unsigned long long)s->gpu_scene.gpu_bytes);
-    if (st->fragments >= 0)
-        fprintf(f, ", \"fragments\": %lld", (long long)st->fragments);
-    if (st->max_list >= 0)
-        fprintf(f, ", \"max_list\": %lld", (long long)st->max_list);
-    if (st->mean_list >= 0.0)
-        fprintf(f, ", \"mean_list\": %.6g", st->mean_list);
-    if (st->psi >= 0.0)
-        fprintf(f, ", \"psi\": %.6g", st->psi);
-    if (st->layers >= 0)
-        fprintf(f, ", \"layers\": %lld", (long long)st->layers);
-    if (st->overflow_retries >= 0)
-        fprintf(f, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
-    if (st->bands >= 0)
-        fprintf(f, ", \"bands\": %lld", (long long)st->bands);
-    fprintf(f, ", \"truncated\": %s", st->truncated ? "true" : "false");
-    if (st->bytes_per_fragment >= 0.0)
-        fprintf(f, ", \"bytes_per_fragment\": %.6g", st->bytes_per_fragment);
+    json_stats_figures(f, st, false);
     if (r->has_reference_diff)
         fprintf(f,
                 ", \"reference\": {\"max_channel_diff\": %d, \"mean_diff\": %.6f, "
                 "\"over_tolerance_percent\": %.6f, \"tolerance\": %d}",
                 r->diff.max_channel_diff, r->diff.mean_diff, 100.0 * r->diff.share_over_tolerance, tolerance);
     if (r->has_error) {
-        const oit_image_error *e = &r->error_figures;
-        fprintf(f, ", \"error_rmse\": %.9g, \"error_psnr\": ", e->rmse);
-        if (isfinite(e->psnr_db))
-            fprintf(f, "%.9g", e->psnr_db);
-        else
-            fputs("null", f); /* identical images */
-        fprintf(f, ", \"error_ssim\": %.9g, \"error_max\": %d, \"error_share_over_2\": %.9g", e->ssim, e->max,
-                e->share_over_2);
+        fputs(", ", f);
+        json_image_error(f, &r->error_figures, "error_");
     }
     if (r->orbit_frames > 0)
         fprintf(f,

@@ -26,22 +26,12 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "json_output.h"
 #include "local_options.h"
 #include "modulation_options.h"
 #include "render_session.h"
 
 /* --------------------------------------------------------------- JSON */
-
-/* ', "error": {...}' (oit_image_error); psnr is null for identical images (infinite) */
-static void print_error_json(FILE *out, const oit_image_error *e)
-{
-    fprintf(out, ", \"error\": {\"rmse\": %.9g, \"psnr\": ", e->rmse);
-    if (isfinite(e->psnr_db))
-        fprintf(out, "%.9g", e->psnr_db);
-    else
-        fprintf(out, "null");
-    fprintf(out, ", \"ssim\": %.9g, \"max\": %d, \"share_over_2\": %.9g}", e->ssim, e->max, e->share_over_2);
-}
 
 static void print_render_json(FILE *out, const render_options *o, const session *s,
                               const render_result *r, const oit_image_error *error)
@@ -80,45 +70,16 @@ static void print_render_json(FILE *out, const render_options *o, const session 
     fprintf(out, "], \"memory_bytes\": %llu", (unsigned long long)st->memory_bytes);
     if (r->gl_allocated_bytes >= 0) /* the independent count of memory_bytes (tests) */
         fprintf(out, ", \"gl_allocated_bytes\": %lld", (long long)r->gl_allocated_bytes);
-    if (st->fragments >= 0)
-        fprintf(out, ", \"fragments\": %lld", (long long)st->fragments);
-    if (st->max_list >= 0)
-        fprintf(out, ", \"max_list\": %lld", (long long)st->max_list);
-    if (st->layers >= 0)
-        fprintf(out, ", \"layers\": %lld", (long long)st->layers);
-    if (st->overflow_retries >= 0)
-        fprintf(out, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
-    if (st->bands >= 0)
-        fprintf(out, ", \"bands\": %lld", (long long)st->bands);
-    fprintf(out, ", \"truncated\": %s", st->truncated ? "true" : "false");
-    /* list and Illustration Buffer figures, where the algorithm has them */
-    const struct {
-        const char *key;
-        double value;
-    } optional[] = {
-        {"mean_list", st->mean_list},
-        {"psi", st->psi},
-        {"bytes_per_fragment", st->bytes_per_fragment},
-        {"bytes_per_pixel", st->bytes_per_pixel},
-        {"neighbours_four_share", st->neighbours_four_share},
-        {"neighbours_symmetric_share", st->neighbours_symmetric_share},
-        {"neighbours_same_component_share", st->neighbours_same_component_share},
-    };
-    for (size_t k = 0; k < sizeof optional / sizeof optional[0]; ++k)
-        if (optional[k].value >= 0.0)
-            fprintf(out, ", \"%s\": %.6g", optional[k].key, optional[k].value);
-    if (st->histogram_bins > 0) {
-        fprintf(out, ", \"list_histogram\": [");
-        for (int b = 0; b < st->histogram_bins; ++b)
-            fprintf(out, "%s%llu", b ? ", " : "", (unsigned long long)st->list_histogram[b]);
-        fprintf(out, "]");
-    }
+    json_stats_figures(out, st, true);
     if (o->out_path) {
         fprintf(out, ", \"out\": ");
         json_string(out, o->out_path);
     }
-    if (error)
-        print_error_json(out, error);
+    if (error) {
+        fputs(", \"error\": {", out);
+        json_image_error(out, error, "");
+        fputc('}', out);
+    }
     fprintf(out, "}\n");
 }
 
