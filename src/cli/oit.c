@@ -7,7 +7,7 @@
  *   oit gen        write a procedural test scene (OBJ + MTL)
  *   oit demo       render the bundled model with every algorithm, print a table
  *   oit bench      scenes x algorithms x sizes, timings and statistics as CSV/JSON (bench.c)
- *   oit measure    the source's measuring command line, one result line per run (bench.c)
+ *   oit measure    the source's measuring command line, one result line per run (measure.c)
  *   oit algorithms list the algorithms
  *
  * Exit status: 0 success, 1 comparison outside bounds, 2 bad usage or input,
@@ -28,6 +28,7 @@
 #include "bench.h"
 #include "json_output.h"
 #include "local_options.h"
+#include "measure.h"
 #include "modulation_options.h"
 #include "render_session.h"
 
