@@ -143,13 +143,7 @@ static void orbit_modelview(const double modelview[16], const double centre[3], 
     m[12] = t[0];
     m[13] = t[1];
     m[14] = t[2];
-    for (int col = 0; col < 4; ++col)
-        for (int row = 0; row < 4; ++row) {
-            double sum = 0.0;
-            for (int k = 0; k < 4; ++k)
-                sum += modelview[k * 4 + row] * m[col * 4 + k];
-            out[col * 4 + row] = sum;
-        }
+    oit_mat4_multiply(modelview, m, out);
 }
 
 /* The reference's image of one frame: from the cache when it is there, else

@@ -748,27 +748,20 @@ int main(int argc, char **argv)
     if (argc < 2)
         return usage_error("missing command%s", "");
     const char *command = argv[1];
-    int rest = argc - 2;
-    char **rest_argv = argv + 2;
     if (strcmp(command, "--help") == 0 || strcmp(command, "-h") == 0 || strcmp(command, "help") == 0) {
         fputs(main_help, stdout);
         return EXIT_OK;
     }
-    if (strcmp(command, "render") == 0)
-        return command_render(rest, rest_argv);
-    if (strcmp(command, "compare") == 0)
-        return command_compare(rest, rest_argv);
-    if (strcmp(command, "info") == 0)
-        return command_info(rest, rest_argv);
-    if (strcmp(command, "gen") == 0)
-        return command_gen(rest, rest_argv);
-    if (strcmp(command, "demo") == 0)
-        return command_demo(rest, rest_argv);
-    if (strcmp(command, "bench") == 0)
-        return command_bench(rest, rest_argv);
-    if (strcmp(command, "measure") == 0)
-        return command_measure(rest, rest_argv);
-    if (strcmp(command, "algorithms") == 0)
-        return command_algorithms(rest, rest_argv);
+    static const struct {
+        const char *name;
+        int (*run)(int argc, char **argv);
+    } commands[] = {
+        {"render", command_render},   {"compare", command_compare}, {"info", command_info},
+        {"gen", command_gen},         {"demo", command_demo},       {"bench", command_bench},
+        {"measure", command_measure}, {"algorithms", command_algorithms},
+    };
+    for (size_t k = 0; k < sizeof commands / sizeof commands[0]; ++k)
+        if (strcmp(command, commands[k].name) == 0)
+            return commands[k].run(argc - 2, argv + 2);
     return usage_error("unknown command '%s'", command);
 }
