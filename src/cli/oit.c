@@ -7,7 +7,7 @@
  *   oit gen        write a procedural test scene (OBJ + MTL)
  *   oit demo       render the bundled model with every algorithm, print a table
  *   oit bench      scenes x algorithms x sizes, timings and statistics as CSV/JSON (bench.c)
- *   oit measure    the source's measuring command line, one result line per run (bench.c)
+ *   oit measure    the source's measuring command line, one result line per run (measure.c)
  *   oit algorithms list the algorithms
  *
  * Exit status: 0 success, 1 comparison outside bounds, 2 bad usage or input,
@@ -26,22 +26,13 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "json_output.h"
 #include "local_options.h"
+#include "measure.h"
 #include "modulation_options.h"
 #include "render_session.h"
 
 /* --------------------------------------------------------------- JSON */
-
-/* ', "error": {...}' (oit_image_error); psnr is null for identical images (infinite) */
-static void print_error_json(FILE *out, const oit_image_error *e)
-{
-    fprintf(out, ", \"error\": {\"rmse\": %.9g, \"psnr\": ", e->rmse);
-    if (isfinite(e->psnr_db))
-        fprintf(out, "%.9g", e->psnr_db);
-    else
-        fprintf(out, "null");
-    fprintf(out, ", \"ssim\": %.9g, \"max\": %d, \"share_over_2\": %.9g}", e->ssim, e->max, e->share_over_2);
-}
 
 static void print_render_json(FILE *out, const render_options *o, const session *s,
                               const render_result *r, const oit_image_error *error)
@@ -80,45 +71,16 @@ static void print_render_json(FILE *out, const render_options *o, const session 
     fprintf(out, "], \"memory_bytes\": %llu", (unsigned long long)st->memory_bytes);
     if (r->gl_allocated_bytes >= 0) /* the independent count of memory_bytes (tests) */
         fprintf(out, ", \"gl_allocated_bytes\": %lld", (long long)r->gl_allocated_bytes);
-    if (st->fragments >= 0)
-        fprintf(out, ", \"fragments\": %lld", (long long)st->fragments);
-    if (st->max_list >= 0)
-        fprintf(out, ", \"max_list\": %lld", (long long)st->max_list);
-    if (st->layers >= 0)
-        fprintf(out, ", \"layers\": %lld", (long long)st->layers);
-    if (st->overflow_retries >= 0)
-        fprintf(out, ", \"overflow_retries\": %lld", (long long)st->overflow_retries);
-    if (st->bands >= 0)
-        fprintf(out, ", \"bands\": %lld", (long long)st->bands);
-    fprintf(out, ", \"truncated\": %s", st->truncated ? "true" : "false");
-    /* list and Illustration Buffer figures, where the algorithm has them */
-    const struct {
-        const char *key;
-        double value;
-    } optional[] = {
-        {"mean_list", st->mean_list},
-        {"psi", st->psi},
-        {"bytes_per_fragment", st->bytes_per_fragment},
-        {"bytes_per_pixel", st->bytes_per_pixel},
-        {"neighbours_four_share", st->neighbours_four_share},
-        {"neighbours_symmetric_share", st->neighbours_symmetric_share},
-        {"neighbours_same_component_share", st->neighbours_same_component_share},
-    };
-    for (size_t k = 0; k < sizeof optional / sizeof optional[0]; ++k)
-        if (optional[k].value >= 0.0)
-            fprintf(out, ", \"%s\": %.6g", optional[k].key, optional[k].value);
-    if (st->histogram_bins > 0) {
-        fprintf(out, ", \"list_histogram\": [");
-        for (int b = 0; b < st->histogram_bins; ++b)
-            fprintf(out, "%s%llu", b ? ", " : "", (unsigned long long)st->list_histogram[b]);
-        fprintf(out, "]");
-    }
+    json_stats_figures(out, st, true);
     if (o->out_path) {
         fprintf(out, ", \"out\": ");
         json_string(out, o->out_path);
     }
-    if (error)
-        print_error_json(out, error);
+    if (error) {
+        fputs(", \"error\": {", out);
+        json_image_error(out, error, "");
+        fputc('}', out);
+    }
     fprintf(out, "}\n");
 }
 
@@ -176,8 +138,9 @@ static void print_render_help(FILE *out)
             "                         until nothing is left); a frame the cap cuts short gets a warning\n"
             "                         and \"truncated\": true\n",
             algorithms_reading(OIT_OPTION_MAX_LAYERS, reading, sizeof reading));
-    fprintf(out, "  --layers K             %s: layers kept per pixel, 1..64 (default 8)\n",
-            algorithms_reading(OIT_OPTION_LAYERS, reading, sizeof reading));
+    fprintf(out, "  --layers K             %s: layers kept per pixel, 1..%d (default %d)\n",
+            algorithms_reading(OIT_OPTION_LAYERS, reading, sizeof reading), oit_approx_layers_max(),
+            oit_approx_layers_default());
     fprintf(out, "  --moments M            %s: power4, power6 or trig3 (default power4)\n",
             algorithms_reading(OIT_OPTION_MOMENTS, reading, sizeof reading));
     fputs("  --error-vs-reference   also render the frame with the CPU reference and report the error:\n"
@@ -785,27 +748,20 @@ int main(int argc, char **argv)
     if (argc < 2)
         return usage_error("missing command%s", "");
     const char *command = argv[1];
-    int rest = argc - 2;
-    char **rest_argv = argv + 2;
     if (strcmp(command, "--help") == 0 || strcmp(command, "-h") == 0 || strcmp(command, "help") == 0) {
         fputs(main_help, stdout);
         return EXIT_OK;
     }
-    if (strcmp(command, "render") == 0)
-        return command_render(rest, rest_argv);
-    if (strcmp(command, "compare") == 0)
-        return command_compare(rest, rest_argv);
-    if (strcmp(command, "info") == 0)
-        return command_info(rest, rest_argv);
-    if (strcmp(command, "gen") == 0)
-        return command_gen(rest, rest_argv);
-    if (strcmp(command, "demo") == 0)
-        return command_demo(rest, rest_argv);
-    if (strcmp(command, "bench") == 0)
-        return command_bench(rest, rest_argv);
-    if (strcmp(command, "measure") == 0)
-        return command_measure(rest, rest_argv);
-    if (strcmp(command, "algorithms") == 0)
-        return command_algorithms(rest, rest_argv);
+    static const struct {
+        const char *name;
+        int (*run)(int argc, char **argv);
+    } commands[] = {
+        {"render", command_render},   {"compare", command_compare}, {"info", command_info},
+        {"gen", command_gen},         {"demo", command_demo},       {"bench", command_bench},
+        {"measure", command_measure}, {"algorithms", command_algorithms},
+    };
+    for (size_t k = 0; k < sizeof commands / sizeof commands[0]; ++k)
+        if (strcmp(command, commands[k].name) == 0)
+            return commands[k].run(argc - 2, argv + 2);
     return usage_error("unknown command '%s'", command);
 }

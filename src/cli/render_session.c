@@ -12,7 +12,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "gl_util.h" /* oit_gl_enumerate_allocated_bytes, for --json */
 #include "local_options.h"
 #include "modulation_options.h"
 #include "render_session.h"
@@ -132,15 +131,6 @@ oit_status parse_matrix(const char *flag, const char *text, double out[16], oit_
         return oit_fail(err, OIT_E_INPUT, "%s needs 16 comma-separated numbers (row by row), got %d",
                         flag, count);
     return matrix_from_rows(flag, values, out, err);
-}
-
-void json_matrix_rows(FILE *out, const double m[16])
-{
-    fputc('[', out);
-    for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 4; ++col)
-            fprintf(out, "%s%.17g", row || col ? ", " : "", m[col * 4 + row]);
-    fputc(']', out);
 }
 
 oit_status parse_size(const char *text, int *width, int *height, oit_error *err)
@@ -303,9 +293,9 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     } else if (strcmp(flag, "--layers") == 0) {
         NEED_VALUE();
         long layers;
-        if (!parse_int(value, 1, OIT_APPROX_LAYERS_MAX, &layers)) {
+        if (!parse_int(value, 1, oit_approx_layers_max(), &layers)) {
             *status = oit_fail(err, OIT_E_INPUT, "--layers must be a whole number from 1 to %d, got '%s'",
-                               OIT_APPROX_LAYERS_MAX, value);
+                               oit_approx_layers_max(), value);
             return -1;
         }
         o->config.layers = (int)layers;
@@ -570,68 +560,6 @@ oit_status check_output_path(const char *flag, const char *path, oit_error *err)
     /* a FIFO, a device, a directory, a name too long or a missing directory
      * is refused now, not after the work (oit.h, "files") */
     return oit_check_output_file(path, flag, err);
-}
-
-/* --------------------------------------------------------------- JSON */
-
-/* Length of the well-formed UTF-8 sequence at c (RFC 3629: no overlong
- * forms, no surrogates, nothing above U+10FFFF), or 0 if it is not one. */
-static int utf8_sequence_length(const unsigned char *c)
-{
-    int length;
-    unsigned lowest;
-    if (c[0] < 0x80)
-        return 1;
-    else if (c[0] >= 0xc2 && c[0] <= 0xdf)
-        length = 2, lowest = 0x80;
-    else if (c[0] >= 0xe0 && c[0] <= 0xef)
-        length = 3, lowest = 0x800;
-    else if (c[0] >= 0xf0 && c[0] <= 0xf4)
-        length = 4, lowest = 0x10000;
-    else
-        return 0;
-    unsigned code = c[0] & (0x3f >> (length - 1));
-    for (int k = 1; k < length; ++k) {
-        if ((c[k] & 0xc0) != 0x80) /* also stops at the terminating NUL */
-            return 0;
-        code = (code << 6) | (c[k] & 0x3f);
-    }
-    if (code < lowest || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff))
-        return 0;
-    return length;
-}
-
-void json_string(FILE *out, const char *text)
-{
-    /* JSON text is UTF-8: paths and names are bytes, so a byte that is not
-     * part of a well-formed sequence becomes U+FFFD (the replacement
-     * character), and the output always parses. */
-    fputc('"', out);
-    for (const unsigned char *c = (const unsigned char *)text; *c;) {
-        int length = utf8_sequence_length(c);
-        if (length == 0) {
-            fputs("\\ufffd", out);
-            ++c;
-        } else if (*c == '"' || *c == '\\') {
-            fprintf(out, "\\%c", *c++);
-        } else if (*c < 0x20 || *c == 0x7f) {
-            fprintf(out, "\\u%04x", *c++);
-        } else {
-            fwrite(c, 1, (size_t)length, out);
-            c += length;
-        }
-    }
-    fputc('"', out);
-}
-
-void json_warnings(FILE *out, const oit_model *model)
-{
-    fputs(", \"warnings\": [", out);
-    for (uint32_t i = 0; i < model->warning_count; ++i) {
-        fputs(i ? ", " : "", out);
-        json_string(out, model->warnings[i]);
-    }
-    fputc(']', out);
 }
 
 void warn_if_truncated(const char *what, const oit_algorithm_config *config, const oit_stats *stats)

@@ -33,9 +33,6 @@ int parse_number_list(const char *text, double *values, int capacity);
 oit_status parse_matrix(const char *flag, const char *text, double out[16], oit_error *err);
 /* Checks and converts 16 row-by-row numbers (already parsed) into column-major. */
 oit_status matrix_from_rows(const char *what, const double rows[16], double out[16], oit_error *err);
-/* A column-major matrix as a JSON array of 16 numbers, row by row, as --modelview and
- * --projection take it back (%.17g: the same doubles). */
-void json_matrix_rows(FILE *out, const double m[16]);
 oit_status parse_size(const char *text, int *width, int *height, oit_error *err);
 
 /* ----------------------------------------------------- render options */
@@ -122,10 +119,6 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
  * regular file or a new name in a writable directory, its name within
  * NAME_MAX, or /dev/null or the standard output (oit_check_output_file). */
 oit_status check_output_path(const char *flag, const char *path, oit_error *err);
-/* A JSON string of text; bytes that are not well-formed UTF-8 become U+FFFD. */
-void json_string(FILE *out, const char *text);
-/* ', "warnings": [...]': the model's import warnings (oit_model.warnings). */
-void json_warnings(FILE *out, const oit_model *model);
 /* "oit: warning: WHAT: ..." on stderr when a frame left fragments out (stats.truncated). */
 void warn_if_truncated(const char *what, const oit_algorithm_config *config, const oit_stats *stats);
 /* Each import warning as "oit: warning: ..." on stderr. */

@@ -408,10 +408,25 @@ void oit_gl_context_destroy(oit_gl_context *context)
     free(context);
 }
 
-const char *oit_gl_renderer_string(void)
+static const char *context_string(GLenum name)
 {
     if (current_backend == ACTIVE_NONE)
         return "(no GL context)";
-    const GLubyte *renderer = glGetString(GL_RENDERER);
-    return renderer ? (const char *)renderer : "(unknown)";
+    const GLubyte *text = glGetString(name);
+    return text ? (const char *)text : "(unknown)";
+}
+
+const char *oit_gl_renderer_string(void)
+{
+    return context_string(GL_RENDERER);
+}
+
+const char *oit_gl_version_string(void)
+{
+    return context_string(GL_VERSION);
+}
+
+const char *oit_gl_vendor_string(void)
+{
+    return context_string(GL_VENDOR);
 }

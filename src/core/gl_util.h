@@ -88,7 +88,7 @@ void oit_timer_frame_end(oit_stage_timer *timer, oit_stats *stats);
  * bytes_per_pixel and bytes_per_fragment come from the per-use sums.
  * Buffer textures (glTexBuffer) own no storage (their buffer is counted), and
  * framebuffers, vertex arrays, queries and programs hold none either; none of
- * them is recorded. oit_gl_enumerate_allocated_bytes() below is the
+ * them is recorded. oit_gl_enumerate_allocated_bytes() (oit.h) is the
  * independent check (tests/memory_figures.sh). */
 typedef enum oit_gl_memory_use {
     OIT_GL_MEMORY_PIXELS,    /* sized by the image: width x height texels (the output too) */
@@ -132,16 +132,6 @@ void oit_gl_memory_buffer_data(oit_gl_memory *memory, oit_gl_memory_use use, GLe
 void oit_gl_memory_delete_buffers(oit_gl_memory *memory, GLsizei count, GLuint *buffers);
 uint64_t oit_gl_memory_total(const oit_gl_memory *memory);
 uint64_t oit_gl_memory_bytes(const oit_gl_memory *memory, oit_gl_memory_use use);
-
-/* The independent count, for tests only (oit render --json,
- * "gl_allocated_bytes"): enumerates GL object names 1, 2, ... (until 4096
- * names in a row are not objects) and sums GL_BUFFER_SIZE of every buffer and
- * the size of every level of every texture other than buffer textures (whose
- * storage is their buffer's), bytes per texel from the component sizes GL
- * reports (GL_TEXTURE_RED_SIZE ... GL_TEXTURE_STENCIL_SIZE), times samples;
- * renderbuffers likewise. Knows nothing of oit_gl_memory. -1 if this GL lacks
- * the direct state access queries it needs (GL 4.5). */
-int64_t oit_gl_enumerate_allocated_bytes(void);
 
 /* ---- the RGBA8 output every algorithm composes into ---- */
 

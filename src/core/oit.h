@@ -610,6 +610,11 @@ typedef struct oit_algorithm_config {
 } oit_algorithm_config;
 
 void oit_algorithm_config_defaults(oit_algorithm_config *config);
+/* The range of oit_algorithm_config.layers: its default and its largest value
+ * (OIT_APPROX_LAYERS_DEFAULT and OIT_APPROX_LAYERS_MAX of oit_shared.h, which
+ * size the shaders' arrays), for shells that check or offer it. */
+int oit_approx_layers_default(void);
+int oit_approx_layers_max(void);
 
 /* A model ready to draw: the CPU model and, when a GL context exists, its buffers. */
 typedef struct oit_scene {
@@ -739,6 +744,20 @@ oit_status oit_gl_context_create(oit_backend backend, bool debug, oit_gl_context
                                  oit_error *err);
 void oit_gl_context_destroy(oit_gl_context *context);
 const char *oit_gl_renderer_string(void); /* GL_RENDERER of the current context */
+/* GL_VERSION and GL_VENDOR of the current context, as oit_gl_renderer_string
+ * gives GL_RENDERER: "(no GL context)" without one, "(unknown)" if GL has none. */
+const char *oit_gl_version_string(void);
+const char *oit_gl_vendor_string(void);
+/* The independent count of what GL holds, for tests only (oit render --json,
+ * "gl_allocated_bytes"; the algorithms' own count is oit_stats.memory_bytes,
+ * from gl_util.h's oit_gl_memory): enumerates GL object names 1, 2, ... (until
+ * 4096 names in a row are not objects) and sums GL_BUFFER_SIZE of every buffer
+ * and the size of every level of every texture other than buffer textures
+ * (whose storage is their buffer's), bytes per texel from the component sizes
+ * GL reports (GL_TEXTURE_RED_SIZE ... GL_TEXTURE_STENCIL_SIZE), times samples;
+ * renderbuffers likewise. Knows nothing of oit_gl_memory. -1 if this GL lacks
+ * the direct state access queries it needs (GL 4.5). Needs a current context. */
+int64_t oit_gl_enumerate_allocated_bytes(void);
 
 /* ---------------------------------------------------------------- shaders */
 
