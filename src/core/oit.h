@@ -578,6 +578,13 @@ typedef enum oit_moments {
 /* "power4", "power6", "trig3" (the command line's names); "unknown" outside the enum */
 const char *oit_moments_name(oit_moments moments);
 
+/* kbuffer, hybrid, mlab: the layers kept per pixel (oit_algorithm_config.layers, --layers)
+ * by default and at most, for programs that must not include the shaders' header; equal
+ * to shaders/common/oit_shared.h's OIT_APPROX_LAYERS_DEFAULT and _MAX (closest_layers.c
+ * asserts it). */
+#define OIT_LAYERS_DEFAULT 8
+#define OIT_LAYERS_MAX 64
+
 typedef struct oit_algorithm_config {
     const char *shader_dir;     /* root of the shader tree (contains common/) */
     uint64_t max_memory_bytes;  /* budget for buffers that grow (fragment pools; ib draws a
