@@ -158,8 +158,7 @@ QTabWidget *MainWindow::build_tabs()
     stats_panel_ = new StatsPanel;
     compare_panel_ = new ComparePanel(settings_->render_settings());
 
-    for (SettingsPanel *panel : std::initializer_list<SettingsPanel *>{algorithm_panel_, opacity_panel_,
-                                                                        camera_panel_, views_panel_}) {
+    for (SettingsPanel *panel : settings_panels()) {
         connect(panel, &SettingsPanel::edited, this, &MainWindow::render_now);
         connect(panel, &SettingsPanel::changed, this, &MainWindow::settings_changed);
     }
@@ -184,6 +183,11 @@ QTabWidget *MainWindow::build_tabs()
     tabs_->addTab(stats_panel_, "Stats");
     tabs_->addTab(scrolled(compare_panel_), "Compare");
     return tabs_;
+}
+
+std::array<SettingsPanel *, 4> MainWindow::settings_panels() const
+{
+    return {algorithm_panel_, opacity_panel_, camera_panel_, views_panel_};
 }
 
 void MainWindow::closeEvent(QCloseEvent *event)
@@ -275,8 +279,7 @@ void MainWindow::settings_changed()
 
 void MainWindow::sync_panel_from_settings()
 {
-    for (SettingsPanel *panel : std::initializer_list<SettingsPanel *>{algorithm_panel_, opacity_panel_,
-                                                                        camera_panel_, views_panel_})
+    for (SettingsPanel *panel : settings_panels())
         panel->sync();
     compare_panel_->sync();
     for (auto &action : sync_actions_)
@@ -444,8 +447,9 @@ void MainWindow::frame_progress(const QString &stage, int stages_done, double el
 void MainWindow::update_stats()
 {
     const RenderSettings &s = settings_->render_settings();
-    StatsPanel::Summary summary = stats_panel_->show_frame(*view_, s, model_.get());
+    StatsPanel::Summary summary = StatsPanel::describe(*view_, s, model_.get());
     compare_panel_->set_figures(summary.figures);
+    stats_panel_->setPlainText(summary.text);
     const oit_stats &st = view_->last_stats();
     QString truncated;
     if (st.truncated)

@@ -11,6 +11,7 @@
 #include <QPointer>
 #include <QStringList>
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -22,7 +23,6 @@
 #include "settings.h"
 #include "settings_model.h"
 
-class QAction;
 class QLabel;
 class QMenu;
 class QMessageBox;
@@ -36,6 +36,7 @@ class CameraPanel;
 class ComparePanel;
 class OpacityPanel;
 class PartsPanel;
+class SettingsPanel;
 class StatsPanel;
 class ViewsPanel;
 
@@ -136,6 +137,8 @@ private:
     void build_help_menu();
     // The settings panel's tabs, wired to the settings model.
     QTabWidget *build_tabs();
+    // The tabs whose controls are bound to the settings (settings_panel.h).
+    std::array<SettingsPanel *, 4> settings_panels() const;
     void update_stats();
     void load_finished(ModelPointer model, const QString &path);
     void load_failed(const QString &message);

@@ -35,7 +35,7 @@ QString seconds_text(double ms)
 
 } // namespace
 
-RenderView::RenderView(SettingsModel &model, QWidget *parent) : QWidget(parent), settings_(model)
+RenderView::RenderView(SettingsModel &settings_model, QWidget *parent) : QWidget(parent), settings_(settings_model)
 {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(64, 64);

@@ -42,8 +42,9 @@ public:
     static constexpr double kSlowFrameMs = 60.0;  // full frames slower than this go coarse first
     static constexpr int kProgressAfterMs = 300;  // then the overlay shows the frame's progress
 
-    // Renders the model's render settings and camera; moves its camera and wipe line.
-    explicit RenderView(SettingsModel &model, QWidget *parent = nullptr);
+    // Shows frames of the settings model's render settings and camera (the
+    // window's); the mouse and keys move that camera and the wipe line.
+    explicit RenderView(SettingsModel &settings, QWidget *parent = nullptr);
     ~RenderView() override;
 
     // The model to show (shared with the worker, which uploads it with the next frame).
@@ -137,7 +138,7 @@ private:
     bool interacting() const;
     void update_overlays();
 
-    SettingsModel &settings_;
+    SettingsModel &settings_; // the window's
     std::shared_ptr<const oit_model> model_;
     std::unique_ptr<RenderWorker> worker_;
     bool gl_ready_ = false;

@@ -12,8 +12,8 @@ StatsPanel::StatsPanel(QWidget *parent) : QPlainTextEdit(parent)
     setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
 }
 
-StatsPanel::Summary StatsPanel::show_frame(const RenderView &view, const RenderSettings &settings,
-                                           const oit_model *model)
+StatsPanel::Summary StatsPanel::describe(const RenderView &view, const RenderSettings &settings,
+                                         const oit_model *model)
 {
     Summary summary;
     const oit_stats &st = view.last_stats();
@@ -94,6 +94,7 @@ StatsPanel::Summary StatsPanel::show_frame(const RenderView &view, const RenderS
         if (settings.error_view && b.error_map.present)
             summary.compared += QString(", rmse %1").arg(b.error_map.figures.rmse, 0, 'f', 3);
     }
-    setPlainText(text);
+    out.flush();
+    summary.text = text;
     return summary;
 }

@@ -16,12 +16,13 @@ class StatsPanel : public QPlainTextEdit {
 public:
     explicit StatsPanel(QWidget *parent = nullptr);
 
-    // What else shows the frame's figures: the Compare tab and the status line.
+    // The view's last full frame, rendered with settings of model, in words:
+    // the tab's text, and what the Compare tab and the status line show of it.
     struct Summary {
+        QString text;        // this tab's (show it with setPlainText)
         double gpu_ms = 0.0; // the stages' sum
         QString figures;     // each side against the reference (the error view), one per line
         QString compared;    // the status line's tail: " — vs reference: ...", " | B ..."
     };
-    // Show the view's last full frame, rendered with settings of model.
-    Summary show_frame(const RenderView &view, const RenderSettings &settings, const oit_model *model);
+    static Summary describe(const RenderView &view, const RenderSettings &settings, const oit_model *model);
 };
