@@ -1,52 +1,44 @@
-// main_window.h: the workbench window: the render view, the settings panel
-// (Algorithm, Opacity, Parts, Camera, Views, Stats), menus, model loading off
-// the GUI thread, Export PNG, "Copy as command", presets and the saved state
-// (saved_state.h).
+// main_window.h: the workbench window: the render view, the settings panel's
+// tabs (one class each: algorithm_panel.h, opacity_panel.h, parts_panel.h,
+// camera_panel.h, views_panel.h, stats_panel.h, compare_panel.h) over the
+// settings model (settings_model.h), the menus and their actions, the
+// Messages, progress and Cancel, model loading off the GUI thread
+// (model_loader.h), Export PNG, "Copy as command", presets and the saved
+// state (saved_state.h).
 #pragma once
 
-#include <QFutureWatcher>
 #include <QMainWindow>
 #include <QPointer>
 #include <QStringList>
 
+#include <array>
 #include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
+#include "model_loader.h"
 #include "oit.h"
 #include "render_view.h"
 #include "saved_state.h"
 #include "settings.h"
+#include "settings_model.h"
 
-class QCheckBox;
-class QComboBox;
-class QDoubleSpinBox;
 class QLabel;
-class QLineEdit;
 class QMenu;
 class QMessageBox;
 class QPlainTextEdit;
 class QProgressBar;
-class QSlider;
-class QSpinBox;
-class QTabWidget;
-class QTimer;
-class QAction;
-class PartsPanel;
-class QListWidget;
 class QPushButton;
-class QRadioButton;
+class QSlider;
+class QTabWidget;
+class AlgorithmPanel;
+class CameraPanel;
 class ComparePanel;
-
-struct LoadResult; // the worker thread's answer
-
-struct ModelDeleter {
-    void operator()(oit_model *model) const;
-};
-// shared with the render worker, which may still draw the previous model
-// while the window already holds the next one
-using ModelPointer = std::shared_ptr<const oit_model>;
+class OpacityPanel;
+class PartsPanel;
+class SettingsPanel;
+class StatsPanel;
+class ViewsPanel;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -71,11 +63,13 @@ public:
     const SettingsFile &settings_file() const { return settings_file_; }
 
     RenderView *view() const { return view_; }
+    // The render settings and the camera, with their undo history.
+    SettingsModel *settings_model() const { return settings_; }
     const oit_model *model() const { return model_.get(); }
     QString model_path() const { return model_path_; }
     bool loading() const;
     QString last_error() const { return last_error_; }
-    // which algorithms express which option (empty until the worker measured it)
+    // which algorithms express which option (the core's capability tables)
     const CapabilityTable &capabilities() const { return capabilities_; }
     // the loaded model's import warnings (oit_model.warnings), shown in a notice
     QStringList model_warnings() const { return model_warnings_; }
@@ -109,7 +103,7 @@ public:
     void frame_parts(const std::vector<int> &parts);
     // Select the part under a view pixel (a click in the view).
     void pick_at(const QPoint &pixel);
-    QSlider *alpha_slider() const { return alpha_slider_; }
+    QSlider *alpha_slider() const;
     ComparePanel *compare_panel() const { return compare_panel_; }
     // View ▸ Error against reference, Split view, Side by side (and the Compare tab)
     void set_error_view(bool on);
@@ -120,7 +114,6 @@ public:
     bool redo_settings();
     // Forget the history: the current settings are where undo stops.
     void reset_settings_history();
-    static constexpr int kUndoCoalesceMs = 600;
     // Bring a settings tab to the front by its name (case-insensitive).
     bool show_tab(const QString &name);
 
@@ -139,45 +132,55 @@ protected:
 
 private:
     void build_menus();
-    QWidget *build_algorithm_tab();
-    QWidget *build_opacity_tab();
-    QWidget *build_parts_tab();
-    QWidget *build_camera_tab();
-    QWidget *build_views_tab();
-    QWidget *build_stats_tab();
-    QWidget *build_compare_tab();
-    void rebuild_parts();
+    void build_file_menu();
+    void build_view_menu();
+    void build_help_menu();
+    // The settings panel's tabs, wired to the settings model.
+    QTabWidget *build_tabs();
+    // The tabs whose controls are bound to the settings (settings_panel.h).
+    std::array<SettingsPanel *, 4> settings_panels() const;
     void update_stats();
-    void load_finished();
+    void load_finished(ModelPointer model, const QString &path);
+    void load_failed(const QString &message);
     void add_recent(const QString &path);
     // Write the saved state (the recent models and the last model; closing,
     // also the settings and the window's layout); a failure goes to the
     // Messages once (and to stderr when closing, the Messages going with the window).
     void save_state(bool closing);
+    void restore_saved_settings();
     void rebuild_recent_menu();
     void show_error(const QString &title, const QString &message);
+    // A notice that does not block (window-modal, the event loop goes on).
+    void show_notice(QMessageBox *box);
     void open_model_dialog();
     void export_dialog();
+    // A control changed the settings: one undo step (coalesced), and a frame.
     void render_now();
-    void record_settings_change();
-    void restore_settings(const RenderSettings &settings);
-    std::string settings_key(const RenderSettings &settings) const;
-    void give_every_control_a_tooltip();
-    void apply_capabilities();
+    // Undo or redo replaced the settings: the panel follows, and a full frame.
+    void settings_restored();
     void frame_progress(const QString &stage, int stages_done, double elapsed_ms);
 
+    SettingsModel *settings_ = nullptr;
     RenderView *view_ = nullptr;
+    ModelLoader *loader_ = nullptr;
     ModelPointer model_;
     QString model_path_;
+    QString loading_path_;
     QString last_error_;
     QStringList model_warnings_;
-    QFutureWatcher<LoadResult *> *loader_ = nullptr;
-    QString loading_path_;
-    bool load_unclaimed_ = false; // a load's result that load_finished has not taken
     std::string pending_preset_; // applied again once the next model is loaded
     QString pending_preset_name_;
+    const CapabilityTable capabilities_;
 
     QTabWidget *tabs_ = nullptr;
+    AlgorithmPanel *algorithm_panel_ = nullptr;
+    OpacityPanel *opacity_panel_ = nullptr;
+    PartsPanel *parts_panel_ = nullptr;
+    CameraPanel *camera_panel_ = nullptr;
+    ViewsPanel *views_panel_ = nullptr;
+    StatsPanel *stats_panel_ = nullptr;
+    ComparePanel *compare_panel_ = nullptr;
+
     QProgressBar *progress_ = nullptr;
     QLabel *progress_label_ = nullptr;
     QPushButton *cancel_button_ = nullptr;
@@ -192,24 +195,6 @@ private:
     SavedStateText saved_; // as read, updated by each save
     Start start_ = Start::Restore;
     QString last_save_error_; // said once
-    bool syncing_ = false; // true while the panel is being set from the settings
-    std::vector<std::function<void()>> sync_actions_; // refresh each control from the settings
-
-    QComboBox *algorithm_combo_ = nullptr;
-    QComboBox *modulation_combo_ = nullptr, *view_combo_ = nullptr, *distance_combo_ = nullptr;
-    QAction *heatmap_action_ = nullptr;
-    ComparePanel *compare_panel_ = nullptr;
-    CapabilityTable capabilities_;
-    QSlider *alpha_slider_ = nullptr;
-    PartsPanel *parts_panel_ = nullptr;
-    QPlainTextEdit *stats_text_ = nullptr;
-    QListWidget *saved_views_ = nullptr;
-    std::vector<Camera> saved_cameras_;
+    std::vector<std::function<void()>> sync_actions_; // the menus' checks follow the settings
     QPointer<QMessageBox> error_box_;
-    std::vector<RenderSettings> undo_stack_, redo_stack_;
-    RenderSettings committed_settings_;
-    std::string committed_key_;
-    bool restoring_settings_ = false;
-    QTimer *coalesce_timer_ = nullptr;
-    QAction *undo_action_ = nullptr, *redo_action_ = nullptr;
 };

@@ -35,7 +35,7 @@ QString seconds_text(double ms)
 
 } // namespace
 
-RenderView::RenderView(QWidget *parent) : QWidget(parent)
+RenderView::RenderView(SettingsModel &settings_model, QWidget *parent) : QWidget(parent), settings_(settings_model)
 {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(64, 64);
@@ -75,7 +75,7 @@ RenderView::RenderView(QWidget *parent) : QWidget(parent)
             rest_timer_->stop();
             emit frame_cancelled(QString("the full frame took longer than %1 with the restored settings (%2); "
                                          "showing the coarse frame: Render (F5) renders it in full")
-                                     .arg(seconds_text(budget), QString::fromStdString(settings.algorithm)));
+                                     .arg(seconds_text(budget), QString::fromStdString(settings().algorithm)));
         }
         if (elapsed > kProgressAfterMs)
             update();
@@ -106,7 +106,7 @@ RenderView::RenderView(QWidget *parent) : QWidget(parent)
                 }
                 QString what = id == export_id_ ? "export" : id == latest_coarse_id_ ? "coarse frame" : "full frame";
                 progress_text_ = QString("%1 %2: %3, %4 stages, %5 — Esc cancels")
-                                     .arg(QString::fromStdString(settings.algorithm), what, stage)
+                                     .arg(QString::fromStdString(settings().algorithm), what, stage)
                                      .arg(stages_done)
                                      .arg(seconds_text(elapsed_ms));
                 emit frame_progress(stage, stages_done, elapsed_ms);
@@ -132,11 +132,11 @@ void RenderView::reset_camera()
     if (!model_)
         return;
     QSize size = pixel_size();
+    Camera &camera = settings_.camera();
     camera.set_mode(Camera::Mode::Orbit);
     camera.orthographic = false;
     camera.frame(*model_, size.width(), size.height());
-    emit camera_changed();
-    request_frame(true);
+    camera_moved();
 }
 
 QSize RenderView::pixel_size() const
@@ -147,7 +147,7 @@ QSize RenderView::pixel_size() const
 
 QSize RenderView::side_pixel_size() const
 {
-    return split_view::side_size(settings.split, pixel_size());
+    return split_view::side_size(settings().split, pixel_size());
 }
 
 QSize RenderView::render_size() const
@@ -158,7 +158,7 @@ QSize RenderView::render_size() const
 QImage RenderView::shown_a() const
 {
     const FrameResult *r = shown_result_.get();
-    if (r && settings.error_view && r->error_map.present)
+    if (r && settings().error_view && r->error_map.present)
         return r->error_map.map;
     return shown_;
 }
@@ -166,9 +166,9 @@ QImage RenderView::shown_a() const
 QImage RenderView::shown_b() const
 {
     const FrameResult *r = shown_result_.get();
-    if (!r || !r->split || settings.split == SplitMode::Off)
+    if (!r || !r->split || settings().split == SplitMode::Off)
         return QImage();
-    if (settings.error_view && r->b.error_map.present)
+    if (settings().error_view && r->b.error_map.present)
         return r->b.error_map.map;
     return r->b.image;
 }
@@ -176,7 +176,7 @@ QImage RenderView::shown_b() const
 void RenderView::update_overlays()
 {
     const FrameResult *r = shown_result_.get();
-    bool map = settings.error_view && r && (r->error_map.present || (r->split && r->b.error_map.present));
+    bool map = settings().error_view && r && (r->error_map.present || (r->split && r->b.error_map.present));
     legend_->set_bar_width(std::min(150, width() / 2 - 40)); // a small corner of a small view
     legend_->move(6, height() - legend_->height() - 6);
     legend_->setVisible(map);
@@ -202,21 +202,21 @@ bool RenderView::settled() const
 oit_frame_settings RenderView::current_frame(std::vector<float> &storage) const
 {
     QSize size = side_pixel_size();
-    return make_frame(settings, *model_, camera, size.width(), size.height(), storage);
+    return make_frame(settings(), *model_, camera(), size.width(), size.height(), storage);
 }
 
 FrameJob RenderView::make_job(int width, int height, int coarse_scale) const
 {
     FrameJob job;
     job.model = model_;
-    job.algorithm = settings.algorithm;
-    job.config = settings.config;
-    job.frame = make_frame(settings, *model_, camera, width, height, job.component_alpha);
+    job.algorithm = settings().algorithm;
+    job.config = settings().config;
+    job.frame = make_frame(settings(), *model_, camera(), width, height, job.component_alpha);
     job.frame.local.component_alpha = nullptr; // the worker points it at its copy
     job.coarse_scale = coarse_scale;
-    if (settings.split != SplitMode::Off)
-        job.algorithm_b = settings.split_algorithm;
-    job.error_view = settings.error_view;
+    if (settings().split != SplitMode::Off)
+        job.algorithm_b = settings().split_algorithm;
+    job.error_view = settings().error_view;
     return job;
 }
 
@@ -401,10 +401,10 @@ void RenderView::paintEvent(QPaintEvent *)
 {
     QPainter painter(this);
     const FrameResult *r = shown_result_.get();
-    if (settings.split != SplitMode::Off && r && r->split) {
+    if (settings().split != SplitMode::Off && r && r->split) {
         auto label = [this](const std::string &name, const oit_stats &stats, const ErrorResult &error) {
             QString text = QString("%1 %2 ms").arg(QString::fromStdString(name)).arg(stats.cpu_ms, 0, 'f', 1);
-            if (settings.error_view && error.present)
+            if (settings().error_view && error.present)
                 text += QString(", rmse %1").arg(error.figures.rmse, 0, 'f', 2);
             return text;
         };
@@ -412,7 +412,7 @@ void RenderView::paintEvent(QPaintEvent *)
         split_view::Side b{shown_b(), r->b.status == OIT_OK
                                           ? label(r->b.algorithm, r->b.stats, r->b.error_map)
                                           : QString::fromStdString(r->b.algorithm) + " failed"};
-        split_view::paint(painter, size(), devicePixelRatioF(), settings.split, settings.wipe, a, b);
+        split_view::paint(painter, size(), devicePixelRatioF(), settings().split, settings().wipe, a, b);
     } else if (shown_.isNull()) {
         painter.fillRect(rect(), QColor(89, 89, 97));
     } else {
@@ -436,7 +436,7 @@ void RenderView::paintEvent(QPaintEvent *)
     else if (rendering() && running_clock_.isValid() && running_clock_.elapsed() > kProgressAfterMs &&
              !progress_text_.isEmpty())
         text = progress_text_;
-    else if (settings.error_view && r && !r->error_map.problem.isEmpty())
+    else if (settings().error_view && r && !r->error_map.problem.isEmpty())
         text = "error view: " + r->error_map.problem;
     if (!text.isEmpty()) {
         QFontMetrics metrics(font());
@@ -458,8 +458,8 @@ void RenderView::resizeEvent(QResizeEvent *event)
 
 void RenderView::mousePressEvent(QMouseEvent *event)
 {
-    if (settings.split == SplitMode::Wipe && event->button() == Qt::LeftButton &&
-        split_view::grabs_wipe_line(event->pos(), settings.wipe, size())) {
+    if (settings().split == SplitMode::Wipe && event->button() == Qt::LeftButton &&
+        split_view::grabs_wipe_line(event->pos(), settings().wipe, size())) {
         dragging_wipe_ = true; // the line, not the camera
         setFocus();
         return;
@@ -474,14 +474,14 @@ void RenderView::mouseMoveEvent(QMouseEvent *event)
 {
     if (dragging_wipe_) {
         // the images are there already: only the boundary moves, nothing renders
-        settings.wipe = split_view::wipe_at(event->pos().x(), width());
+        settings_.render_settings().wipe = split_view::wipe_at(event->pos().x(), width());
         update();
-        emit wipe_moved(settings.wipe);
+        emit wipe_moved(settings().wipe);
         return;
     }
     if (buttons_ == Qt::NoButton) {
-        bool near = settings.split == SplitMode::Wipe &&
-                    split_view::grabs_wipe_line(event->pos(), settings.wipe, size());
+        bool near = settings().split == SplitMode::Wipe &&
+                    split_view::grabs_wipe_line(event->pos(), settings().wipe, size());
         if (near)
             setCursor(Qt::SplitHCursor);
         else
@@ -498,6 +498,7 @@ void RenderView::mouseMoveEvent(QMouseEvent *event)
     QSize size = pixel_size();
     bool pan = (event->buttons() & (Qt::RightButton | Qt::MiddleButton)) ||
                (event->modifiers() & Qt::ShiftModifier);
+    Camera &camera = settings_.camera();
     if (pan)
         camera.pan(to - from, size.height());
     else if (camera.mode() == Camera::Mode::Orbit)
@@ -505,8 +506,7 @@ void RenderView::mouseMoveEvent(QMouseEvent *event)
     else
         camera.look(to - from);
     last_mouse_ = event->pos();
-    emit camera_changed();
-    request_frame(true);
+    camera_moved();
 }
 
 void RenderView::mouseReleaseEvent(QMouseEvent *event)
@@ -527,9 +527,8 @@ void RenderView::wheelEvent(QWheelEvent *event)
 {
     float steps = float(event->angleDelta().y()) / 120.0f;
     if (steps != 0.0f && model_) {
-        camera.zoom(steps);
-        emit camera_changed();
-        request_frame(true);
+        settings_.camera().zoom(steps);
+        camera_moved();
     }
     event->accept();
 }
@@ -541,7 +540,7 @@ void RenderView::keyPressEvent(QKeyEvent *event)
         cancel_frame();
         return;
     }
-    if (camera.mode() == Camera::Mode::Walk &&
+    if (camera().mode() == Camera::Mode::Walk &&
         std::find(std::begin(walk_keys), std::end(walk_keys), event->key()) != std::end(walk_keys)) {
         if (!event->isAutoRepeat()) {
             walk_keys_.insert(event->key());
@@ -578,7 +577,12 @@ void RenderView::walk_tick()
     d.x = float(walk_keys_.contains(Qt::Key_D)) - float(walk_keys_.contains(Qt::Key_A));
     d.y = float(walk_keys_.contains(Qt::Key_E)) - float(walk_keys_.contains(Qt::Key_Q));
     d.z = float(walk_keys_.contains(Qt::Key_W)) - float(walk_keys_.contains(Qt::Key_S));
-    camera.walk(d);
-    emit camera_changed();
+    settings_.camera().walk(d);
+    camera_moved();
+}
+
+void RenderView::camera_moved()
+{
+    settings_.camera_edited();
     request_frame(true);
 }

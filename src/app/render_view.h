@@ -1,6 +1,7 @@
 // render_view.h: the render view. A plain widget that shows the last frame
 // the RenderWorker finished (render_worker.h) and turns mouse and keys into
-// camera moves and frame requests; it never renders and never waits.
+// camera moves and frame requests; it never renders and never waits. The
+// settings and the camera it renders are the window's (settings_model.h).
 //
 // Progressive frames: while the user interacts (drags, walks, moves a slider,
 // types in a spin box) and full frames are slow, the view asks for a coarse
@@ -29,6 +30,7 @@
 #include "oit.h"
 #include "render_worker.h"
 #include "settings.h"
+#include "settings_model.h"
 
 class QTimer;
 class ErrorLegend;
@@ -40,11 +42,10 @@ public:
     static constexpr double kSlowFrameMs = 60.0;  // full frames slower than this go coarse first
     static constexpr int kProgressAfterMs = 300;  // then the overlay shows the frame's progress
 
-    explicit RenderView(QWidget *parent = nullptr);
+    // Shows frames of the settings model's render settings and camera (the
+    // window's); the mouse and keys move that camera and the wipe line.
+    explicit RenderView(SettingsModel &settings, QWidget *parent = nullptr);
     ~RenderView() override;
-
-    RenderSettings settings;
-    Camera camera;
 
     // The model to show (shared with the worker, which uploads it with the next frame).
     void set_model(std::shared_ptr<const oit_model> model);
@@ -111,7 +112,6 @@ signals:
     void frame_cancelled(const QString &why);
     void frame_progress(const QString &stage, int stages_done, double elapsed_ms);
     void options_left_out(const QStringList &messages); // empty: everything applied
-    void camera_changed();
     void clicked(const QPoint &pixel); // a click without a drag (pixel coordinates)
     void wipe_moved(float wipe);       // the user dragged the wipe line
 
@@ -127,6 +127,10 @@ protected:
     void focusOutEvent(QFocusEvent *event) override;
 
 private:
+    const RenderSettings &settings() const { return settings_.render_settings(); }
+    const Camera &camera() const { return settings_.camera(); }
+    // The camera moved by the mouse or keys: its controls follow, and a frame.
+    void camera_moved();
     FrameJob make_job(int width, int height, int coarse_scale) const;
     void submit(int coarse_scale, bool refinement = false);
     void frame_done(FrameResultPointer result);
@@ -134,6 +138,7 @@ private:
     bool interacting() const;
     void update_overlays();
 
+    SettingsModel &settings_; // the window's
     std::shared_ptr<const oit_model> model_;
     std::unique_ptr<RenderWorker> worker_;
     bool gl_ready_ = false;

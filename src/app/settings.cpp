@@ -1,6 +1,5 @@
 // settings.cpp: see settings.h.
 #include "settings.h"
-#include "oit_shared.h" // OIT_APPROX_LAYERS_DEFAULT, _MAX
 
 #include <algorithm>
 #include <cmath>
@@ -408,7 +407,7 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     add(d, "sort", Value(rapidjson::StringRef(s.config.ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "array" : "insertion")), a);
     add(d, "max-memory", Value(uint64_t(s.config.max_memory_bytes / (1024 * 1024))), a);
     add(d, "max-layers", Value(s.config.max_layers), a);
-    add(d, "layers", Value(s.config.layers == 0 ? OIT_APPROX_LAYERS_DEFAULT : s.config.layers), a);
+    add(d, "layers", Value(s.config.layers == 0 ? OIT_LAYERS_DEFAULT : s.config.layers), a);
     add(d, "moments", Value(rapidjson::StringRef(oit_moments_name(s.config.moments))), a);
     add(d, "alpha", Value(double(s.alpha)), a);
     add(d, "shading", Value(rapidjson::StringRef(s.shading == OIT_SHADE_FLAT ? "flat" : "headlight")), a);
@@ -506,7 +505,7 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
     if (!r.whole(d, "max-memory", 1, 1 << 22, megabytes) || !r.whole(d, "max-layers", 0, OIT_PEEL_LAYER_CAP_MAX, s.config.max_layers))
         return false;
     s.config.max_memory_bytes = uint64_t(megabytes) * 1024 * 1024;
-    if (d.HasMember("layers") && !r.whole(d, "layers", 1, OIT_APPROX_LAYERS_MAX, s.config.layers))
+    if (d.HasMember("layers") && !r.whole(d, "layers", 1, OIT_LAYERS_MAX, s.config.layers))
         return false;
     static const char *const moment_names[] = {"power4", "power6", "trig3"};
     int moments = s.config.moments == OIT_MOMENTS_DEFAULT ? 0 : int(s.config.moments) - 1;

@@ -79,10 +79,10 @@ static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err
     const oit_algorithm_ops *ops = a->ops;
     if (numeric && oit_algorithm_reads(ops, OIT_OPTION_LAYERS)) {
         long layers;
-        if (!parse_int(parameter, 1, oit_approx_layers_max(), &layers))
+        if (!parse_int(parameter, 1, OIT_LAYERS_MAX, &layers))
             return oit_fail(err, OIT_E_INPUT,
                             "--algorithms: '%s': layers must be a whole number from 1 to %d", a->label,
-                            oit_approx_layers_max());
+                            OIT_LAYERS_MAX);
         a->layers = (int)layers;
     } else if (moments >= 0 && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS)) {
         a->moments = moments_values[moments];

@@ -139,8 +139,8 @@ static void print_render_help(FILE *out)
             "                         and \"truncated\": true\n",
             algorithms_reading(OIT_OPTION_MAX_LAYERS, reading, sizeof reading));
     fprintf(out, "  --layers K             %s: layers kept per pixel, 1..%d (default %d)\n",
-            algorithms_reading(OIT_OPTION_LAYERS, reading, sizeof reading), oit_approx_layers_max(),
-            oit_approx_layers_default());
+            algorithms_reading(OIT_OPTION_LAYERS, reading, sizeof reading), OIT_LAYERS_MAX,
+            OIT_LAYERS_DEFAULT);
     fprintf(out, "  --moments M            %s: power4, power6 or trig3 (default power4)\n",
             algorithms_reading(OIT_OPTION_MOMENTS, reading, sizeof reading));
     fputs("  --error-vs-reference   also render the frame with the CPU reference and report the error:\n"

@@ -293,9 +293,9 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     } else if (strcmp(flag, "--layers") == 0) {
         NEED_VALUE();
         long layers;
-        if (!parse_int(value, 1, oit_approx_layers_max(), &layers)) {
+        if (!parse_int(value, 1, OIT_LAYERS_MAX, &layers)) {
             *status = oit_fail(err, OIT_E_INPUT, "--layers must be a whole number from 1 to %d, got '%s'",
-                               oit_approx_layers_max(), value);
+                               OIT_LAYERS_MAX, value);
             return -1;
         }
         o->config.layers = (int)layers;

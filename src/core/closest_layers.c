@@ -61,6 +61,8 @@ const oit_capabilities closest_layers_capabilities = {
 };
 
 _Static_assert(OIT_CLOSEST_HISTOGRAM_BINS == OIT_HISTOGRAM_BINS, "oit_shared.h and oit.h disagree");
+_Static_assert(OIT_APPROX_LAYERS_DEFAULT == OIT_LAYERS_DEFAULT && OIT_APPROX_LAYERS_MAX == OIT_LAYERS_MAX,
+               "oit_shared.h and oit.h disagree");
 _Static_assert(OIT_CLOSEST_COUNTER_HISTOGRAM + OIT_CLOSEST_HISTOGRAM_BINS == OIT_CLOSEST_COUNTER_COUNT,
                "the histogram ends the counters");
 

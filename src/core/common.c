@@ -62,16 +62,6 @@ void oit_algorithm_config_defaults(oit_algorithm_config *config)
     config->neighbour_quality = true;
 }
 
-int oit_approx_layers_default(void)
-{
-    return OIT_APPROX_LAYERS_DEFAULT;
-}
-
-int oit_approx_layers_max(void)
-{
-    return OIT_APPROX_LAYERS_MAX;
-}
-
 const char *oit_view_name(oit_view view)
 {
     static const char *const names[] = {"colour",     "heatmap",   "peel-limit", "layer",

@@ -578,6 +578,13 @@ typedef enum oit_moments {
 /* "power4", "power6", "trig3" (the command line's names); "unknown" outside the enum */
 const char *oit_moments_name(oit_moments moments);
 
+/* kbuffer, hybrid, mlab: the layers kept per pixel (oit_algorithm_config.layers, --layers)
+ * by default and at most, for programs that must not include the shaders' header; equal
+ * to shaders/common/oit_shared.h's OIT_APPROX_LAYERS_DEFAULT and _MAX (closest_layers.c
+ * asserts it). */
+#define OIT_LAYERS_DEFAULT 8
+#define OIT_LAYERS_MAX 64
+
 typedef struct oit_algorithm_config {
     const char *shader_dir;     /* root of the shader tree (contains common/) */
     uint64_t max_memory_bytes;  /* budget for buffers that grow (fragment pools; ib draws a
@@ -599,8 +606,8 @@ typedef struct oit_algorithm_config {
      * one buffer, as if the GL's limit (GL_MAX_SHADER_STORAGE_BLOCK_SIZE) were
      * that low, so frames are drawn in bands of rows without 8M fragments */
     uint64_t buffer_fragment_limit;
-    /* kbuffer, hybrid, mlab: the layers kept per pixel (k), 1..OIT_APPROX_LAYERS_MAX;
-       0: OIT_APPROX_LAYERS_DEFAULT. Others ignore it. */
+    /* kbuffer, hybrid, mlab: the layers kept per pixel (k), 1..OIT_LAYERS_MAX;
+       0: OIT_LAYERS_DEFAULT. Others ignore it. */
     int layers;
     oit_moments moments; /* mboit; others ignore it */
     /* tests only (false normally): mlab's clear leaves every pixel's lock taken,
@@ -610,11 +617,6 @@ typedef struct oit_algorithm_config {
 } oit_algorithm_config;
 
 void oit_algorithm_config_defaults(oit_algorithm_config *config);
-/* The range of oit_algorithm_config.layers: its default and its largest value
- * (OIT_APPROX_LAYERS_DEFAULT and OIT_APPROX_LAYERS_MAX of oit_shared.h, which
- * size the shaders' arrays), for shells that check or offer it. */
-int oit_approx_layers_default(void);
-int oit_approx_layers_max(void);
 
 /* A model ready to draw: the CPU model and, when a GL context exists, its buffers. */
 typedef struct oit_scene {

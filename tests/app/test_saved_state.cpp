@@ -232,7 +232,7 @@ private slots:
                 QString said = messages(window);
                 QVERIFY2(said.contains("saved settings " + c.said), qPrintable(said));
                 QVERIFY2(said.contains("not used (the defaults are), kept as " + bad), qPrintable(said));
-                QCOMPARE(QString::fromStdString(window.view()->settings.algorithm), QString("ll")); // the default
+                QCOMPARE(QString::fromStdString(window.settings_model()->render_settings().algorithm), QString("ll")); // the default
                 QCOMPARE(contents(bad), c.text);
                 window.close();
             }
@@ -273,7 +273,7 @@ private slots:
                  "the folder is still writable (root with CAP_DAC_OVERRIDE?)");
         {
             MainWindow window(MainWindow::Start::Restore);
-            QCOMPARE(QString::fromStdString(window.view()->settings.algorithm), QString("dp")); // read as usual
+            QCOMPARE(QString::fromStdString(window.settings_model()->render_settings().algorithm), QString("dp")); // read as usual
             window.set_algorithm("ll");
             load_default_model(window);
             QString said = messages(window);

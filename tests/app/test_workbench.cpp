@@ -177,6 +177,10 @@ private:
     QString work;
     int dumped = 0;
 
+    // The window's render settings and camera (its settings model).
+    RenderSettings &settings() { return window->settings_model()->render_settings(); }
+    Camera &camera() { return window->settings_model()->camera(); }
+
     // Wait until the full frame of the current settings is shown (the worker
     // renders off the GUI thread) and return what the widget shows.
     QImage frame()
@@ -213,8 +217,8 @@ private slots:
     void init()
     {
         // every case starts from the defaults on the gearbox
-        window->view()->settings = RenderSettings();
-        window->view()->settings.reset_parts(*window->model());
+        settings() = RenderSettings();
+        settings().reset_parts(*window->model());
         window->view()->reset_camera();
         window->settings_changed();
     }
@@ -244,7 +248,7 @@ private slots:
         Difference exact = compare(ll, dp, 2);
         QVERIFY2(exact.share_over <= 0.01, qPrintable(QString("ll vs dp: %1").arg(exact.share_over)));
         QVERIFY2(compare(ll, blend, 8).share_over > 0.001, "blend should differ from ll on the gearbox");
-        QCOMPARE(QString::fromStdString(window->view()->settings.algorithm), QString("blend"));
+        QCOMPARE(QString::fromStdString(settings().algorithm), QString("blend"));
         // the stats follow: dp reports peeled layers
         window->set_algorithm("dp");
         frame();
@@ -254,12 +258,12 @@ private slots:
     void a_layer_cap_that_cuts_says_so()
     {
         window->set_algorithm("dp");
-        window->view()->settings.config.max_layers = 2; // the gearbox has more layers
+        settings().config.max_layers = 2; // the gearbox has more layers
         window->settings_changed();
         frame();
         QVERIFY(window->view()->last_stats().truncated);
         QVERIFY2(window->status_text().contains("TRUNCATED"), qPrintable(window->status_text()));
-        window->view()->settings.config.max_layers = 0; // no cap
+        settings().config.max_layers = 0; // no cap
         window->settings_changed();
         frame();
         QVERIFY(!window->view()->last_stats().truncated);
@@ -271,36 +275,36 @@ private slots:
     void approximation_parameters_are_settings()
     {
         window->set_algorithm("kbuffer");
-        window->view()->settings.config.layers = 8;
+        settings().config.layers = 8;
         window->settings_changed();
         QImage eight = frame();
-        window->view()->settings.config.layers = 1; // the gearbox has more layers: the tail shows
+        settings().config.layers = 1; // the gearbox has more layers: the tail shows
         window->settings_changed();
         QImage one = frame();
         QVERIFY2(compare(eight, one, 2).share_over > 0.0, "--layers did not reach the algorithm");
         QVERIFY2(window->render_command_for_view("v.png").contains(" --layers 1"),
                  qPrintable(window->render_command_for_view("v.png")));
         window->set_algorithm("mboit");
-        window->view()->settings.config.moments = OIT_MOMENTS_TRIG3;
+        settings().config.moments = OIT_MOMENTS_TRIG3;
         window->settings_changed();
         QImage trig = frame();
         QString command = window->render_command_for_view("v.png");
         QVERIFY2(command.contains(" --moments trig3") && !command.contains("--layers"), qPrintable(command));
-        window->view()->settings.config.moments = OIT_MOMENTS_POWER4;
+        settings().config.moments = OIT_MOMENTS_POWER4;
         window->settings_changed();
         QVERIFY2(compare(trig, frame(), 2).share_over > 0.0, "--moments did not reach the algorithm");
-        window->view()->settings.config.moments = OIT_MOMENTS_TRIG3;
+        settings().config.moments = OIT_MOMENTS_TRIG3;
         QString path = work + "/approximations.json", error;
         QVERIFY2(window->save_preset(path, error), qPrintable(error));
-        window->view()->settings.config.layers = 0;
-        window->view()->settings.config.moments = OIT_MOMENTS_DEFAULT;
+        settings().config.layers = 0;
+        settings().config.moments = OIT_MOMENTS_DEFAULT;
         QVERIFY2(window->load_preset(path, error), qPrintable(error));
-        QCOMPARE(window->view()->settings.config.layers, 1);
-        QCOMPARE(int(window->view()->settings.config.moments), int(OIT_MOMENTS_TRIG3));
+        QCOMPARE(settings().config.layers, 1);
+        QCOMPARE(int(settings().config.moments), int(OIT_MOMENTS_TRIG3));
         window->set_algorithm("ll");
         QVERIFY(!window->render_command_for_view("v.png").contains("--layers"));
-        window->view()->settings.config.layers = 0;
-        window->view()->settings.config.moments = OIT_MOMENTS_DEFAULT;
+        settings().config.layers = 0;
+        settings().config.moments = OIT_MOMENTS_DEFAULT;
         window->settings_changed();
         frame();
     }
@@ -309,11 +313,11 @@ private slots:
     {
         QImage half = frame();
         window->alpha_slider()->setValue(window->alpha_slider()->maximum());
-        QCOMPARE(window->view()->settings.alpha, 1.0f);
+        QCOMPARE(settings().alpha, 1.0f);
         QImage opaque = frame();
         QVERIFY2(ink(opaque) > ink(half) * 1.05, "more opacity, more ink");
         window->alpha_slider()->setValue(0);
-        QCOMPARE(window->view()->settings.alpha, 0.0f);
+        QCOMPARE(settings().alpha, 0.0f);
         QVERIFY2(ink(frame()) < 1e-6, "alpha 0 shows only the background");
     }
 
@@ -334,7 +338,7 @@ private slots:
             window->set_part_visible(int(i), false);
         QVERIFY2(ink(frame()) < 1e-6, "every part hidden shows only the background");
         // and the per-part slider: a part at 0 is as good as hidden
-        window->view()->settings.reset_parts(*model);
+        settings().reset_parts(*model);
         window->set_part_alpha(largest, 0.0f);
         QCOMPARE(compare(frame(), without, 1).max <= 1, true);
     }
@@ -391,11 +395,11 @@ private slots:
             QSKIP("OIT_CLI is not set");
         // something other than the defaults: dp, more opacity, turned, a part faded, a grey background
         window->set_algorithm("dp");
-        RenderSettings &s = window->view()->settings;
+        RenderSettings &s = settings();
         s.alpha = 0.7f;
         s.background[0] = s.background[1] = s.background[2] = 0.25f;
         window->set_part_alpha(1, 0.3f);
-        window->view()->camera.trackball(glm::vec2(80, 60), glm::vec2(100, 50), view_size.width(), view_size.height());
+        camera().trackball(glm::vec2(80, 60), glm::vec2(100, 50), view_size.width(), view_size.height());
         window->settings_changed();
         QString exported = work + "/export.png", rendered = work + "/render.png";
         QString error;
@@ -476,7 +480,7 @@ private slots:
     void presets_round_trip_and_name_errors()
     {
         window->set_algorithm("wboit");
-        window->view()->settings.alpha = 0.8f;
+        settings().alpha = 0.8f;
         window->set_part_visible(0, false);
         QString path = work + "/preset.json", error;
         QVERIFY2(window->save_preset(path, error), qPrintable(error));
@@ -484,8 +488,8 @@ private slots:
         init();
         QVERIFY(compare(saved, frame(), 2).share_over > 0.0);
         QVERIFY2(window->load_preset(path, error), qPrintable(error));
-        QCOMPARE(QString::fromStdString(window->view()->settings.algorithm), QString("wboit"));
-        QCOMPARE(window->view()->settings.part_visible[0], char(0));
+        QCOMPARE(QString::fromStdString(settings().algorithm), QString("wboit"));
+        QCOMPARE(settings().part_visible[0], char(0));
         QCOMPARE(compare(saved, frame(), 0).max, 0);
 
         QString bad = work + "/bad-preset.json";
@@ -505,12 +509,12 @@ private slots:
     void settings_persist()
     {
         window->set_algorithm("ddp");
-        window->view()->settings.alpha = 0.3f;
+        settings().alpha = 0.3f;
         window->close(); // closeEvent writes the saved state (test mode: a private location)
         {
             MainWindow restored(MainWindow::Start::Restore);
-            QCOMPARE(QString::fromStdString(restored.view()->settings.algorithm), QString("ddp"));
-            QCOMPARE(restored.view()->settings.alpha, 0.3f);
+            QCOMPARE(QString::fromStdString(restored.settings_model()->render_settings().algorithm), QString("ddp"));
+            QCOMPARE(restored.settings_model()->render_settings().alpha, 0.3f);
             QCOMPARE(restored.saved_last_model(), window->model_path());
             QString path = QStandardPaths::writableLocation(QStandardPaths::GenericConfigLocation) +
                            "/oit-workbench-test/settings.json";
@@ -527,7 +531,7 @@ private slots:
         }
         {
             MainWindow fresh(MainWindow::Start::Fresh); // --fresh: the recent models, not the rest
-            QCOMPARE(QString::fromStdString(fresh.view()->settings.algorithm), QString("ll"));
+            QCOMPARE(QString::fromStdString(fresh.settings_model()->render_settings().algorithm), QString("ll"));
             QVERIFY(fresh.saved_last_model().isEmpty());
         }
         window->show();
@@ -539,7 +543,7 @@ private slots:
         window->set_algorithm("dp");
         QImage plain = frame();
         // fields diffuse over the whole surface: ib's alone (dp refuses them)
-        window->view()->settings.modulation.mode = OIT_MODULATE_FIELDS;
+        settings().modulation.mode = OIT_MODULATE_FIELDS;
         window->settings_changed();
         QImage left_out = frame();
         QVERIFY2(ink(left_out) > 0.05, "not a grey view");
@@ -581,7 +585,7 @@ private slots:
         window->set_algorithm("ib");
         QVERIFY(items->item(4)->isEnabled());
         // every entry of the table agrees with a frame: dp leaves fields out, ib does not
-        window->view()->settings.modulation.mode = OIT_MODULATE_FIELDS;
+        settings().modulation.mode = OIT_MODULATE_FIELDS;
         window->settings_changed();
         frame();
         QVERIFY(window->view()->last_result()->left_out.empty());
@@ -638,7 +642,7 @@ private slots:
         };
 
         // 1. dp's full frame (28 layers, seconds on llvmpipe) starts
-        view->settings.algorithm = "dp";
+        settings().algorithm = "dp";
         window->sync_panel_from_settings();
         view->request_frame(false);
         QTRY_VERIFY_WITH_TIMEOUT(view->rendering(), 5000);
@@ -715,7 +719,7 @@ private slots:
         QSignalSpy done(view->worker(), &RenderWorker::frame_done);
         QSignalSpy progress(view->worker(), &RenderWorker::progress);
         // blend's frame and then the reference's of the same frame (about 0.6 s here)
-        view->settings.error_view = true;
+        settings().error_view = true;
         window->sync_panel_from_settings();
         view->request_frame(false);
         quint64 job = 0;
@@ -800,8 +804,8 @@ private slots:
         std::vector<float> storage;
         oit_frame_settings f = window->view()->current_frame(storage);
         PickResult expected = pick(*window->model(), f.modelview, f.projection, f.width, f.height, centre.x() + 0.5,
-                                   centre.y() + 0.5, window->view()->settings.part_alpha,
-                                   window->view()->settings.part_visible);
+                                   centre.y() + 0.5, settings().part_alpha,
+                                   settings().part_visible);
         QVERIFY2(expected.component >= 0, "the gearbox covers the centre of the view");
         QTest::mouseClick(window->view(), Qt::LeftButton, Qt::NoModifier, centre);
         QCOMPARE(window->parts_panel()->selected_parts(), std::vector<int>{expected.component});
@@ -852,10 +856,10 @@ private slots:
         bounds(smallest, lo, hi);
         // bounds are relative to the model's origin; the camera is in file coordinates
         const glm::dvec3 origin(model->origin[0], model->origin[1], model->origin[2]);
-        QVERIFY(glm::length(window->view()->camera.target - origin - 0.5 * glm::dvec3(lo + hi)) < 1e-4 * model->radius);
+        QVERIFY(glm::length(camera().target - origin - 0.5 * glm::dvec3(lo + hi)) < 1e-4 * model->radius);
         QVERIFY2(compare(whole, frame(), 8).share_over > 0.05, "framing a part changes the view");
         // standard views look along the axes (View > Standard view, Alt+1..7)
-        auto forward = [this] { return glm::vec3(window->view()->camera.orientation * glm::dvec3(0, 0, -1)); };
+        auto forward = [this] { return glm::vec3(camera().orientation * glm::dvec3(0, 0, -1)); };
         auto trigger = [this](const QString &text, const QKeySequence &key) {
             for (QAction *action : window->findChildren<QAction *>())
                 if (action->text() == text && action->shortcut() == key) {
@@ -876,13 +880,13 @@ private slots:
 
     void undo_and_redo_settings()
     {
-        RenderSettings &s = window->view()->settings;
+        RenderSettings &s = settings();
         window->reset_settings_history(); // init()'s reset is not a step
         QVERIFY(!window->undo_settings());
         window->alpha_slider()->setValue(window->alpha_slider()->maximum() / 4);
         window->alpha_slider()->setValue(window->alpha_slider()->maximum() / 5); // the same step (coalesced)
         float dragged = s.alpha;
-        QTest::qWait(MainWindow::kUndoCoalesceMs + 100);
+        QTest::qWait(SettingsModel::kUndoCoalesceMs + 100);
         window->set_algorithm("ddp");
         QVERIFY(window->undo_settings());
         QCOMPARE(QString::fromStdString(s.algorithm), QString("ll"));
@@ -969,7 +973,7 @@ private slots:
             coarse_shown = view->shown_a();
             legend_with_coarse = view->legend()->isVisible();
         });
-        view->camera.trackball(glm::vec2(80, 60), glm::vec2(95, 55), view_size.width(), view_size.height());
+        camera().trackball(glm::vec2(80, 60), glm::vec2(95, 55), view_size.width(), view_size.height());
         view->request_frame(true);
         QTRY_VERIFY_WITH_TIMEOUT(coarse != nullptr, 60000);
         disconnect(on_coarse);
@@ -1026,7 +1030,7 @@ private slots:
                          Qt::NoModifier);
         QApplication::sendEvent(view, &move);
         QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, QPoint(w / 4, h - 20));
-        QCOMPARE(view->settings.wipe, 0.25f);
+        QCOMPARE(settings().wipe, 0.25f);
         QCOMPARE(window->compare_panel()->findChild<QDoubleSpinBox *>("wipe")->value(), 0.25);
         QTest::qWait(50);
         QCOMPARE(done.count(), 0); // only the boundary moved: nothing rendered
@@ -1038,7 +1042,7 @@ private slots:
         QVERIFY(max_difference_in(dragged, ll, now_b) > 8);
         QCOMPARE(max_difference_in(dragged, ll, QRect(0, top, moved - band, h - top)), 0);
         // the camera still turns with a drag away from the line
-        view->settings.wipe = 0.5f;
+        settings().wipe = 0.5f;
         window->sync_panel_from_settings();
 
         // error view and split view together: each side's map, one reference
@@ -1098,7 +1102,7 @@ private slots:
         window->set_error_view(false);
         window->set_split(SplitMode::Off);
         QVERIFY2(window->load_preset(path, error), qPrintable(error));
-        const RenderSettings &s = window->view()->settings;
+        const RenderSettings &s = settings();
         QVERIFY(s.error_view);
         QCOMPARE(int(s.split), int(SplitMode::SideBySide));
         QCOMPARE(QString::fromStdString(s.split_algorithm), QString("wboit"));
@@ -1228,8 +1232,8 @@ private slots:
             QApplication::sendEvent(window, &event);
         };
         drop(preset);
-        QCOMPARE(QString::fromStdString(window->view()->settings.algorithm), QString("wboit"));
-        QCOMPARE(window->view()->settings.alpha, 0.25f);
+        QCOMPARE(QString::fromStdString(settings().algorithm), QString("wboit"));
+        QCOMPARE(settings().alpha, 0.25f);
         // a model file dropped on the window is loaded
         QSignalSpy loaded(window, &MainWindow::model_loaded);
         drop("/usr/share/assimp/models/OBJ/spider.obj");

@@ -1,0 +1,104 @@
+// algorithm_panel.cpp: see algorithm_panel.h.
+#include "algorithm_panel.h"
+
+#include <QColorDialog>
+#include <QComboBox>
+#include <QFormLayout>
+#include <QLabel>
+#include <QPushButton>
+#include <QSpinBox>
+
+#include <algorithm>
+
+AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : SettingsPanel(model, parent)
+{
+    RenderSettings &s = settings();
+    auto *form = new QFormLayout(this);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    QStringList names;
+    for (size_t i = 0; i < count; ++i)
+        names << list[i]->name;
+    auto *summary = new QLabel;
+    summary->setWordWrap(true);
+    QComboBox *algorithm = combo(
+        names, [&s, names] { return std::max(0, int(names.indexOf(QString::fromStdString(s.algorithm)))); },
+        [this, &s, names](int i) {
+            s.algorithm = names[i].toStdString();
+            emit changed();
+        });
+    for (size_t i = 0; i < count; ++i)
+        algorithm->setItemData(int(i), QString(list[i]->summary), Qt::ToolTipRole);
+    on_sync([&s, summary] {
+        const oit_algorithm_ops *ops = oit_algorithm_find(s.algorithm.c_str());
+        summary->setText(ops ? QString("%1%2").arg(ops->summary, ops->exact ? " (exact)" : " (approximate)") : "");
+    });
+    form->addRow("algorithm (--algorithm)", algorithm);
+    form->addRow(summary);
+    form->addRow("sort (--sort, ll)", combo({"insertion", "array"}, [&s] { return int(s.config.ll_sort); },
+                                            [this, &s](int i) {
+                                                s.config.ll_sort = oit_ll_sort(i);
+                                                emit edited();
+                                            }));
+    form->addRow("neighbours (--neighbours, ib)",
+                 combo({"default (welded)", "index", "welded", "epsilon"}, [&s] { return int(s.modulation.neighbours); },
+                       [this, &s](int i) {
+                           s.modulation.neighbours = oit_neighbour_search(i);
+                           emit edited();
+                       }));
+    auto *memory = spin_box(1, 1 << 22, [&s] { return int(s.config.max_memory_bytes / (1024 * 1024)); },
+                            [this, &s](int mb) {
+                                s.config.max_memory_bytes = uint64_t(mb) * 1024 * 1024;
+                                emit edited();
+                            });
+    memory->setSuffix(" MB");
+    form->addRow("memory budget (--max-memory)", memory);
+    // 0 is "no cap" (peel until nothing is left), shown as "none"
+    auto *layer_cap = spin_box(0, OIT_PEEL_LAYER_CAP_MAX, [&s] { return s.config.max_layers; },
+                               [this, &s](int n) {
+                                   s.config.max_layers = n;
+                                   emit edited();
+                               });
+    layer_cap->setSpecialValueText("none");
+    form->addRow("layer cap (--max-layers, dp/ddp)", layer_cap);
+    // the approximations' parameters (OIT_OPTION_LAYERS / OIT_OPTION_MOMENTS in their capabilities)
+    auto *approx_layers = spin_box(1, OIT_LAYERS_MAX,
+                                   [&s] { return s.config.layers == 0 ? OIT_LAYERS_DEFAULT : s.config.layers; },
+                                   [this, &s](int n) {
+                                       s.config.layers = n;
+                                       emit edited();
+                                   });
+    approx_layers->setToolTip("Layers kept per pixel by kbuffer, hybrid and mlab (k): exact where no pixel has "
+                              "more fragments; memory grows with k");
+    form->addRow("layers (--layers, kbuffer/hybrid/mlab)", approx_layers);
+    auto *moments = combo({"power4", "power6", "trig3"},
+                          [&s] { return s.config.moments == OIT_MOMENTS_DEFAULT ? 0 : int(s.config.moments) - 1; },
+                          [this, &s](int i) {
+                              s.config.moments = oit_moments(i + 1);
+                              emit edited();
+                          });
+    moments->setToolTip("The moments mboit keeps per pixel: 4 or 6 power moments, or 3 trigonometric ones");
+    form->addRow("moments (--moments, mboit)", moments);
+    form->addRow("shading (--shading)", combo({"flat", "headlight"}, [&s] { return int(s.shading); },
+                                              [this, &s](int i) {
+                                                  s.shading = oit_shading_mode(i);
+                                                  emit edited();
+                                              }));
+    auto *background = new QPushButton;
+    connect(background, &QPushButton::clicked, this, [this, &s] {
+        QColor c = QColorDialog::getColor(QColor::fromRgbF(s.background[0], s.background[1], s.background[2]),
+                                          window(), "Background (--background)");
+        if (!c.isValid())
+            return;
+        s.background[0] = float(c.redF());
+        s.background[1] = float(c.greenF());
+        s.background[2] = float(c.blueF());
+        emit changed();
+    });
+    on_sync([&s, background] {
+        background->setIcon(swatch(s.background));
+        background->setText(colour_text(s.background));
+    });
+    form->addRow("background (--background)", background);
+}

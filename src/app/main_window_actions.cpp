@@ -1,0 +1,459 @@
+// main_window_actions.cpp: the window's menus and what their entries do
+// (main_window.h): open and recent models, presets, Export PNG, Copy as
+// command, undo and redo, the camera's views, the view's modes and the
+// algorithms. Each entry changes the settings model and asks for a frame as
+// the panels do.
+#include "main_window.h"
+#include "file_io.h"
+#include "parts_panel.h"
+#include "settings_panel.h"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QClipboard>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QFile>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFontDatabase>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QPlainTextEdit>
+#include <QRadioButton>
+#include <QSpinBox>
+#include <QUndoStack>
+#include <QVBoxLayout>
+
+namespace {
+
+// A menu entry with a shortcut that runs a function.
+template <class Function>
+QAction *menu_action(QMenu *menu, const QString &text, const QKeySequence &key, QObject *context, Function f)
+{
+    QAction *action = menu->addAction(text);
+    action->setShortcut(key);
+    QObject::connect(action, &QAction::triggered, context, f);
+    return action;
+}
+
+QString read_text_file(const QString &path, QString &error)
+{
+    // a regular file only: a FIFO or /dev/zero would block or never end
+    QByteArray bytes;
+    if (!read_regular_file(path, nullptr, bytes, error))
+        return QString();
+    return QString::fromUtf8(bytes);
+}
+
+} // namespace
+
+// ------------------------------------------------------------------ menus
+
+void MainWindow::build_menus()
+{
+    build_file_menu();
+
+    QMenu *edit = menuBar()->addMenu("&Edit");
+    QAction *undo = menu_action(edit, "&Undo settings change", QKeySequence::Undo, this, [this] { undo_settings(); });
+    QAction *redo = menu_action(edit, "&Redo settings change", QKeySequence::Redo, this, [this] { redo_settings(); });
+    undo->setEnabled(false);
+    redo->setEnabled(false);
+    connect(settings_->undo_stack(), &QUndoStack::canUndoChanged, undo, &QAction::setEnabled);
+    connect(settings_->undo_stack(), &QUndoStack::canRedoChanged, redo, &QAction::setEnabled);
+
+    build_view_menu();
+    build_help_menu();
+}
+
+void MainWindow::build_file_menu()
+{
+    QMenu *file = menuBar()->addMenu("&File");
+    file->addAction("&Open model…", this, &MainWindow::open_model_dialog, QKeySequence::Open);
+    recent_menu_ = file->addMenu("Open &recent");
+    QMenu *models = file->addMenu("&Models");
+    QString list_path = source_root() + "/config/models.json";
+    QString error;
+    QString text = read_text_file(list_path, error);
+    std::vector<ModelEntry> entries;
+    std::string list_error;
+    if (text.isEmpty() || !read_model_list(list_path.toStdString(), text.toStdString(), source_root().toStdString(),
+                                           entries, list_error)) {
+        models->addAction(error.isEmpty() ? QString::fromStdString(list_error) : error)->setEnabled(false);
+    }
+    for (const ModelEntry &entry : entries) {
+        QString path = QString::fromStdString(entry.path);
+        QAction *action = models->addAction(QString::fromStdString(entry.name), this, [this, path] { load_model(path); });
+        action->setToolTip(path);
+        action->setEnabled(QFileInfo::exists(path));
+    }
+    file->addSeparator();
+    file->addAction("&Export PNG…", this, &MainWindow::export_dialog, QKeySequence("Ctrl+E"));
+    file->addAction("&Copy as command", this, &MainWindow::copy_command, QKeySequence("Ctrl+Shift+C"));
+    file->addSeparator();
+    menu_action(file, "&Save settings preset…", QKeySequence::Save, this, [this] {
+        QString path = QFileDialog::getSaveFileName(this, "Save settings preset", QString(), "Presets (*.json)");
+        QString error;
+        if (!path.isEmpty() && !save_preset(path, error))
+            show_error("Save preset", error);
+    });
+    menu_action(file, "&Load settings preset…", QKeySequence("Ctrl+L"), this, [this] {
+        QString path = QFileDialog::getOpenFileName(this, "Load settings preset", QString(), "Presets (*.json)");
+        QString error;
+        if (!path.isEmpty() && !load_preset(path, error))
+            show_error("Load preset", error);
+    });
+    file->addSeparator();
+    file->addAction("&Quit", this, &QWidget::close, QKeySequence::Quit);
+}
+
+void MainWindow::build_view_menu()
+{
+    QMenu *view = menuBar()->addMenu("&View");
+    menu_action(view, "&Reset camera", QKeySequence("Home"), this, [this] { view_->reset_camera(); });
+    menu_action(view, "&Frame selected parts", QKeySequence("Ctrl+F"), this,
+                [this] { frame_parts(parts_panel_->selected_parts()); });
+    QMenu *standard = view->addMenu("&Standard view");
+    struct StandardView {
+        const char *name;
+        float azimuth, elevation;
+    };
+    // isometric: the cube's diagonal towards the eye, elevation atan(1 / sqrt 2)
+    static const StandardView standard_views[] = {{"&Front", 0, 0},   {"&Back", 180, 0},  {"&Left", -90, 0},
+                                                  {"&Right", 90, 0},  {"&Top", 0, 90},    {"Botto&m", 0, -90},
+                                                  {"&Isometric", 45, 35.26439f}};
+    int number = 1;
+    for (const StandardView &v : standard_views) {
+        float azimuth = v.azimuth, elevation = v.elevation;
+        menu_action(standard, v.name, QKeySequence(QString("Alt+%1").arg(number++)), this, [this, azimuth, elevation] {
+            settings_->camera().set_view_direction(azimuth, elevation);
+            settings_->camera_edited();
+            view_->request_frame(true);
+        });
+    }
+    QAction *ortho = view->addAction("&Orthographic");
+    ortho->setShortcut(QKeySequence("O"));
+    ortho->setCheckable(true);
+    connect(ortho, &QAction::triggered, this, [this](bool on) { set_camera_mode(settings_->camera().mode(), on); });
+    QAction *walk = view->addAction("&Walk mode (W/A/S/D, Q/E)");
+    walk->setShortcut(QKeySequence("V"));
+    walk->setCheckable(true);
+    connect(walk, &QAction::triggered, this, [this](bool on) {
+        set_camera_mode(on ? Camera::Mode::Walk : Camera::Mode::Orbit, settings_->camera().orthographic);
+    });
+    // the camera's state can change from the Camera tab, presets and saved views
+    auto sync_camera_actions = [this, ortho, walk] {
+        ortho->setChecked(settings_->camera().orthographic);
+        walk->setChecked(settings_->camera().mode() == Camera::Mode::Walk);
+    };
+    sync_actions_.push_back(sync_camera_actions);
+    QAction *heatmap = view->addAction("&Heatmap");
+    heatmap->setShortcut(QKeySequence("H"));
+    heatmap->setCheckable(true);
+    connect(heatmap, &QAction::triggered, this, [this](bool on) {
+        settings_->render_settings().modulation.view = on ? OIT_VIEW_HEATMAP : OIT_VIEW_COLOUR;
+        settings_changed();
+    });
+    sync_actions_.push_back([this, heatmap] {
+        const RenderSettings &s = settings_->render_settings();
+        heatmap->setChecked(s.modulation.view == OIT_VIEW_HEATMAP);
+        // greyed out where the algorithm cannot show it, unless it is on (the capability tables)
+        if (capabilities_.empty())
+            return;
+        auto [ok, tip] = capability(capabilities_, "view:heatmap", "heatmap view", QString::fromStdString(s.algorithm));
+        heatmap->setEnabled(ok || s.modulation.view == OIT_VIEW_HEATMAP);
+        heatmap->setToolTip(tip);
+    });
+    QAction *error_view = view->addAction("&Error against reference");
+    error_view->setShortcut(QKeySequence("R"));
+    error_view->setCheckable(true);
+    error_view->setToolTip("the error map of the frame against the CPU reference, with rmse, psnr, ssim, max "
+                           "and the share over 2 (--error-vs-reference)");
+    connect(error_view, &QAction::triggered, this, [this](bool on) { set_error_view(on); });
+    sync_actions_.push_back([this, error_view] { error_view->setChecked(settings_->render_settings().error_view); });
+    QAction *split = view->addAction("&Split view (wipe line)");
+    split->setShortcut(QKeySequence("X"));
+    split->setCheckable(true);
+    split->setToolTip("two algorithms of the same camera either side of a wipe line you drag");
+    connect(split, &QAction::triggered, this,
+            [this](bool on) { set_split(on ? SplitMode::Wipe : SplitMode::Off); });
+    QAction *side_by_side = view->addAction("Side &by side");
+    side_by_side->setCheckable(true);
+    side_by_side->setToolTip("two algorithms of the same camera, each at half the view's width");
+    connect(side_by_side, &QAction::triggered, this,
+            [this](bool on) { set_split(on ? SplitMode::SideBySide : SplitMode::Off); });
+    sync_actions_.push_back([this, split, side_by_side] {
+        split->setChecked(settings_->render_settings().split == SplitMode::Wipe);
+        side_by_side->setChecked(settings_->render_settings().split == SplitMode::SideBySide);
+    });
+    QMenu *algorithm_b_menu = view->addMenu("Split view's algorithm &B");
+    auto *algorithm_b_group = new QActionGroup(this);
+    {
+        size_t count = 0;
+        const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+        for (size_t i = 0; i < count; ++i) {
+            QString name = list[i]->name;
+            QAction *action = algorithm_b_menu->addAction(name, this, [this, name] {
+                SplitMode mode = settings_->render_settings().split;
+                set_split(mode == SplitMode::Off ? SplitMode::Wipe : mode, name);
+            });
+            action->setCheckable(true);
+            action->setToolTip(list[i]->summary);
+            algorithm_b_group->addAction(action);
+            sync_actions_.push_back([this, action, name] {
+                action->setChecked(QString::fromStdString(settings_->render_settings().split_algorithm) == name);
+            });
+        }
+        algorithm_b_menu->setToolTipsVisible(true);
+    }
+    QAction *continuous = view->addAction("&Continuous rendering (measure FPS)");
+    continuous->setShortcut(QKeySequence("F"));
+    continuous->setCheckable(true);
+    connect(continuous, &QAction::toggled, view_, &RenderView::set_continuous);
+    QAction *progressive = view->addAction("&Progressive frames (coarse while interacting)");
+    progressive->setCheckable(true);
+    progressive->setChecked(view_->progressive());
+    progressive->setToolTip("when full frames are slow, show a coarse frame during drags and slider moves "
+                            "and refine it when the input rests");
+    connect(progressive, &QAction::toggled, view_, &RenderView::set_progressive);
+    menu_action(view, "&Render full frame", QKeySequence("F5"), this, [this] { view_->request_frame(false); });
+    menu_action(view, "&Cancel frame", QKeySequence("Esc"), this, [this] { view_->cancel_frame(); });
+    view->addSeparator();
+    QMenu *algorithms = view->addMenu("&Algorithm");
+    auto *algorithm_group = new QActionGroup(this);
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    for (size_t i = 0; i < count; ++i) {
+        QString name = list[i]->name;
+        QAction *action = algorithms->addAction(name, this, [this, name] { set_algorithm(name); },
+                                                QKeySequence(QString("Ctrl+%1").arg(i + 1)));
+        action->setCheckable(true);
+        action->setToolTip(list[i]->summary);
+        algorithm_group->addAction(action);
+        sync_actions_.push_back([this, action, name] {
+            action->setChecked(QString::fromStdString(settings_->render_settings().algorithm) == name);
+        });
+    }
+    algorithms->setToolTipsVisible(true);
+    view->addSeparator();
+}
+
+void MainWindow::build_help_menu()
+{
+    QMenu *help = menuBar()->addMenu("&Help");
+    help->addAction("&Keyboard and mouse", this, [this] {
+        QMessageBox::information(this, "Keyboard and mouse",
+                                 "Orbit: left drag turns (virtual trackball), right or middle drag (or Shift) pans,\n"
+                                 "wheel zooms. Walk (V): W/A/S/D move, Q/E down/up, left drag looks around.\n"
+                                 "Home resets the camera, O toggles orthographic, H the heatmap,\n"
+                                 "Ctrl+1..7 choose the algorithm, Ctrl+E exports a PNG,\n"
+                                 "Ctrl+Shift+C copies the equivalent `oit render` command.");
+    });
+    help->addAction("&About", this, [this] {
+        QMessageBox::about(this, "About oit-workbench",
+                           QString("<b>oit-workbench</b> %1<br>Order-independent transparency for multi-part "
+                                   "models: compare the algorithms live on the same scene.<br>Renderer: %2")
+                               .arg(QApplication::applicationVersion(),
+                                    QString::fromStdString(view_->renderer()).toHtmlEscaped()));
+    });
+}
+
+void MainWindow::rebuild_recent_menu()
+{
+    recent_menu_->clear();
+    for (const QString &path : recent_)
+        recent_menu_->addAction(path, this, [this, path] { load_model(path); });
+    recent_menu_->setEnabled(!recent_.isEmpty());
+}
+
+void MainWindow::add_recent(const QString &path)
+{
+    recent_.removeAll(path);
+    recent_.prepend(path);
+    while (recent_.size() > 8)
+        recent_.removeLast();
+    rebuild_recent_menu();
+}
+
+void MainWindow::open_model_dialog()
+{
+    QString path = QFileDialog::getOpenFileName(this, "Open model", QFileInfo(model_path_).absolutePath(),
+                                                "Models (*.obj *.gltf *.glb *.stl *.ply *.fbx *.dae *.3ds *.off);;All files (*)");
+    if (!path.isEmpty())
+        load_model(path);
+}
+
+// ------------------------------------------------- presets, export, command
+
+bool MainWindow::load_preset(const QString &path, QString &error)
+{
+    // a regular file only: a FIFO or /dev/zero would block or never end
+    QByteArray bytes;
+    if (!read_regular_file(path, nullptr, bytes, error))
+        return false;
+    QString text = QString::fromUtf8(bytes);
+    RenderSettings s = settings_->render_settings();
+    Camera camera = settings_->camera();
+    bool has_camera = false;
+    std::string message;
+    if (!preset_from_json(path.toStdString(), text.toStdString(), s, camera, has_camera, model_.get(), message)) {
+        error = QString::fromStdString(message);
+        return false;
+    }
+    settings_->render_settings() = s;
+    if (has_camera)
+        settings_->camera() = camera;
+    // a model still loading gets the preset's parts and camera when it arrives
+    pending_preset_ = loading() || !model_ ? text.toStdString() : std::string();
+    pending_preset_name_ = path;
+    if (model_)
+        parts_panel_->set_model(model_.get(), s.part_alpha, s.part_visible);
+    settings_changed();
+    return true;
+}
+
+bool MainWindow::save_preset(const QString &path, QString &error)
+{
+    // written beside the file and renamed over it once whole: a failed write
+    // (a full disk) leaves the previous preset as it was; only a regular file
+    // is replaced (a link to a device or a FIFO is refused)
+    QByteArray bytes =
+        QByteArray::fromStdString(preset_to_json(settings_->render_settings(), settings_->camera(), model_.get()));
+    return write_output_file(path, nullptr, bytes, error);
+}
+bool MainWindow::export_png(const QString &path, int width, int height, QString &error)
+{
+    // checked before the frame: the core's writer would write into a FIFO (and
+    // wait for a reader, on the GUI thread) or a device rather than replace it
+    if (!check_output_path(path, nullptr, error))
+        return false;
+    oit_image image{};
+    oit_frame_settings frame;
+    std::string message;
+    if (!view_->render_offscreen(width, height, image, frame, message)) {
+        error = QString::fromStdString(message);
+        return false;
+    }
+    oit_error err{};
+    QByteArray bytes = QFile::encodeName(path);
+    QString refused;
+    bool ok = check_output_path(path, nullptr, refused) && // again: the frame took a while
+              oit_png_write(bytes.constData(), &image, &err) == OIT_OK;
+    oit_image_free(&image);
+    if (!ok)
+        error = refused.isEmpty() ? QString::fromUtf8(err.message) : refused;
+    else
+        log_message("export", QString("wrote %1 (%2x%3)").arg(path).arg(width).arg(height));
+    return ok;
+}
+
+QString MainWindow::oit_program() const
+{
+    QString dir = QCoreApplication::applicationDirPath();
+    for (const QString &candidate : {dir + "/oit", dir + "/../cli/oit", dir + "/../../src/cli/oit"})
+        if (QFileInfo(candidate).isExecutable())
+            return QFileInfo(candidate).canonicalFilePath();
+    return "oit";
+}
+
+QString MainWindow::render_command_for_view(const QString &out_path) const
+{
+    if (!model_)
+        return QString();
+    std::vector<float> storage;
+    oit_frame_settings frame = view_->current_frame(storage);
+    // what the view rendered: options the algorithm left out are left out here too
+    RenderSettings settings = settings_->render_settings();
+    FrameResultPointer last = view_->last_result();
+    if (last && last->status == OIT_OK && last->algorithm == settings.algorithm && !last->left_out.empty()) {
+        settings.modulation = last->modulation;
+        settings.focus_shape = last->focus_shape;
+    }
+    return QString::fromStdString(render_command(oit_program().toStdString(), model_path_.toStdString(),
+                                                 settings, frame, out_path.toStdString()));
+}
+
+void MainWindow::copy_command()
+{
+    QString command = render_command_for_view("view.png");
+    if (command.isEmpty())
+        return;
+    QApplication::clipboard()->setText(command);
+    // the whole command, wrapped and selectable (a message box cuts it off)
+    auto *dialog = new QDialog(this);
+    dialog->setObjectName("copied_command");
+    dialog->setWindowTitle("Copied as command");
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    auto *layout = new QVBoxLayout(dialog);
+    layout->addWidget(new QLabel("This `oit render` command (now on the clipboard) renders the current view:"));
+    auto *text = new QPlainTextEdit(command);
+    text->setObjectName("command_text");
+    text->setReadOnly(true);
+    text->setLineWrapMode(QPlainTextEdit::WidgetWidth);
+    text->setWordWrapMode(QTextOption::WrapAnywhere);
+    text->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+    text->setMinimumSize(560, 160);
+    layout->addWidget(text);
+    auto *buttons = new QDialogButtonBox(QDialogButtonBox::Close);
+    connect(buttons, &QDialogButtonBox::rejected, dialog, &QDialog::close);
+    layout->addWidget(buttons);
+    dialog->open();
+    status_label_->setText("copied the oit render command to the clipboard");
+    log_message("copied", command);
+    const RenderSettings &s = settings_->render_settings();
+    if (s.split != SplitMode::Off)
+        log_message("split view", QString("the command line has no split view: the command renders side A "
+                                          "(%1)%2, not side B (%3)")
+                                      .arg(QString::fromStdString(s.algorithm),
+                                           s.split == SplitMode::SideBySide ? " at half the view's width, as it is shown"
+                                                                            : "",
+                                           QString::fromStdString(s.split_algorithm)));
+}
+
+void MainWindow::export_dialog()
+{
+    if (!model_)
+        return;
+    QDialog dialog(this);
+    dialog.setWindowTitle("Export PNG");
+    auto *form = new QFormLayout(&dialog);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    QSize size = view_->side_pixel_size(); // side A's, side by side
+    auto *view_size = new QRadioButton(QString("view size (%1x%2)").arg(size.width()).arg(size.height()));
+    auto *custom = new QRadioButton("chosen size");
+    view_size->setChecked(true);
+    auto *w = new QSpinBox, *h = new QSpinBox;
+    w->setRange(1, 16384);
+    h->setRange(1, 16384);
+    w->setValue(size.width());
+    h->setValue(size.height());
+    auto *size_row = new QHBoxLayout;
+    size_row->addWidget(w);
+    size_row->addWidget(new QLabel("x"));
+    size_row->addWidget(h);
+    form->addRow(view_size);
+    form->addRow(custom, size_row);
+    auto *buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    form->addRow(buttons);
+    if (dialog.exec() != QDialog::Accepted)
+        return;
+    QString path = QFileDialog::getSaveFileName(this, "Export PNG", QFileInfo(model_path_).completeBaseName() + ".png",
+                                                "PNG images (*.png)");
+    if (path.isEmpty())
+        return;
+    int width = custom->isChecked() ? w->value() : size.width();
+    int height = custom->isChecked() ? h->value() : size.height();
+    QString error;
+    if (!export_png(path, width, height, error))
+        show_error("Export PNG", error);
+    else
+        status_label_->setText(QString("wrote %1 (%2x%3)").arg(path).arg(width).arg(height));
+}
+
+// ----------------------------------------------------------------- paths

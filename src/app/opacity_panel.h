@@ -1,0 +1,21 @@
+// opacity_panel.h: the settings panel's Opacity tab: what every algorithm
+// does (alpha, contrast, the focus shape and its region) and the Illustration
+// Buffer's modulations (curvature, distance, fields, halos).
+#pragma once
+
+#include "settings_panel.h"
+
+class QComboBox;
+class QSlider;
+
+class OpacityPanel : public SettingsPanel {
+    Q_OBJECT
+public:
+    // capabilities: which algorithm renders which modulation (greyed out for the others)
+    OpacityPanel(SettingsModel &settings, const CapabilityTable &capabilities, QWidget *parent = nullptr);
+    QSlider *alpha_slider() const { return alpha_slider_; }
+
+private:
+    QSlider *alpha_slider_ = nullptr;
+    QComboBox *modulation_ = nullptr, *distance_ = nullptr;
+};

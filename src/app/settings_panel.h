@@ -1,0 +1,82 @@
+// settings_panel.h: what the settings panel's tabs share. A SettingsPanel
+// binds its controls to the settings model (settings_model.h): each control
+// reads its setting in sync() and writes it when the user changes it, then
+// says so with edited() (render) or changed() (other controls show it too:
+// refresh them, then render); the window records the undo step and asks for
+// the frame. Also: the options an algorithm cannot express greyed out in a
+// combo box (the core's capability tables), and a tooltip on every control.
+#pragma once
+
+#include <QString>
+#include <QWidget>
+
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "render_worker.h" // CapabilityTable
+#include "settings_model.h"
+
+class QCheckBox;
+class QComboBox;
+class QIcon;
+class QSlider;
+class QSpinBox;
+
+class SettingsPanel : public QWidget {
+    Q_OBJECT
+public:
+    explicit SettingsPanel(SettingsModel &settings, QWidget *parent = nullptr);
+    // Refresh every control from the settings (no edited() or changed()).
+    void sync();
+
+signals:
+    void edited();  // a control changed a setting: record it and render
+    void changed(); // a setting that other controls show changed: refresh them, record, render
+
+protected:
+    RenderSettings &settings() { return model_.render_settings(); }
+    Camera &camera() { return model_.camera(); }
+    SettingsModel &settings_model() { return model_; }
+    // Run by sync(), in the order added.
+    void on_sync(std::function<void()> action) { sync_actions_.push_back(std::move(action)); }
+    bool syncing() const { return syncing_; }
+
+    // Controls bound to one value: get() shows it, set() takes the user's.
+    // A slider with a numeric field, linear between low and high.
+    QWidget *slider_row(double low, double high, int decimals, std::function<float()> get,
+                        std::function<void(float)> set, QSlider **slider_out = nullptr);
+    // A length from 0 ("auto") over many orders of magnitude: the slider is
+    // logarithmic between range()'s ends, which follow the model, and its left end is 0.
+    QWidget *log_length_row(std::function<std::pair<double, double>()> range, std::function<float()> get,
+                            std::function<void(float)> set);
+    QComboBox *combo(const QStringList &items, std::function<int()> get, std::function<void(int)> set);
+    QSpinBox *spin_box(int low, int high, std::function<int()> get, std::function<void(int)> set);
+    QCheckBox *check_box(const QString &text, std::function<bool()> get, std::function<void(bool)> set);
+
+private:
+    SettingsModel &model_;
+    std::vector<std::function<void()>> sync_actions_;
+    bool syncing_ = false; // true while sync() sets the controls
+};
+
+// content in a frameless scroll area that resizes it (a tab of the panel).
+QWidget *scrolled(QWidget *content);
+// A 14x14 swatch of an RGB colour, and the colour as "r,g,b".
+QIcon swatch(const float colour[3]);
+QString colour_text(const float colour[3]);
+
+// Whether algorithm renders the option key ("view:heatmap", ...) of the
+// capability table, and a tooltip naming the algorithms that do; what is the
+// option's name in the tooltip.
+std::pair<bool, QString> capability(const CapabilityTable &table, const QString &key, const QString &what,
+                                    const QString &algorithm);
+// The combo box's items (index, capability key) the algorithm cannot express
+// are disabled, each with that tooltip; the settings keep them, and a frame
+// leaves them out and says so.
+void grey_out_items(QComboBox *box, const std::vector<std::pair<int, QString>> &keys, const CapabilityTable &table,
+                    const QString &algorithm);
+
+// Every control in root's form layouts gets a tooltip: the row's description,
+// with its label (which names the command-line flag) in front.
+void give_every_control_a_tooltip(QWidget *root);
