@@ -120,7 +120,6 @@ static const char *const ib_shaders[IB_PROGRAM_COUNT] = {
 
 typedef struct ib_state {
     oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
-    char *shader_dir;
     GLuint programs[IB_PROGRAM_COUNT];
 
     GLuint head_image, count_image;
@@ -166,7 +165,6 @@ static void ib_destroy(oit_algorithm *alg)
                         s->long_run_buffer};
     oit_gl_memory_delete_buffers(&s->gpu.memory, 5, buffers);
     oit_band_plan_free(&s->band_plan);
-    free(s->shader_dir);
     oit_gpu_destroy(&s->gpu);
 }
 
@@ -182,14 +180,6 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     if (status != OIT_OK)
         return status;
     ib_state *s = (ib_state *)gpu;
-    const char *dir = config->shader_dir ? config->shader_dir : ".";
-    s->shader_dir = malloc(strlen(dir) + 1);
-    if (!s->shader_dir) {
-        oit_gpu_destroy(gpu);
-        return oit_fail(err, OIT_E_RUNTIME, "ib: out of memory");
-    }
-    strcpy(s->shader_dir, dir);
-    s->gpu.config.shader_dir = s->shader_dir;
 
     for (int p = 0; p < IB_PROGRAM_COUNT && status == OIT_OK; ++p) {
         if (p == IB_FILL)

@@ -73,7 +73,6 @@ static const char *const ll_variant_defines[LL_VARIANT_COUNT] = {
 
 typedef struct ll_state {
     oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
-    char *shader_dir;
 
     /* fill and compose in two variants (common/variants.glsl): [LL_PLAIN] the
      * colour image without the distance modulation, compiled at create;
@@ -109,7 +108,6 @@ static void ll_destroy(oit_algorithm *alg)
     oit_gl_memory_delete_textures(&s->gpu.memory, LL_POOL_BUFFERS, s->pool.views);
     oit_gl_memory_delete_buffers(&s->gpu.memory, LL_POOL_BUFFERS, s->pool.buffers);
     oit_gl_memory_delete_buffers(&s->gpu.memory, 1, &s->counter_buffer);
-    free(s->shader_dir);
     oit_gpu_destroy(&s->gpu);
 }
 
@@ -143,14 +141,6 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
     if (status != OIT_OK)
         return status;
     ll_state *s = (ll_state *)gpu;
-    const char *dir = config->shader_dir ? config->shader_dir : ".";
-    s->shader_dir = malloc(strlen(dir) + 1);
-    if (!s->shader_dir) {
-        oit_gpu_destroy(gpu);
-        return oit_fail(err, OIT_E_RUNTIME, "ll: out of memory");
-    }
-    strcpy(s->shader_dir, dir);
-    s->gpu.config.shader_dir = s->shader_dir; /* the programs compiled on first use need it */
 
     const char *sort_shader = config->ll_sort == OIT_LL_SORT_LOCAL_ARRAY
                                   ? "ll/sort_local_array.frag"

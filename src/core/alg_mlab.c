@@ -101,7 +101,6 @@ static oit_status mlab_create(const oit_algorithm_config *config, oit_algorithm 
     if (status == OIT_OK)
         status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
                                 "mlab/resolve.frag", &s->resolve_program, err);
-    s->gpu.config.shader_dir = NULL; /* the caller's string; not kept */
     if (status != OIT_OK) {
         mlab_destroy((oit_algorithm *)s);
         return status;

@@ -72,7 +72,6 @@ _Static_assert(OIT_CLOSEST_COUNTER_HISTOGRAM + OIT_CLOSEST_HISTOGRAM_BINS == OIT
 typedef struct closest_layers_state {
     oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
     const closest_layers_tail *tail;
-    char *shader_dir;
     int layers; /* k */
 
     GLuint select_program;  /* geometry.vert + closest_layers/select.frag */
@@ -107,7 +106,6 @@ void closest_layers_destroy(oit_algorithm *alg)
         return;
     closest_release_targets(s);
     oit_gl_memory_delete_buffers(&s->gpu.memory, 1, &s->counter_buffer);
-    free(s->shader_dir);
     oit_gpu_destroy(&s->gpu);
 }
 
@@ -126,14 +124,6 @@ oit_status closest_layers_create(const closest_layers_tail *tail, const oit_algo
     closest_layers_state *s = (closest_layers_state *)gpu;
     s->tail = tail;
     s->layers = config->layers ? config->layers : OIT_APPROX_LAYERS_DEFAULT;
-    const char *dir = config->shader_dir ? config->shader_dir : ".";
-    s->shader_dir = malloc(strlen(dir) + 1);
-    if (!s->shader_dir) {
-        oit_gpu_destroy(gpu);
-        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", tail->algorithm);
-    }
-    strcpy(s->shader_dir, dir);
-    s->gpu.config.shader_dir = s->shader_dir;
 
     status = oit_gpu_program(gpu, "common/geometry.vert", "closest_layers/select.frag", &s->select_program, err);
     if (status == OIT_OK)

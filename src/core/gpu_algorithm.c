@@ -1,6 +1,7 @@
 /* gpu_algorithm.c: see gpu_algorithm.h. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "gpu_algorithm.h"
 
@@ -13,6 +14,14 @@ oit_status oit_gpu_create(size_t state_size, const char *name, const oit_algorit
         return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
     gpu->name = name;
     gpu->config = *config;
+    const char *dir = config->shader_dir ? config->shader_dir : ".";
+    gpu->shader_dir = malloc(strlen(dir) + 1);
+    if (!gpu->shader_dir) {
+        free(gpu);
+        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
+    }
+    strcpy(gpu->shader_dir, dir);
+    gpu->config.shader_dir = gpu->shader_dir;
     gpu->output.memory = &gpu->memory;
     oit_stats_reset(&gpu->stats);
     oit_timer_create(&gpu->timer);
@@ -28,6 +37,7 @@ void oit_gpu_destroy(oit_gpu_algorithm *gpu)
         glDeleteProgram(gpu->programs[i]);
     oit_gl_output_release(&gpu->output);
     oit_timer_destroy(&gpu->timer);
+    free(gpu->shader_dir);
     free(gpu);
 }
 

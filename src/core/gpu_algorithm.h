@@ -14,7 +14,8 @@
 
 typedef struct oit_gpu_algorithm {
     const char *name; /* as on the command line; messages start with it */
-    oit_algorithm_config config;
+    oit_algorithm_config config; /* config.shader_dir points at shader_dir */
+    char *shader_dir; /* a copy of the caller's ("." when NULL): programs built on first use need it */
     oit_gl_output output; /* the RGBA8 output; output.width, .height: the size resized to */
     oit_gl_memory memory; /* every texture and buffer the algorithm allocates, the output's too */
     oit_stage_timer timer;
@@ -24,7 +25,8 @@ typedef struct oit_gpu_algorithm {
 } oit_gpu_algorithm;
 
 /* A zeroed state of state_size bytes that starts with the base, set up
- * (configuration, output tracked by its memory, timer, statistics reset). */
+ * (configuration with its own copy of the shader folder, output tracked by
+ * its memory, timer, statistics reset). */
 oit_status oit_gpu_create(size_t state_size, const char *name, const oit_algorithm_config *config,
                           oit_gpu_algorithm **out, oit_error *err);
 /* Frees what the base holds (programs, output, timer) and the state; the
