@@ -498,19 +498,10 @@ static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,
                                   distance ? DDP_SWEEP_DISTANCE_BLEND : DDP_SWEEP_PLAIN,
                                   distance_norm, &layers, &s->gpu.stats.truncated, err);
 
-    if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->gpu.timer, "compose");
-        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
-        glUseProgram(s->compose_program);
-        oit_gl_set_frame_uniforms(frame);
-        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM_FRONT);
-        glBindTexture(GL_TEXTURE_2D, s->front);
-        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM_BACK);
-        glBindTexture(GL_TEXTURE_2D, s->back);
-        oit_gl_draw_fullscreen(&s->gpu.output);
-        oit_timer_stage_end(&s->gpu.timer);
-        status = oit_gpu_stage_check(&s->gpu, "compose", err);
-    }
+    const oit_texture_unit composed[] = {{OIT_TEXUNIT_ACCUM_FRONT, s->front},
+                                         {OIT_TEXUNIT_ACCUM_BACK, s->back}};
+    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, frame, composed,
+                                      2, err);
 
     s->gpu.stats.layers = layers;
     return oit_gpu_frame_end(&s->gpu, status, err);

@@ -222,17 +222,10 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
     glDisable(GL_BLEND);
 
     /* 3. the normalised composite over the background */
-    if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->gpu.timer, "compose");
-        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
-        glUseProgram(s->compose_program);
-        oit_gl_set_frame_uniforms(frame);
-        mboit_bind_texture(OIT_TEXUNIT_MBOIT_B0, s->b0);
-        mboit_bind_texture(OIT_TEXUNIT_MBOIT_ACCUM, s->accumulation);
-        oit_gl_draw_fullscreen(&s->gpu.output);
-        oit_timer_stage_end(&s->gpu.timer);
-        status = oit_gpu_stage_check(&s->gpu, "compose", err);
-    }
+    const oit_texture_unit composed[] = {{OIT_TEXUNIT_MBOIT_B0, s->b0},
+                                         {OIT_TEXUNIT_MBOIT_ACCUM, s->accumulation}};
+    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, frame, composed,
+                                      2, err);
     glActiveTexture(GL_TEXTURE0);
     return oit_gpu_frame_end(&s->gpu, status, err);
 }

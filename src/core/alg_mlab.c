@@ -239,17 +239,11 @@ static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,
         status = oit_gpu_stage_check(&s->gpu, "insert", err);
     }
 
-    if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->gpu.timer, "resolve");
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
-                        GL_TEXTURE_FETCH_BARRIER_BIT);
-        glUseProgram(s->resolve_program);
-        oit_gl_set_frame_uniforms(frame);
-        glUniform1ui(OIT_UNIFORM_MLAB_LAYERS, (GLuint)s->layers);
-        oit_gl_draw_fullscreen(&s->gpu.output);
-        oit_timer_stage_end(&s->gpu.timer);
-        status = oit_gpu_stage_check(&s->gpu, "resolve", err);
-    }
+    glProgramUniform1ui(s->resolve_program, OIT_UNIFORM_MLAB_LAYERS, (GLuint)s->layers);
+    status = oit_gpu_fullscreen_stage(&s->gpu, status, "resolve", s->resolve_program,
+                                      GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                                          GL_TEXTURE_FETCH_BARRIER_BIT,
+                                      frame, NULL, 0, err);
 
     GLuint counters[OIT_MLAB_COUNTER_COUNT] = {0};
     if (status == OIT_OK) {

@@ -130,19 +130,10 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
     oit_timer_stage_end(&s->gpu.timer);
     status = oit_gpu_stage_check(&s->gpu, "accumulate", err);
 
-    if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->gpu.timer, "compose");
-        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
-        glUseProgram(s->compose_program);
-        oit_gl_set_frame_uniforms(frame);
-        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_ACCUM);
-        glBindTexture(GL_TEXTURE_2D, s->accumulation);
-        glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_REVEALAGE);
-        glBindTexture(GL_TEXTURE_2D, s->revealage);
-        oit_gl_draw_fullscreen(&s->gpu.output);
-        oit_timer_stage_end(&s->gpu.timer);
-        status = oit_gpu_stage_check(&s->gpu, "compose", err);
-    }
+    const oit_texture_unit composed[] = {{OIT_TEXUNIT_ACCUM, s->accumulation},
+                                         {OIT_TEXUNIT_REVEALAGE, s->revealage}};
+    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, frame, composed,
+                                      2, err);
     return oit_gpu_frame_end(&s->gpu, status, err);
 }
 

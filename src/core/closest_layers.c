@@ -342,23 +342,14 @@ oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
         glDisable(GL_BLEND);
         status = oit_gpu_stage_check(&s->gpu, "store", err);
     }
-    if (status == OIT_OK) {
-        oit_timer_stage_begin(&s->gpu.timer, "compose");
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                        GL_FRAMEBUFFER_BARRIER_BIT);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
-        glUseProgram(s->compose_program);
-        oit_gl_set_frame_uniforms(frame);
-        glUniform1i(OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
-        for (int t = 0; t < s->tail->target_count; ++t) {
-            glActiveTexture(GL_TEXTURE0 + s->tail->targets[t].texture_unit);
-            glBindTexture(GL_TEXTURE_2D, s->tail_textures[t]);
-        }
-        glActiveTexture(GL_TEXTURE0);
-        oit_gl_draw_fullscreen(&s->gpu.output);
-        oit_timer_stage_end(&s->gpu.timer);
-        status = oit_gpu_stage_check(&s->gpu, "compose", err);
-    }
+    oit_texture_unit tail[CLOSEST_LAYERS_MAX_TAIL_TARGETS];
+    for (int t = 0; t < s->tail->target_count; ++t)
+        tail[t] = (oit_texture_unit){s->tail->targets[t].texture_unit, s->tail_textures[t]};
+    glProgramUniform1i(s->compose_program, OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
+    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program,
+                                      GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                                          GL_FRAMEBUFFER_BARRIER_BIT,
+                                      frame, tail, s->tail->target_count, err);
     if (status == OIT_OK)
         closest_finish_stats(s, &s->gpu.stats);
     return oit_gpu_frame_end(&s->gpu, status, err);

@@ -120,6 +120,28 @@ oit_status oit_gpu_frame_end(oit_gpu_algorithm *gpu, oit_status status, oit_erro
     return status;
 }
 
+oit_status oit_gpu_fullscreen_stage(oit_gpu_algorithm *gpu, oit_status status, const char *stage,
+                                    GLuint program, GLbitfield barriers, const oit_frame_settings *frame,
+                                    const oit_texture_unit *textures, int texture_count, oit_error *err)
+{
+    if (status != OIT_OK)
+        return status;
+    oit_timer_stage_begin(&gpu->timer, stage);
+    if (barriers)
+        glMemoryBarrier(barriers);
+    glBindFramebuffer(GL_FRAMEBUFFER, gpu->output.framebuffer);
+    glUseProgram(program);
+    oit_gl_set_frame_uniforms(frame);
+    for (int i = 0; i < texture_count; ++i) {
+        glActiveTexture(GL_TEXTURE0 + textures[i].unit);
+        glBindTexture(GL_TEXTURE_2D, textures[i].texture);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    oit_gl_draw_fullscreen(&gpu->output);
+    oit_timer_stage_end(&gpu->timer);
+    return oit_gpu_stage_check(gpu, stage, err);
+}
+
 oit_status oit_gpu_read_image(oit_algorithm *alg, oit_image *out, oit_error *err)
 {
     return oit_gl_output_read(&((oit_gpu_algorithm *)alg)->output, out, err);

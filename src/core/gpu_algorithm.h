@@ -57,6 +57,22 @@ oit_status oit_gpu_frame_begin(oit_gpu_algorithm *gpu, const oit_scene *scene, c
  * GL error where status was OIT_OK. */
 oit_status oit_gpu_frame_end(oit_gpu_algorithm *gpu, oit_status status, oit_error *err);
 
+/* A texture a full-screen pass reads, and the unit it is bound to. */
+typedef struct oit_texture_unit {
+    GLenum unit; /* OIT_TEXUNIT_* */
+    GLuint texture;
+} oit_texture_unit;
+
+/* The frame's last stage, where every algorithm but ll and ib ends: a
+ * full-screen pass of `program` into the output (its framebuffer bound, the
+ * frame's uniforms set) reading `textures` (2D), timed and checked as `stage`,
+ * after glMemoryBarrier(barriers) unless barriers is 0. A uniform of the
+ * algorithm's own is set before, with glProgramUniform*. Does nothing unless
+ * status is OIT_OK, and returns the stage's status. */
+oit_status oit_gpu_fullscreen_stage(oit_gpu_algorithm *gpu, oit_status status, const char *stage,
+                                    GLuint program, GLbitfield barriers, const oit_frame_settings *frame,
+                                    const oit_texture_unit *textures, int texture_count, oit_error *err);
+
 /* The operations table's read_image and stats, for every GPU algorithm. */
 oit_status oit_gpu_read_image(oit_algorithm *alg, oit_image *out, oit_error *err);
 void oit_gpu_stats(const oit_algorithm *alg, oit_stats *out);
