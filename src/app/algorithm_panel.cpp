@@ -36,13 +36,13 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
     });
     form->addRow("algorithm (--algorithm)", algorithm);
     form->addRow(summary);
-    form->addRow("sort (--sort, ll)", combo({"insertion", "array"}, [&s] { return int(s.config.ll_sort); },
+    form->addRow("sort (--sort, ll)", combo(words(OIT_SETTING_SORT), [&s] { return int(s.config.ll_sort); },
                                             [this, &s](int i) {
                                                 s.config.ll_sort = oit_ll_sort(i);
                                                 emit edited();
                                             }));
     form->addRow("neighbours (--neighbours, ib)",
-                 combo({"default (welded)", "index", "welded", "epsilon"}, [&s] { return int(s.modulation.neighbours); },
+                 combo(QStringList{"default (welded)"} + words(OIT_SETTING_NEIGHBOURS), [&s] { return int(s.modulation.neighbours); },
                        [this, &s](int i) {
                            s.modulation.neighbours = oit_neighbour_search(i);
                            emit edited();
@@ -72,15 +72,18 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
     approx_layers->setToolTip("Layers kept per pixel by kbuffer, hybrid and mlab (k): exact where no pixel has "
                               "more fragments; memory grows with k");
     form->addRow("layers (--layers, kbuffer/hybrid/mlab)", approx_layers);
-    auto *moments = combo({"power4", "power6", "trig3"},
-                          [&s] { return s.config.moments == OIT_MOMENTS_DEFAULT ? 0 : int(s.config.moments) - 1; },
+    auto *moments = combo(words(OIT_SETTING_MOMENTS),
+                          [&s] {
+                              return s.config.moments == OIT_MOMENTS_DEFAULT ? 0
+                                                                             : int(s.config.moments) - OIT_MOMENTS_POWER4;
+                          },
                           [this, &s](int i) {
-                              s.config.moments = oit_moments(i + 1);
+                              s.config.moments = oit_moments(i + OIT_MOMENTS_POWER4);
                               emit edited();
                           });
     moments->setToolTip("The moments mboit keeps per pixel: 4 or 6 power moments, or 3 trigonometric ones");
     form->addRow("moments (--moments, mboit)", moments);
-    form->addRow("shading (--shading)", combo({"flat", "headlight"}, [&s] { return int(s.shading); },
+    form->addRow("shading (--shading)", combo(words(OIT_SETTING_SHADING), [&s] { return int(s.shading); },
                                               [this, &s](int i) {
                                                   s.shading = oit_shading_mode(i);
                                                   emit edited();

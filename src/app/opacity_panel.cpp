@@ -99,7 +99,7 @@ OpacityPanel::OpacityPanel(SettingsModel &model, const CapabilityTable &capabili
     auto *form = new QFormLayout(ib);
     form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
     form->addRow("modulation (--modulation)",
-                 modulation_ = combo({"none", "curvature", "distance", "dist-curv", "fields", "edges"}, [&m] { return int(m.mode); },
+                 modulation_ = combo(words(OIT_SETTING_MODULATION), [&m] { return int(m.mode); },
                                      [&m, edit](int i) {
                                          m.mode = oit_modulation_mode(i);
                                          edit();

@@ -120,15 +120,15 @@ CapabilityTable capability_table()
         const QString name = QString::fromUtf8(list[i]->name);
         for (int v = OIT_VIEW_COLOUR + 1; v < OIT_VIEW_COUNT; ++v)
             if (!can->views[v])
-                table[QString("view:") + oit_view_name(oit_view(v))] << name;
+                table[QString("view:") + oit_setting_word(OIT_SETTING_VIEW, v)] << name;
         for (int m = OIT_MODULATE_NONE + 1; m < OIT_MODULATION_COUNT; ++m)
             if (!can->modulations[m])
-                table[QString("modulation:") + oit_modulation_mode_name(oit_modulation_mode(m))] << name;
+                table[QString("modulation:") + oit_setting_word(OIT_SETTING_MODULATION, m)] << name;
         // a distance is rendered where a modulation that measures it is
         bool measures = !can->modulations[OIT_MODULATE_DISTANCE] || !can->modulations[OIT_MODULATE_DIST_CURV];
         for (int d = OIT_DISTANCE_ADJACENT + 1; measures && d < OIT_DISTANCE_COUNT; ++d)
             if (!can->distances[d])
-                table[QString("distance:") + oit_distance_mode_name(oit_distance_mode(d))] << name;
+                table[QString("distance:") + oit_setting_word(OIT_SETTING_DISTANCE, d)] << name;
     }
     return table;
 }

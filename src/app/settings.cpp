@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cstring>
 #include <sstream>
+#include <vector>
 
 #include <rapidjson/document.h>
 #include <rapidjson/error/en.h>
@@ -60,20 +61,12 @@ oit_frame_settings make_frame(const RenderSettings &s, const oit_model &model, c
 
 namespace {
 
-struct ViewName {
-    const char *name;
-    oit_view view;
-    bool parameter;
-};
-const ViewName view_names[] = {
-    {"colour", OIT_VIEW_COLOUR, false},         {"heatmap", OIT_VIEW_HEATMAP, false},
-    {"peel-limit", OIT_VIEW_PEEL_LIMIT, true},  {"layer", OIT_VIEW_LAYER, true},
-    {"neighbours", OIT_VIEW_NEIGHBOURS, false}, {"curvature", OIT_VIEW_CURVATURE, true},
-    {"distance", OIT_VIEW_DISTANCE, true},      {"fields", OIT_VIEW_FIELDS, true},
-};
-
-const char *const mode_names[] = {"none", "curvature", "distance", "dist-curv", "fields", "edges"};
-const char *const neighbour_names[] = {"default", "index", "welded", "epsilon"};
+// The words are the core's (oit_setting_word); a preset also says "default"
+// for the neighbour search it leaves to the core (0), as it always has.
+const char *neighbour_word(oit_neighbour_search search)
+{
+    return search == OIT_NEIGHBOURS_DEFAULT ? "default" : oit_setting_word(OIT_SETTING_NEIGHBOURS, search);
+}
 
 // %.9g: every float survives text and back
 std::string number(double value)
@@ -142,10 +135,11 @@ bool parse_split_mode(const std::string &text, SplitMode &mode)
 
 std::string view_name(const oit_modulation &m)
 {
-    for (const ViewName &v : view_names)
-        if (v.view == m.view)
-            return v.parameter ? std::string(v.name) + ":" + std::to_string(m.view_parameter) : v.name;
-    return "colour";
+    std::string word = oit_setting_word(OIT_SETTING_VIEW, m.view);
+    if (word == "unknown")
+        return "colour";
+    // every view that takes a number is written with it, the ib views' 0 too
+    return oit_view_parameter_rule(m.view) != 0 ? word + ":" + std::to_string(m.view_parameter) : word;
 }
 
 bool parse_view(const std::string &text, oit_modulation &m)
@@ -160,18 +154,19 @@ bool parse_view(const std::string &text, oit_modulation &m)
             return false;
         parameter = int(value);
     }
-    for (const ViewName &v : view_names)
-        if (name == v.name && (v.parameter || colon == std::string::npos)) {
-            m.view = v.view;
-            m.view_parameter = parameter;
-            return true;
-        }
-    return false;
+    int view;
+    if (!oit_setting_value(OIT_SETTING_VIEW, name.c_str(), name.size(), &view) ||
+        (oit_view_parameter_rule(oit_view(view)) == 0 && colon != std::string::npos))
+        return false;
+    m.view = oit_view(view);
+    m.view_parameter = parameter;
+    return true;
 }
 
 const char *modulation_mode_name(oit_modulation_mode mode)
 {
-    return mode >= 0 && mode < 6 ? mode_names[mode] : "none";
+    const char *word = oit_setting_word(OIT_SETTING_MODULATION, mode);
+    return std::string(word) == "unknown" ? "none" : word;
 }
 
 std::string render_command(const std::string &oit_program, const std::string &model_path,
@@ -187,7 +182,7 @@ std::string render_command(const std::string &oit_program, const std::string &mo
             for (int col = 0; col < 4; ++col)
                 c << (row || col ? "," : "") << exact_number(m[col * 4 + row]);
     }
-    c << " --alpha " << number(s.alpha) << " --shading " << (s.shading == OIT_SHADE_FLAT ? "flat" : "headlight");
+    c << " --alpha " << number(s.alpha) << " --shading " << oit_setting_word(OIT_SETTING_SHADING, s.shading);
     c << " --background " << number(s.background[0]) << "," << number(s.background[1]) << ","
       << number(s.background[2]);
     oit_algorithm_config defaults;
@@ -195,7 +190,7 @@ std::string render_command(const std::string &oit_program, const std::string &mo
     if (s.config.max_memory_bytes != defaults.max_memory_bytes)
         c << " --max-memory " << s.config.max_memory_bytes / (1024 * 1024);
     if (s.config.ll_sort != defaults.ll_sort)
-        c << " --sort " << (s.config.ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "array" : "insertion");
+        c << " --sort " << oit_setting_word(OIT_SETTING_SORT, s.config.ll_sort);
     if (s.config.max_layers != defaults.max_layers)
         c << " --max-layers " << s.config.max_layers;
     // the approximations' parameters, only for the algorithms that read them (as oit render takes them)
@@ -203,14 +198,14 @@ std::string render_command(const std::string &oit_program, const std::string &mo
     if (ops && oit_algorithm_reads(ops, OIT_OPTION_LAYERS) && s.config.layers != 0)
         c << " --layers " << s.config.layers;
     if (ops && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS) && s.config.moments != OIT_MOMENTS_DEFAULT)
-        c << " --moments " << oit_moments_name(s.config.moments);
+        c << " --moments " << oit_setting_word(OIT_SETTING_MOMENTS, s.config.moments);
     const oit_modulation &m = s.modulation;
     if (m.view != OIT_VIEW_COLOUR)
         c << " --view " << view_name(m);
     if (m.mode != OIT_MODULATE_NONE)
         c << " --modulation " << modulation_mode_name(m.mode);
     if (m.neighbours != OIT_NEIGHBOURS_DEFAULT)
-        c << " --neighbours " << neighbour_names[m.neighbours];
+        c << " --neighbours " << oit_setting_word(OIT_SETTING_NEIGHBOURS, m.neighbours);
     if (m.epsilon_max > 0.0f)
         c << " --epsilon-max " << number(m.epsilon_max);
     if (m.curvature_effect > 0.0f)
@@ -404,18 +399,18 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     rapidjson::Document d(rapidjson::kObjectType);
     auto &a = d.GetAllocator();
     add(d, "algorithm", string_value(s.algorithm, a), a);
-    add(d, "sort", Value(rapidjson::StringRef(s.config.ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "array" : "insertion")), a);
+    add(d, "sort", Value(rapidjson::StringRef(oit_setting_word(OIT_SETTING_SORT, s.config.ll_sort))), a);
     add(d, "max-memory", Value(uint64_t(s.config.max_memory_bytes / (1024 * 1024))), a);
     add(d, "max-layers", Value(s.config.max_layers), a);
     add(d, "layers", Value(s.config.layers == 0 ? OIT_LAYERS_DEFAULT : s.config.layers), a);
-    add(d, "moments", Value(rapidjson::StringRef(oit_moments_name(s.config.moments))), a);
+    add(d, "moments", Value(rapidjson::StringRef(oit_setting_word(OIT_SETTING_MOMENTS, s.config.moments))), a);
     add(d, "alpha", Value(double(s.alpha)), a);
-    add(d, "shading", Value(rapidjson::StringRef(s.shading == OIT_SHADE_FLAT ? "flat" : "headlight")), a);
+    add(d, "shading", Value(rapidjson::StringRef(oit_setting_word(OIT_SETTING_SHADING, s.shading))), a);
     add(d, "background", array_value(s.background, 3, a), a);
     const oit_modulation &m = s.modulation;
     add(d, "view", string_value(view_name(m), a), a);
     add(d, "modulation", Value(rapidjson::StringRef(modulation_mode_name(m.mode))), a);
-    add(d, "neighbours", Value(rapidjson::StringRef(neighbour_names[m.neighbours])), a);
+    add(d, "neighbours", Value(rapidjson::StringRef(neighbour_word(m.neighbours))), a);
     add(d, "curvature-neighbours", Value(m.curvature_neighbours == 8 ? 8 : 4), a);
     add(d, "curvature-effect", Value(double(m.curvature_effect > 0 ? m.curvature_effect : 8.0f)), a);
     add(d, "epsilon-max", Value(double(m.epsilon_max > 0 ? m.epsilon_max : 0.05f)), a);
@@ -496,9 +491,9 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
             return r.fail("algorithm", "unknown algorithm (oit algorithms lists them)");
         s.algorithm = d["algorithm"].GetString();
     }
-    static const char *const sorts[] = {"insertion", "array"};
-    int sort = s.config.ll_sort;
-    if (!r.choice(d, "sort", sorts, 2, sort))
+    const char *const *words;
+    int sort = s.config.ll_sort; // the words' order is the values' (oit_setting_words)
+    if (!r.choice(d, "sort", words, oit_setting_words(OIT_SETTING_SORT, &words), sort))
         return false;
     s.config.ll_sort = oit_ll_sort(sort);
     int megabytes = int(s.config.max_memory_bytes / (1024 * 1024));
@@ -507,16 +502,14 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
     s.config.max_memory_bytes = uint64_t(megabytes) * 1024 * 1024;
     if (d.HasMember("layers") && !r.whole(d, "layers", 1, OIT_LAYERS_MAX, s.config.layers))
         return false;
-    static const char *const moment_names[] = {"power4", "power6", "trig3"};
-    int moments = s.config.moments == OIT_MOMENTS_DEFAULT ? 0 : int(s.config.moments) - 1;
-    if (!r.choice(d, "moments", moment_names, 3, moments))
+    int moments = s.config.moments == OIT_MOMENTS_DEFAULT ? 0 : int(s.config.moments) - OIT_MOMENTS_POWER4;
+    if (!r.choice(d, "moments", words, oit_setting_words(OIT_SETTING_MOMENTS, &words), moments))
         return false;
-    s.config.moments = oit_moments(moments + 1);
+    s.config.moments = oit_moments(moments + OIT_MOMENTS_POWER4);
     if (!r.number(d, "alpha", 0.0, 1.0, s.alpha))
         return false;
-    static const char *const shadings[] = {"flat", "headlight"};
     int shading = s.shading;
-    if (!r.choice(d, "shading", shadings, 2, shading))
+    if (!r.choice(d, "shading", words, oit_setting_words(OIT_SETTING_SHADING, &words), shading))
         return false;
     s.shading = oit_shading_mode(shading);
     bool present;
@@ -530,7 +523,12 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         return r.fail("view", "must be colour, heatmap, peel-limit:N, layer:L, neighbours, curvature[:L], "
                               "distance[:L] or fields[:L]");
     int mode = m.mode, neighbours = m.neighbours;
-    if (!r.choice(d, "modulation", mode_names, 6, mode) || !r.choice(d, "neighbours", neighbour_names, 4, neighbours))
+    const char *const *search_words;
+    int search_count = oit_setting_words(OIT_SETTING_NEIGHBOURS, &search_words);
+    std::vector<const char *> neighbour_words{neighbour_word(OIT_NEIGHBOURS_DEFAULT)}; // its values from 0
+    neighbour_words.insert(neighbour_words.end(), search_words, search_words + search_count);
+    if (!r.choice(d, "modulation", words, oit_setting_words(OIT_SETTING_MODULATION, &words), mode) ||
+        !r.choice(d, "neighbours", neighbour_words.data(), int(neighbour_words.size()), neighbours))
         return false;
     m.mode = oit_modulation_mode(mode);
     m.neighbours = oit_neighbour_search(neighbours);

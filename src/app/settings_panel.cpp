@@ -118,6 +118,15 @@ QWidget *SettingsPanel::log_length_row(std::function<std::pair<double, double>()
     return row;
 }
 
+QStringList SettingsPanel::words(oit_setting setting)
+{
+    const char *const *words;
+    QStringList list;
+    for (int i = 0, count = oit_setting_words(setting, &words); i < count; ++i)
+        list << words[i];
+    return list;
+}
+
 QComboBox *SettingsPanel::combo(const QStringList &items, std::function<int()> get, std::function<void(int)> set)
 {
     auto *box = new QComboBox;

@@ -51,6 +51,8 @@ protected:
     QWidget *log_length_row(std::function<std::pair<double, double>()> range, std::function<float()> get,
                             std::function<void(float)> set);
     QComboBox *combo(const QStringList &items, std::function<int()> get, std::function<void(int)> set);
+    // The core's words for a setting, in the order of its values (oit_setting_words).
+    static QStringList words(oit_setting setting);
     QSpinBox *spin_box(int low, int high, std::function<int()> get, std::function<void(int)> set);
     QCheckBox *check_box(const QString &text, std::function<bool()> get, std::function<void(bool)> set);
 

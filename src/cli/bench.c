@@ -31,9 +31,6 @@
 
 /* ------------------------------------------------------- the command line */
 
-static const char *const moments_names[] = {"power4", "power6", "trig3"};
-static const oit_moments moments_values[] = {OIT_MOMENTS_POWER4, OIT_MOMENTS_POWER6, OIT_MOMENTS_TRIG3};
-
 /* What an algorithm's parameter may be, for messages. */
 static const char *parameter_kind(const oit_algorithm_ops *ops)
 {
@@ -73,9 +70,8 @@ static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err
         return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': no parameter after the colon", a->label);
     bool numeric = strspn(parameter, "+-0123456789") == strlen(parameter);
     int moments = -1;
-    for (int k = 0; k < 3; ++k)
-        if (strcmp(parameter, moments_names[k]) == 0)
-            moments = k;
+    if (!oit_setting_value(OIT_SETTING_MOMENTS, parameter, strlen(parameter), &moments))
+        moments = -1;
     const oit_algorithm_ops *ops = a->ops;
     if (numeric && oit_algorithm_reads(ops, OIT_OPTION_LAYERS)) {
         long layers;
@@ -85,7 +81,7 @@ static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err
                             OIT_LAYERS_MAX);
         a->layers = (int)layers;
     } else if (moments >= 0 && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS)) {
-        a->moments = moments_values[moments];
+        a->moments = (oit_moments)moments;
     } else if (oit_algorithm_reads(ops, OIT_OPTION_LAYERS) || oit_algorithm_reads(ops, OIT_OPTION_MOMENTS)) {
         return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': %s takes %s, got '%s'", a->label, name,
                         parameter_kind(ops), parameter);

@@ -277,11 +277,11 @@ void bundle_scene_begin(bench_bundle *bundle, const bench_scene *scene)
         "\"backend\": \"%s\", \"max_memory_bytes\": %llu, \"sort\": \"%s\", \"max_layers\": %d, "
         "\"layers\": %d, \"moments\": \"%s\", \"modulation\": \"%s\", \"orbit\": [%.9g, %.9g], "
         "\"matrices_given\": %s}",
-        o->alpha, o->shading == OIT_SHADE_FLAT ? "flat" : "headlight", o->background[0], o->background[1],
-        o->background[2], o->backend == OIT_BACKEND_EGL ? "egl" : "osmesa",
-        (unsigned long long)o->config.max_memory_bytes,
-        o->config.ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "array" : "insertion", o->config.max_layers,
-        o->config.layers, oit_moments_name(o->config.moments), oit_modulation_mode_name(o->modulation.mode),
+        o->alpha, oit_setting_word(OIT_SETTING_SHADING, o->shading), o->background[0], o->background[1],
+        o->background[2], oit_setting_word(OIT_SETTING_BACKEND, o->backend),
+        (unsigned long long)o->config.max_memory_bytes, oit_setting_word(OIT_SETTING_SORT, o->config.ll_sort),
+        o->config.max_layers, o->config.layers, oit_setting_word(OIT_SETTING_MOMENTS, o->config.moments),
+        oit_setting_word(OIT_SETTING_MODULATION, o->modulation.mode),
         o->orbit[0], o->orbit[1], o->has_modelview && o->has_projection ? "true" : "false");
     fprintf(f, ", \"cameras\": [");
     bundle->camera_count = 0;
@@ -460,7 +460,7 @@ oit_status bundle_commit(bench_bundle *bundle, const bench_settings *b, bool has
             f, ", \"algorithm\": \"%s\", \"exact\": %s, \"sort\": %s, \"layers\": %d, \"moments\": %s%s%s}",
             algorithm->ops->name, algorithm->ops->exact ? "true" : "false",
             algorithm->sort_array ? "\"array\"" : "null", algorithm->layers, algorithm->moments ? "\"" : "",
-            algorithm->moments ? oit_moments_name(algorithm->moments) : "null",
+            algorithm->moments ? oit_setting_word(OIT_SETTING_MOMENTS, algorithm->moments) : "null",
             algorithm->moments ? "\"" : "");
     }
     fprintf(f, "]},\n  \"scenes\": [");

@@ -22,29 +22,18 @@ static int parse_view(const char *text, oit_modulation *modulation, oit_error *e
             return -1;
         }
     }
-    /* needs_parameter: 1 required, 0 refused, -1 optional (default 0: the nearest fragment) */
-    static const struct {
-        const char *name;
-        oit_view view;
-        int needs_parameter;
-    } views[] = {
-        {"colour", OIT_VIEW_COLOUR, 0},         {"heatmap", OIT_VIEW_HEATMAP, 0},
-        {"peel-limit", OIT_VIEW_PEEL_LIMIT, 1},  {"layer", OIT_VIEW_LAYER, 1},
-        {"neighbours", OIT_VIEW_NEIGHBOURS, 0}, {"curvature", OIT_VIEW_CURVATURE, -1},
-        {"distance", OIT_VIEW_DISTANCE, -1},    {"fields", OIT_VIEW_FIELDS, -1},
-    };
-    for (size_t v = 0; v < sizeof views / sizeof views[0]; ++v) {
-        if (strlen(views[v].name) == name_length && strncmp(views[v].name, text, name_length) == 0) {
-            if (views[v].needs_parameter >= 0 && (views[v].needs_parameter == 1) != (colon != NULL)) {
-                *status = oit_fail(err, OIT_E_INPUT, "--view %s: %s", text,
-                                   views[v].needs_parameter ? "needs a number, as in peel-limit:4 or layer:0"
-                                                            : "takes no number");
-                return -1;
-            }
-            modulation->view = views[v].view;
-            modulation->view_parameter = (int)parameter;
-            return 1;
+    int view;
+    if (oit_setting_value(OIT_SETTING_VIEW, text, name_length, &view)) {
+        int needs_parameter = oit_view_parameter_rule((oit_view)view);
+        if (needs_parameter >= 0 && (needs_parameter == 1) != (colon != NULL)) {
+            *status = oit_fail(err, OIT_E_INPUT, "--view %s: %s", text,
+                               needs_parameter ? "needs a number, as in peel-limit:4 or layer:0"
+                                               : "takes no number");
+            return -1;
         }
+        modulation->view = (oit_view)view;
+        modulation->view_parameter = (int)parameter;
+        return 1;
     }
     *status = oit_fail(err, OIT_E_INPUT,
                        "--view must be colour, heatmap, peel-limit:N, layer:L, neighbours, "
@@ -164,29 +153,16 @@ int oit_cli_parse_modulation_option(int argc, char **argv, int *i, oit_modulatio
 
     if (strcmp(flag, "--view") == 0)
         return parse_view(value, modulation, err, status);
-    if (strcmp(flag, "--modulation") == 0) {
-        static const struct {
-            const char *name;
-            oit_modulation_mode mode;
-        } modes[] = {{"none", OIT_MODULATE_NONE},         {"curvature", OIT_MODULATE_CURVATURE},
-                     {"distance", OIT_MODULATE_DISTANCE}, {"dist-curv", OIT_MODULATE_DIST_CURV},
-                     {"fields", OIT_MODULATE_FIELDS},     {"edges", OIT_MODULATE_EDGES}};
-        for (size_t m = 0; m < sizeof modes / sizeof modes[0]; ++m)
-            if (strcmp(value, modes[m].name) == 0) {
-                modulation->mode = modes[m].mode;
-                return 1;
-            }
-        BAD("--modulation must be none, curvature, distance, dist-curv, fields or edges, got '%s'", value);
-    }
-    if (strcmp(flag, "--neighbours") == 0) {
-        if (strcmp(value, "index") == 0)
-            modulation->neighbours = OIT_NEIGHBOURS_INDEX;
-        else if (strcmp(value, "welded") == 0)
-            modulation->neighbours = OIT_NEIGHBOURS_WELDED;
-        else if (strcmp(value, "epsilon") == 0)
-            modulation->neighbours = OIT_NEIGHBOURS_EPSILON;
+    if (strcmp(flag, "--modulation") == 0 || strcmp(flag, "--neighbours") == 0) {
+        bool mode = strcmp(flag, "--modulation") == 0;
+        int parsed;
+        *status = oit_setting_parse(mode ? OIT_SETTING_MODULATION : OIT_SETTING_NEIGHBOURS, value, &parsed, err);
+        if (*status != OIT_OK)
+            return -1;
+        if (mode)
+            modulation->mode = (oit_modulation_mode)parsed;
         else
-            BAD("--neighbours must be index, welded or epsilon, got '%s'", value);
+            modulation->neighbours = (oit_neighbour_search)parsed;
         return 1;
     }
     if (strcmp(flag, "--focus-region") == 0) {

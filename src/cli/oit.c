@@ -459,16 +459,16 @@ static void json_capabilities(FILE *out, const oit_algorithm_ops *ops)
     fputs(", \"views\": [", out);
     for (int v = 0, n = 0; v < OIT_VIEW_COUNT; ++v)
         if (!can->views[v])
-            fprintf(out, "%s\"%s\"", n++ ? ", " : "", oit_view_name((oit_view)v));
+            fprintf(out, "%s\"%s\"", n++ ? ", " : "", oit_setting_word(OIT_SETTING_VIEW, v));
     fputs("], \"modulations\": [", out);
     for (int m = 0, n = 0; m < OIT_MODULATION_COUNT; ++m)
         if (!can->modulations[m])
-            fprintf(out, "%s\"%s\"", n++ ? ", " : "", oit_modulation_mode_name((oit_modulation_mode)m));
+            fprintf(out, "%s\"%s\"", n++ ? ", " : "", oit_setting_word(OIT_SETTING_MODULATION, m));
     fputs("], \"distances\": [", out); /* where a modulation measures distance */
     bool measures = !can->modulations[OIT_MODULATE_DISTANCE] || !can->modulations[OIT_MODULATE_DIST_CURV];
     for (int d = 0, n = 0; measures && d < OIT_DISTANCE_COUNT; ++d)
         if (!can->distances[d])
-            fprintf(out, "%s\"%s\"", n++ ? ", " : "", oit_distance_mode_name((oit_distance_mode)d));
+            fprintf(out, "%s\"%s\"", n++ ? ", " : "", oit_setting_word(OIT_SETTING_DISTANCE, d));
     fputs("], \"options\": [", out);
     int n = 0;
     for (int bit = 0; bit < OIT_OPTION_COUNT; ++bit) {

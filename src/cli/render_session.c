@@ -40,31 +40,6 @@ int usage_error(const char *fmt, const char *detail)
 
 /* ------------------------------------------------------------- parsing */
 
-/* A flag whose value is one of COUNT names: "--flag must be A or B, got 'X'"
- * (or "one of A, B, C") otherwise. */
-static oit_status parse_choice_of(const char *flag, const char *value, int count, const char *const names[],
-                                  const int values[], int *out, oit_error *err)
-{
-    *out = values[0]; /* on failure the caller reports and stops */
-    for (int k = 0; k < count; ++k)
-        if (strcmp(value, names[k]) == 0) {
-            *out = values[k];
-            return OIT_OK;
-        }
-    if (count == 2)
-        return oit_fail(err, OIT_E_INPUT, "%s must be %s or %s, got '%s'", flag, names[0], names[1], value);
-    char list[256] = "";
-    for (int k = 0; k < count; ++k)
-        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", names[k]);
-    return oit_fail(err, OIT_E_INPUT, "%s must be one of %s, got '%s'", flag, list, value);
-}
-
-static oit_status parse_choice(const char *flag, const char *value, const char *const names[2],
-                               const int values[2], int *out, oit_error *err)
-{
-    return parse_choice_of(flag, value, 2, names, values, out, err);
-}
-
 bool parse_double(const char *text, double *out)
 {
     char *end = NULL;
@@ -254,8 +229,7 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     } else if (strcmp(flag, "--shading") == 0) {
         NEED_VALUE();
         int shading;
-        CHECK(parse_choice(flag, value, (const char *const[]){"flat", "headlight"},
-                           (const int[]){OIT_SHADE_FLAT, OIT_SHADE_HEADLIGHT}, &shading, err));
+        CHECK(oit_setting_parse(OIT_SETTING_SHADING, value, &shading, err));
         o->shading = (oit_shading_mode)shading;
     } else if (strcmp(flag, "--background") == 0) {
         NEED_VALUE();
@@ -263,8 +237,7 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     } else if (strcmp(flag, "--backend") == 0) {
         NEED_VALUE();
         int backend;
-        CHECK(parse_choice(flag, value, (const char *const[]){"egl", "osmesa"},
-                           (const int[]){OIT_BACKEND_EGL, OIT_BACKEND_OSMESA}, &backend, err));
+        CHECK(oit_setting_parse(OIT_SETTING_BACKEND, value, &backend, err));
         o->backend = (oit_backend)backend;
     } else if (strcmp(flag, "--max-memory") == 0) {
         NEED_VALUE();
@@ -278,8 +251,7 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     } else if (strcmp(flag, "--sort") == 0) {
         NEED_VALUE();
         int sort;
-        CHECK(parse_choice(flag, value, (const char *const[]){"insertion", "array"},
-                           (const int[]){OIT_LL_SORT_INSERTION, OIT_LL_SORT_LOCAL_ARRAY}, &sort, err));
+        CHECK(oit_setting_parse(OIT_SETTING_SORT, value, &sort, err));
         o->config.ll_sort = (oit_ll_sort)sort;
     } else if (strcmp(flag, "--max-layers") == 0) {
         NEED_VALUE();
@@ -302,9 +274,7 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     } else if (strcmp(flag, "--moments") == 0) {
         NEED_VALUE();
         int moments;
-        CHECK(parse_choice_of(flag, value, 3, (const char *const[]){"power4", "power6", "trig3"},
-                           (const int[]){OIT_MOMENTS_POWER4, OIT_MOMENTS_POWER6, OIT_MOMENTS_TRIG3},
-                           &moments, err));
+        CHECK(oit_setting_parse(OIT_SETTING_MOMENTS, value, &moments, err));
         o->config.moments = (oit_moments)moments;
     } else if (strcmp(flag, "--fragment-pool") == 0) {
         NEED_VALUE();

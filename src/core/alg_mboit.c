@@ -86,7 +86,7 @@ static oit_status mboit_create(const oit_algorithm_config *config, oit_algorithm
     mboit_state *s = (mboit_state *)gpu;
     s->moments = moments;
 
-    const char *variant = oit_moments_name(moments);
+    const char *variant = oit_setting_word(OIT_SETTING_MOMENTS, moments);
     char moments_path[64], transmittance_path[64];
     snprintf(moments_path, sizeof moments_path, "mboit/moments_%s.frag", variant);
     snprintf(transmittance_path, sizeof transmittance_path, "mboit/transmittance_%s.frag", variant);

@@ -40,16 +40,16 @@ oit_status oit_frame_check(const oit_algorithm_ops *ops, const oit_frame_setting
     if ((int)m->mode < 0 || (int)m->mode >= OIT_MODULATION_COUNT)
         return oit_fail(err, OIT_E_INPUT, "%s: unknown modulation %d", ops->name, (int)m->mode);
     if (can->modulations[m->mode])
-        return refuse(err, ops->name, can->modulations[m->mode], oit_modulation_mode_name(m->mode));
+        return refuse(err, ops->name, can->modulations[m->mode], oit_setting_word(OIT_SETTING_MODULATION, m->mode));
     if (m->mode == OIT_MODULATE_DISTANCE || m->mode == OIT_MODULATE_DIST_CURV) {
         if ((int)m->distance < 0 || (int)m->distance >= OIT_DISTANCE_COUNT)
             return oit_fail(err, OIT_E_INPUT, "%s: unknown distance mode %d", ops->name, (int)m->distance);
         if (can->distances[m->distance])
-            return refuse(err, ops->name, can->distances[m->distance], oit_distance_mode_name(m->distance));
+            return refuse(err, ops->name, can->distances[m->distance], oit_setting_word(OIT_SETTING_DISTANCE, m->distance));
     }
     if ((int)m->view < 0 || (int)m->view >= OIT_VIEW_COUNT)
         return oit_fail(err, OIT_E_INPUT, "%s: unknown view %d", ops->name, (int)m->view);
     if (can->views[m->view])
-        return refuse(err, ops->name, can->views[m->view], oit_view_name(m->view));
+        return refuse(err, ops->name, can->views[m->view], oit_setting_word(OIT_SETTING_VIEW, m->view));
     return OIT_OK;
 }

@@ -38,20 +38,6 @@ void oit_stats_reset(oit_stats *stats)
     stats->neighbours_same_component_share = -1.0;
 }
 
-const char *oit_moments_name(oit_moments moments)
-{
-    switch (moments) {
-    case OIT_MOMENTS_DEFAULT:
-    case OIT_MOMENTS_POWER4:
-        return "power4";
-    case OIT_MOMENTS_POWER6:
-        return "power6";
-    case OIT_MOMENTS_TRIG3:
-        return "trig3";
-    }
-    return "unknown";
-}
-
 void oit_algorithm_config_defaults(oit_algorithm_config *config)
 {
     memset(config, 0, sizeof *config);
@@ -62,21 +48,4 @@ void oit_algorithm_config_defaults(oit_algorithm_config *config)
     config->neighbour_quality = true;
 }
 
-const char *oit_view_name(oit_view view)
-{
-    static const char *const names[] = {"colour",     "heatmap",   "peel-limit", "layer",
-                                        "neighbours", "curvature", "distance",   "fields"};
-    return (int)view >= 0 && (size_t)view < sizeof names / sizeof names[0] ? names[view] : "unknown";
-}
 
-const char *oit_distance_mode_name(oit_distance_mode mode)
-{
-    static const char *const names[] = {"adjacent", "skip", "far"};
-    return (int)mode >= 0 && (size_t)mode < sizeof names / sizeof names[0] ? names[mode] : "unknown";
-}
-
-const char *oit_modulation_mode_name(oit_modulation_mode mode)
-{
-    static const char *const names[] = {"none", "curvature", "distance", "dist-curv", "fields", "edges"};
-    return (int)mode >= 0 && (size_t)mode < sizeof names / sizeof names[0] ? names[mode] : "unknown";
-}

@@ -343,10 +343,11 @@ typedef enum oit_view {
 
 /* The largest view_parameter (peel limit, layer) a view takes. */
 #define OIT_VIEW_PARAMETER_MAX 1000000
+/* Whether a view's word takes ":N", its view_parameter: 1 it must (peel-limit,
+ * layer), 0 it must not (colour, heatmap, neighbours), -1 it may (the ib
+ * views: the fragment shown, default 0, the nearest). */
+int oit_view_parameter_rule(oit_view view);
 
-/* The names the command line and the workbench use ("peel-limit",
- * "dist-curv"), for messages; "unknown" outside the enums. */
-const char *oit_view_name(oit_view view);
 
 /* Opacity modulation of the Illustration Buffer (ib; docs/illustration-buffer.md).
  * Every field's zero value means its default, so a zeroed struct is "no modulation". */
@@ -359,7 +360,6 @@ typedef enum oit_modulation_mode {
     OIT_MODULATE_EDGES = 5      /* opaque where a fragment has fewer than four neighbours */
 } oit_modulation_mode;
 
-const char *oit_modulation_mode_name(oit_modulation_mode mode);
 
 typedef enum oit_neighbour_search {
     OIT_NEIGHBOURS_DEFAULT = 0, /* the best by the measurements (welded) */
@@ -378,8 +378,6 @@ typedef enum oit_distance_mode {
 #define OIT_MODULATION_COUNT 6 /* oit_modulation_mode's */
 #define OIT_DISTANCE_COUNT 3   /* oit_distance_mode's */
 
-/* "adjacent", "skip", "far" (the command line's --distance words); "unknown" outside the enum */
-const char *oit_distance_mode_name(oit_distance_mode mode);
 
 #define OIT_FIELD_ALPHA 1
 #define OIT_FIELD_BETA 2
@@ -575,8 +573,6 @@ typedef enum oit_moments {
     OIT_MOMENTS_TRIG3 = 3    /* b0 and 3 trigonometric moments (complex): 7 floats per pixel */
 } oit_moments;
 
-/* "power4", "power6", "trig3" (the command line's names); "unknown" outside the enum */
-const char *oit_moments_name(oit_moments moments);
 
 /* kbuffer, hybrid, mlab: the layers kept per pixel (oit_algorithm_config.layers, --layers)
  * by default and at most, for programs that must not include the shaders' header; equal
@@ -767,6 +763,35 @@ int64_t oit_gl_enumerate_allocated_bytes(void);
  * (../share/oit-workbench/shaders, then ./shaders), then the source tree.
  * On failure the message lists every place it looked. */
 oit_status oit_find_shader_dir(const char *argv0, char *out, size_t out_size, oit_error *err);
+
+/* ------------------------------------------------------------------ words */
+
+/* The words of the settings that take one of a few values (the command
+ * line's --shading flat, the presets' "shading": "flat", the messages), in
+ * one table for every shell. A setting whose zero value means "the default"
+ * writes that default's word for it. */
+typedef enum oit_setting {
+    OIT_SETTING_SHADING,    /* oit_shading_mode: flat, headlight */
+    OIT_SETTING_SORT,       /* oit_ll_sort: insertion, array */
+    OIT_SETTING_MOMENTS,    /* oit_moments: power4, power6, trig3 (0: power4) */
+    OIT_SETTING_VIEW,       /* oit_view: colour, heatmap, peel-limit, layer, ... */
+    OIT_SETTING_MODULATION, /* oit_modulation_mode: none, curvature, distance, ... */
+    OIT_SETTING_DISTANCE,   /* oit_distance_mode: adjacent, skip, far */
+    OIT_SETTING_NEIGHBOURS, /* oit_neighbour_search: index, welded, epsilon (0: welded) */
+    OIT_SETTING_BACKEND,    /* oit_backend: egl, osmesa */
+    OIT_SETTING_COUNT
+} oit_setting;
+
+/* Its flag, "--shading" ("" outside the enum). */
+const char *oit_setting_flag(oit_setting setting);
+/* The word for one of its values; "unknown" outside them. */
+const char *oit_setting_word(oit_setting setting, int value);
+/* Its words in the order of their values, and how many (0 outside the enum). */
+int oit_setting_words(oit_setting setting, const char *const **words);
+/* The value the first `length` bytes of `word` name; false if none. */
+bool oit_setting_value(oit_setting setting, const char *word, size_t length, int *value);
+/* The value `word` names, or OIT_E_INPUT "FLAG must be A, B or C, got 'WORD'". */
+oit_status oit_setting_parse(oit_setting setting, const char *word, int *value, oit_error *err);
 
 /* -------------------------------------------------------------- generators */
 
