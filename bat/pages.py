@@ -16,7 +16,7 @@ import subprocess
 import sys
 import tempfile
 
-# As gl_util.c's software_renderer(): these renderers are timed by wall clock
+# As gl_timer.c's software_renderer(): these renderers are timed by wall clock
 # between glFinish() calls, every other one by GL_TIME_ELAPSED queries.
 SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast")
 

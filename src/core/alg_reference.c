@@ -39,7 +39,7 @@
  *   pixel, ties included.
  *
  * The oracle shares no computation with what it checks. What the GPU path gets
- * from core helpers (gl_util.c sets, for the shaders, the inverse modelview and
+ * from core helpers (gl_frame.c sets, for the shaders, the inverse modelview and
  * projection and the focus region through local_modulation.c, the plane-to-eye
  * matrix through matrix.c, the normal matrix through oit_mat4_normal_matrix)
  * and what the shaders compute per fragment (shade.glsl: headlight shading and
