@@ -105,7 +105,7 @@ OpacityPanel::OpacityPanel(SettingsModel &model, const CapabilityTable &capabili
                                          edit();
                                      }));
     form->addRow("curvature effect (--curvature-effect)",
-                 slider_row(0.1, 64, 2, [&m] { return m.curvature_effect > 0 ? m.curvature_effect : 8.0f; },
+                 slider_row(0.1, 64, 2, [&m] { return oit_modulation_defaults(&m).curvature_effect; },
                             [&m, edit](float v) {
                                 m.curvature_effect = v;
                                 edit();
@@ -138,7 +138,7 @@ OpacityPanel::OpacityPanel(SettingsModel &model, const CapabilityTable &capabili
                                                edit();
                                            }));
     form->addRow("fields (--fields)", fields);
-    form->addRow("diffusion iterations", spin_box(0, 1000, [&m] { return m.diffusion_iterations == 0 ? 15 : std::max(0, m.diffusion_iterations); },
+    form->addRow("diffusion iterations", spin_box(0, 1000, [&m] { return std::max(0, oit_modulation_defaults(&m).diffusion_iterations); },
                                                   [&m, edit](int n) {
                                                       m.diffusion_iterations = n == 0 ? -1 : n;
                                                       edit();
@@ -159,7 +159,7 @@ OpacityPanel::OpacityPanel(SettingsModel &model, const CapabilityTable &capabili
                                                  }));
     }
     form->addRow("epsilon max (--epsilon-max)",
-                 slider_row(0.001, 1, 3, [&m] { return m.epsilon_max > 0 ? m.epsilon_max : 0.05f; },
+                 slider_row(0.001, 1, 3, [&m] { return oit_modulation_defaults(&m).epsilon_max; },
                             [&m, edit](float v) {
                                 m.epsilon_max = v;
                                 edit();

@@ -411,14 +411,15 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     add(d, "view", string_value(view_name(m), a), a);
     add(d, "modulation", Value(rapidjson::StringRef(modulation_mode_name(m.mode))), a);
     add(d, "neighbours", Value(rapidjson::StringRef(neighbour_word(m.neighbours))), a);
-    add(d, "curvature-neighbours", Value(m.curvature_neighbours == 8 ? 8 : 4), a);
-    add(d, "curvature-effect", Value(double(m.curvature_effect > 0 ? m.curvature_effect : 8.0f)), a);
-    add(d, "epsilon-max", Value(double(m.epsilon_max > 0 ? m.epsilon_max : 0.05f)), a);
+    const oit_modulation resolved = oit_modulation_defaults(&m);
+    add(d, "curvature-neighbours", Value(resolved.curvature_neighbours), a);
+    add(d, "curvature-effect", Value(double(resolved.curvature_effect)), a);
+    add(d, "epsilon-max", Value(double(resolved.epsilon_max)), a);
     add(d, "distance", string_value(distance_name(m), a), a);
     add(d, "focus-region", m.focus_region > 0 ? Value(double(m.focus_region)) : Value(rapidjson::StringRef("auto")), a);
-    add(d, "fields", string_value(fields_name(m.fields ? m.fields : 7), a), a);
-    add(d, "diffusion-iterations", Value(m.diffusion_iterations == 0 ? 15 : std::max(0, m.diffusion_iterations)), a);
-    add(d, "blur-iterations", Value(m.blur_iterations == 0 ? 1 : std::max(0, m.blur_iterations)), a);
+    add(d, "fields", string_value(fields_name(resolved.fields), a), a);
+    add(d, "diffusion-iterations", Value(std::max(0, resolved.diffusion_iterations)), a);
+    add(d, "blur-iterations", Value(std::max(0, resolved.blur_iterations)), a);
     add(d, "lambda-alpha", m.lambda_alpha > 0 ? Value(double(m.lambda_alpha)) : Value(rapidjson::StringRef("auto")), a);
     add(d, "lambda-beta", m.lambda_beta > 0 ? Value(double(m.lambda_beta)) : Value(rapidjson::StringRef("auto")), a);
     add(d, "lambda-gamma", m.lambda_gamma > 0 ? Value(double(m.lambda_gamma)) : Value(rapidjson::StringRef("auto")), a);
@@ -562,8 +563,8 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
             return r.fail("fields", "must be a comma-separated list of alpha, beta, gamma");
         m.fields = mask == 7 ? 0 : mask;
     }
-    int diffusion = m.diffusion_iterations == 0 ? 15 : std::max(0, m.diffusion_iterations);
-    int blur = m.blur_iterations == 0 ? 1 : std::max(0, m.blur_iterations);
+    const oit_modulation resolved = oit_modulation_defaults(&m);
+    int diffusion = std::max(0, resolved.diffusion_iterations), blur = std::max(0, resolved.blur_iterations);
     if (!r.whole(d, "diffusion-iterations", 0, 1000, diffusion) || !r.whole(d, "blur-iterations", 0, 1000, blur))
         return false;
     m.diffusion_iterations = diffusion == 0 ? -1 : diffusion;

@@ -317,9 +317,9 @@ static void dp_blend_curvature(dp_state *s, const oit_frame_settings *frame, GLu
     glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(s->blend_curvature_program);
     oit_gl_set_frame_uniforms(frame);
-    glUniform1f(OIT_UNIFORM_DP_CURVATURE_EFFECT,
-                m->curvature_effect > 0.0f ? m->curvature_effect : 8.0f);
-    glUniform1i(OIT_UNIFORM_DP_CURVATURE_NEIGHBOURS, m->curvature_neighbours == 8 ? 8 : 4);
+    const oit_modulation resolved = oit_modulation_defaults(m);
+    glUniform1f(OIT_UNIFORM_DP_CURVATURE_EFFECT, resolved.curvature_effect);
+    glUniform1i(OIT_UNIFORM_DP_CURVATURE_NEIGHBOURS, resolved.curvature_neighbours);
     const bool dist_curv = m->mode == OIT_MODULATE_DIST_CURV;
     /* oit_modulation_mode and OIT_IB_MODE_* share their values */
     glUniform1i(OIT_UNIFORM_DP_NEIGHBOUR_MODE, (GLint)m->mode);

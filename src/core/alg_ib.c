@@ -290,45 +290,6 @@ static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error
 
 /* ------------------------------------------------------------ parameters */
 
-/* Inverse of a column-major 4x4 matrix by Gauss-Jordan elimination with
- * partial pivoting; false if singular. */
-static bool ib_invert(const double m[16], float out[16])
-{
-    double a[4][8];
-    for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) {
-            a[r][c] = m[c * 4 + r];
-            a[r][c + 4] = r == c ? 1.0 : 0.0;
-        }
-    for (int col = 0; col < 4; ++col) {
-        int pivot = col;
-        for (int r = col + 1; r < 4; ++r)
-            if (fabs(a[r][col]) > fabs(a[pivot][col]))
-                pivot = r;
-        if (fabs(a[pivot][col]) < 1e-30)
-            return false;
-        if (pivot != col)
-            for (int c = 0; c < 8; ++c) {
-                double t = a[col][c];
-                a[col][c] = a[pivot][c];
-                a[pivot][c] = t;
-            }
-        double scale = 1.0 / a[col][col];
-        for (int c = 0; c < 8; ++c)
-            a[col][c] *= scale;
-        for (int r = 0; r < 4; ++r)
-            if (r != col) {
-                double factor = a[r][col];
-                for (int c = 0; c < 8; ++c)
-                    a[r][c] -= factor * a[col][c];
-            }
-    }
-    for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c)
-            out[c * 4 + r] = (float)a[r][c + 4];
-    return true;
-}
-
 /* The settings of one frame with every default filled in. */
 typedef struct ib_plan {
     ib_params params;
@@ -344,8 +305,11 @@ static oit_status ib_make_plan(const oit_frame_settings *frame, const oit_scene 
     const oit_modulation *m = &frame->modulation;
     memset(plan, 0, sizeof *plan);
     ib_params *p = &plan->params;
-    if (!ib_invert(frame->projection, p->inverse_projection))
+    double inverse_projection[16]; /* the GPU side's one inverse (local_modulation.c) */
+    if (!oit_mat4_inverse_double(frame->projection, inverse_projection))
         return oit_fail(err, OIT_E_INPUT, "ib: the projection matrix is singular");
+    for (int i = 0; i < 16; ++i)
+        p->inverse_projection[i] = (float)inverse_projection[i];
     /* the modulation and the view are checked against ib's capabilities (oit_frame_check) */
     if ((int)m->neighbours < OIT_NEIGHBOURS_DEFAULT || (int)m->neighbours > OIT_NEIGHBOURS_EPSILON)
         return oit_fail(err, OIT_E_INPUT, "ib: unknown neighbour search %d", (int)m->neighbours);
@@ -353,29 +317,26 @@ static oit_status ib_make_plan(const oit_frame_settings *frame, const oit_scene 
         return oit_fail(err, OIT_E_INPUT, "ib: unknown distance mode %d", (int)m->distance);
     if ((m->fields & ~(OIT_FIELD_ALPHA | OIT_FIELD_BETA | OIT_FIELD_GAMMA)) != 0)
         return oit_fail(err, OIT_E_INPUT, "ib: unknown transparency fields 0x%x", (unsigned)m->fields);
-    p->mode = m->mode;
-    p->view = m->view;
-    p->view_parameter = m->view_parameter < 0 ? 0 : m->view_parameter;
-    p->search = m->neighbours == OIT_NEIGHBOURS_DEFAULT ? OIT_NEIGHBOURS_WELDED : (int)m->neighbours;
-    p->curvature_neighbours = m->curvature_neighbours == 8 ? 8 : 4;
-    p->curvature_effect = m->curvature_effect > 0.0f ? m->curvature_effect : 8.0f;
-    p->focus_region = m->focus_region > 0.0f ? m->focus_region : 0.0f;
-    p->distance_mode = m->distance;
-    p->distance_skip = m->distance_skip > 0 ? m->distance_skip : 2;
-    p->fields = m->fields ? m->fields : (OIT_FIELD_ALPHA | OIT_FIELD_BETA | OIT_FIELD_GAMMA);
-    plan->diffusion_iterations = m->diffusion_iterations == 0 ? 15
-                                 : m->diffusion_iterations < 0 ? 0
-                                                               : m->diffusion_iterations;
-    plan->blur_iterations = m->blur_iterations == 0 ? 1 : m->blur_iterations < 0 ? 0 : m->blur_iterations;
-    p->lambda_alpha = m->lambda_alpha > 0.0f ? m->lambda_alpha : 1.0f;
-    p->lambda_beta = m->lambda_beta > 0.0f ? m->lambda_beta
-                     : plan->diffusion_iterations > 0 ? 0.95f / (float)plan->diffusion_iterations
-                                                      : 0.95f;
-    p->lambda_gamma = m->lambda_gamma > 0.0f ? m->lambda_gamma : 0.45f;
+    const oit_modulation r = oit_modulation_defaults(m);
+    p->mode = r.mode;
+    p->view = r.view;
+    p->view_parameter = r.view_parameter;
+    p->search = (int)r.neighbours;
+    p->curvature_neighbours = r.curvature_neighbours;
+    p->curvature_effect = r.curvature_effect;
+    p->focus_region = r.focus_region;
+    p->distance_mode = r.distance;
+    p->distance_skip = r.distance_skip;
+    p->fields = r.fields;
+    plan->diffusion_iterations = r.diffusion_iterations < 0 ? 0 : r.diffusion_iterations;
+    plan->blur_iterations = r.blur_iterations < 0 ? 0 : r.blur_iterations;
+    p->lambda_alpha = r.lambda_alpha;
+    p->lambda_beta = r.lambda_beta;
+    p->lambda_gamma = r.lambda_gamma;
     for (int c = 0; c < 3; ++c)
-        p->halo[c] = m->has_halo_colour ? m->halo_colour[c] : 1.0f;
-    p->last_layer_opaque = m->last_layer_opaque ? 1 : 0;
-    p->epsilon_max = m->epsilon_max > 0.0f ? m->epsilon_max : 0.05f;
+        p->halo[c] = r.halo_colour[c];
+    p->last_layer_opaque = r.last_layer_opaque ? 1 : 0;
+    p->epsilon_max = r.epsilon_max;
     /* the model radius in eye space: scaled by the modelview's largest axis scale */
     float scale = 0.0f;
     for (int c = 0; c < 3; ++c) {

@@ -404,6 +404,16 @@ typedef struct oit_modulation {
     float epsilon_max;         /* epsilon search: largest accepted epsilon; 0: 0.05 */
 } oit_modulation;
 
+/* The modulation with every field left at zero ("the default") given the
+ * value it stands for, the one place these defaults live: neighbours welded,
+ * curvature over 4 neighbours with effect 8, distance skip 2, all three
+ * fields, 15 diffusion and 1 blur iterations (-1 where the input asks for
+ * none), lambdas 1, 0.95 / iterations (0.95 without diffusion) and 0.45, a
+ * white halo, epsilon 0.05, view parameter at least 0. focus_region stays 0
+ * for "the frame's largest" (it depends on the frame). Resolving twice
+ * changes nothing. */
+oit_modulation oit_modulation_defaults(const oit_modulation *modulation);
+
 /* Local opacity modulation, expressible in every algorithm (issue "Opacity
  * modulation in every algorithm"; extended there). */
 typedef enum oit_focus_shape {

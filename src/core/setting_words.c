@@ -1,6 +1,6 @@
 /* setting_words.c: the words of the settings that take one of a few values
  * (oit.h, "words"), one table for the command line, the workbench's presets
- * and the messages. */
+ * and the messages; and the modulation's defaults, resolved in one place. */
 #include <stdio.h>
 #include <string.h>
 
@@ -99,4 +99,42 @@ int oit_view_parameter_rule(oit_view view)
     default:
         return 0;
     }
+}
+
+static int iterations_default(int iterations, int default_count)
+{
+    return iterations == 0 ? default_count : iterations < 0 ? -1 : iterations;
+}
+
+oit_modulation oit_modulation_defaults(const oit_modulation *modulation)
+{
+    oit_modulation m = *modulation;
+    if (m.view_parameter < 0)
+        m.view_parameter = 0;
+    if (m.neighbours == OIT_NEIGHBOURS_DEFAULT)
+        m.neighbours = OIT_NEIGHBOURS_WELDED;
+    m.curvature_neighbours = m.curvature_neighbours == 8 ? 8 : 4;
+    if (!(m.curvature_effect > 0.0f))
+        m.curvature_effect = 8.0f;
+    if (!(m.focus_region > 0.0f))
+        m.focus_region = 0.0f;
+    if (m.distance_skip <= 0)
+        m.distance_skip = 2;
+    if (m.fields == 0)
+        m.fields = OIT_FIELD_ALPHA | OIT_FIELD_BETA | OIT_FIELD_GAMMA;
+    m.diffusion_iterations = iterations_default(m.diffusion_iterations, 15);
+    m.blur_iterations = iterations_default(m.blur_iterations, 1);
+    if (!(m.lambda_alpha > 0.0f))
+        m.lambda_alpha = 1.0f;
+    if (!(m.lambda_beta > 0.0f))
+        m.lambda_beta = m.diffusion_iterations > 0 ? 0.95f / (float)m.diffusion_iterations : 0.95f;
+    if (!(m.lambda_gamma > 0.0f))
+        m.lambda_gamma = 0.45f;
+    if (!m.has_halo_colour) {
+        m.has_halo_colour = true;
+        m.halo_colour[0] = m.halo_colour[1] = m.halo_colour[2] = 1.0f;
+    }
+    if (!(m.epsilon_max > 0.0f))
+        m.epsilon_max = 0.05f;
+    return m;
 }
