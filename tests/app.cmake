@@ -24,7 +24,7 @@ set(APP_ENVIRONMENT
   "XDG_RUNTIME_DIR=${APP_WORK}/runtime"
   "QT_QPA_PLATFORM=xcb")
 
-# Qt Test cases on the real window (tests/app/test_workbench.cpp).
+# Qt Test cases on the real window (tests/app/test_workbench.cpp, test_workbench_views.cpp).
 add_test(NAME app_workbench COMMAND ${APP_XVFB} $<TARGET_FILE:test_workbench>)
 # The command line: --help, --screenshot, bad input.
 add_test(NAME app_command_line
