@@ -54,7 +54,7 @@ static oit_status blend_resize(oit_algorithm *alg, int width, int height, oit_er
     oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->accumulation);
     if (!s->accumulation_framebuffer)
         glGenFramebuffers(1, &s->accumulation_framebuffer);
-    s->accumulation = oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_RGBA32F, width, height);
+    s->accumulation = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                            s->accumulation, 0);

@@ -75,12 +75,6 @@ typedef struct ddp_state {
  * each), front, back layer and back (16 each), the RGBA8 output (4); with the
  * distance modulation the front layer (16), two far depths and the maximum (4
  * each). */
-static GLuint ddp_target(ddp_state *s, GLenum internal_format, int width, int height)
-{
-    return oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, internal_format, width,
-                                    height);
-}
-
 /* Cleared min-max: nothing left (near > far); loses every MAX. */
 #define DDP_EMPTY_DEPTH (-1.0e30f)
 
@@ -106,14 +100,6 @@ static void ddp_release_targets(ddp_state *s)
             s->distance_max_framebuffer[i] = s->previous_far[i] = 0;
     s->front_layer = s->distance_max = 0;
     s->gpu.output.width = s->gpu.output.height = 0;
-}
-
-static oit_status ddp_check_framebuffer(const ddp_state *s, const char *what, int width, int height,
-                                        oit_error *err)
-{
-    char name[64];
-    snprintf(name, sizeof name, "ddp: the %s framebuffer", what);
-    return oit_gl_check_framebuffer(name, width, height, &s->gpu.memory, err);
 }
 
 static void ddp_destroy(oit_algorithm *alg);
@@ -172,13 +158,13 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
     if (status != OIT_OK)
         return status;
 
-    s->front = ddp_target(s, GL_RGBA32F, width, height);
-    s->back_layer = ddp_target(s, GL_RGBA32F, width, height);
-    s->back = ddp_target(s, GL_RGBA32F, width, height);
+    s->front = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
+    s->back_layer = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
+    s->back = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
     static const GLenum peel_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                            GL_COLOR_ATTACHMENT2};
     for (int i = 0; i < 2 && status == OIT_OK; ++i) {
-        s->minmax[i] = ddp_target(s, GL_RG32F, width, height);
+        s->minmax[i] = oit_gpu_target(&s->gpu, GL_RG32F, width, height);
         glGenFramebuffers(1, &s->peel_framebuffer[i]);
         glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->minmax[i],
@@ -187,20 +173,20 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
                                s->back_layer, 0);
         glDrawBuffers(3, peel_buffers);
-        status = ddp_check_framebuffer(s, "peel", width, height, err);
+        status = oit_gpu_check_framebuffer(&s->gpu, "peel", width, height, err);
     }
     if (status == OIT_OK) {
         glGenFramebuffers(1, &s->back_framebuffer);
         glBindFramebuffer(GL_FRAMEBUFFER, s->back_framebuffer);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->back, 0);
-        status = ddp_check_framebuffer(s, "back", width, height, err);
+        status = oit_gpu_check_framebuffer(&s->gpu, "back", width, height, err);
     }
     if (status == OIT_OK && s->distance_targets) {
-        s->front_layer = ddp_target(s, GL_RGBA32F, width, height);
-        s->distance_max = ddp_target(s, GL_R32F, width, height);
+        s->front_layer = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
+        s->distance_max = oit_gpu_target(&s->gpu, GL_R32F, width, height);
         static const GLenum two[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
         for (int i = 0; i < 2 && status == OIT_OK; ++i) {
-            s->previous_far[i] = ddp_target(s, GL_R32F, width, height);
+            s->previous_far[i] = oit_gpu_target(&s->gpu, GL_R32F, width, height);
             glGenFramebuffers(1, &s->distance_peel_framebuffer[i]);
             glBindFramebuffer(GL_FRAMEBUFFER, s->distance_peel_framebuffer[i]);
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -210,7 +196,7 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
                                    s->back_layer, 0);
             glDrawBuffers(3, peel_buffers);
-            status = ddp_check_framebuffer(s, "distance peel", width, height, err);
+            status = oit_gpu_check_framebuffer(&s->gpu, "distance peel", width, height, err);
             if (status != OIT_OK)
                 break;
             glGenFramebuffers(1, &s->distance_blend_framebuffer[i]);
@@ -220,7 +206,7 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
                                    s->previous_far[i], 0);
             glDrawBuffers(3, peel_buffers);
-            status = ddp_check_framebuffer(s, "distance blend", width, height, err);
+            status = oit_gpu_check_framebuffer(&s->gpu, "distance blend", width, height, err);
             if (status != OIT_OK)
                 break;
             glGenFramebuffers(1, &s->distance_max_framebuffer[i]);
@@ -230,7 +216,7 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
                                    s->previous_far[i], 0);
             glDrawBuffers(2, two);
-            status = ddp_check_framebuffer(s, "distance maximum", width, height, err);
+            status = oit_gpu_check_framebuffer(&s->gpu, "distance maximum", width, height, err);
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -447,23 +433,7 @@ static oit_status ddp_distance_norm(ddp_state *s, const oit_scene *scene,
                                          &s->gpu.stats.truncated, err);
     if (status != OIT_OK)
         return status;
-    oit_timer_stage_begin(&s->gpu.timer, "distance_max_read");
-    size_t pixels = (size_t)s->gpu.output.width * (size_t)s->gpu.output.height;
-    float *values = malloc(pixels * sizeof *values);
-    if (!values)
-        return oit_fail(err, OIT_E_RUNTIME, "ddp: out of memory for the distance maximum");
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, s->distance_max_framebuffer[0]);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, s->gpu.output.width, s->gpu.output.height, GL_RED, GL_FLOAT, values);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    float largest = 0.0f;
-    for (size_t i = 0; i < pixels; ++i)
-        largest = values[i] > largest ? values[i] : largest;
-    free(values);
-    oit_timer_stage_end(&s->gpu.timer);
-    *norm = largest > 0.0f ? largest : 1.0f;
-    return oit_gpu_stage_check(&s->gpu, "distance_max_read", err);
+    return oit_gpu_read_largest(&s->gpu, s->distance_max_framebuffer[0], norm, err);
 }
 
 static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,

@@ -106,12 +106,6 @@ typedef struct dp_state {
  * (4 each), the layer colour and the accumulation (16 each), the RGBA8 output
  * (4); with the distance modulation two layer colours (16 each) and the R32F
  * maximum; with curvature two RG32UI normal + component targets (8 each). */
-static GLuint dp_target(dp_state *s, GLenum internal_format, int width, int height)
-{
-    return oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, internal_format, width,
-                                    height);
-}
-
 static void dp_release_targets(dp_state *s)
 {
     glDeleteFramebuffers(2, s->peel_framebuffer);
@@ -134,14 +128,6 @@ static void dp_release_targets(dp_state *s)
     s->distance_max = s->distance_max_framebuffer = 0;
     s->layer_colour = s->accumulation_framebuffer = s->accumulation = 0;
     s->gpu.output.width = s->gpu.output.height = 0;
-}
-
-static oit_status dp_check_framebuffer(const dp_state *s, const char *what, int width, int height,
-                                       oit_error *err)
-{
-    char name[64];
-    snprintf(name, sizeof name, "dp: the %s framebuffer", what);
-    return oit_gl_check_framebuffer(name, width, height, &s->gpu.memory, err);
 }
 
 static void dp_destroy(oit_algorithm *alg);
@@ -206,10 +192,10 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
     static const GLenum colour_and_tie[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_COLOR_ATTACHMENT2};
     static const GLenum three_targets[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                             GL_COLOR_ATTACHMENT2};
-    s->layer_colour = dp_target(s, GL_RGBA32F, width, height);
+    s->layer_colour = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
     for (int i = 0; i < 2; ++i) {
-        s->depth[i] = dp_target(s, GL_DEPTH_COMPONENT32F, width, height);
-        s->tie[i] = dp_target(s, GL_R32UI, width, height);
+        s->depth[i] = oit_gpu_target(&s->gpu, GL_DEPTH_COMPONENT32F, width, height);
+        s->tie[i] = oit_gpu_target(&s->gpu, GL_R32UI, width, height);
         glGenFramebuffers(1, &s->peel_framebuffer[i]);
         glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -217,20 +203,20 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
         glDrawBuffers(3, colour_and_tie);
-        status = dp_check_framebuffer(s, "peel", width, height, err);
+        status = oit_gpu_check_framebuffer(&s->gpu, "peel", width, height, err);
         if (status != OIT_OK)
             break;
     }
     if (status == OIT_OK) {
-        s->accumulation = dp_target(s, GL_RGBA32F, width, height);
+        s->accumulation = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
         glGenFramebuffers(1, &s->accumulation_framebuffer);
         glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                                s->accumulation, 0);
-        status = dp_check_framebuffer(s, "accumulation", width, height, err);
+        status = oit_gpu_check_framebuffer(&s->gpu, "accumulation", width, height, err);
     }
     for (int i = 0; status == OIT_OK && s->distance_targets && i < 2; ++i) {
-        s->distance_colour[i] = dp_target(s, GL_RGBA32F, width, height);
+        s->distance_colour[i] = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
         glGenFramebuffers(1, &s->distance_peel_framebuffer[i]);
         glBindFramebuffer(GL_FRAMEBUFFER, s->distance_peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -238,18 +224,18 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
         glDrawBuffers(3, colour_and_tie);
-        status = dp_check_framebuffer(s, "distance peel", width, height, err);
+        status = oit_gpu_check_framebuffer(&s->gpu, "distance peel", width, height, err);
     }
     if (status == OIT_OK && s->distance_targets) {
-        s->distance_max = dp_target(s, GL_R32F, width, height);
+        s->distance_max = oit_gpu_target(&s->gpu, GL_R32F, width, height);
         glGenFramebuffers(1, &s->distance_max_framebuffer);
         glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                                s->distance_max, 0);
-        status = dp_check_framebuffer(s, "distance maximum", width, height, err);
+        status = oit_gpu_check_framebuffer(&s->gpu, "distance maximum", width, height, err);
     }
     for (int i = 0; status == OIT_OK && s->normal_targets && i < 2; ++i) {
-        s->layer_normal[i] = dp_target(s, GL_RG32UI, width, height);
+        s->layer_normal[i] = oit_gpu_target(&s->gpu, GL_RG32UI, width, height);
         glGenFramebuffers(1, &s->curvature_peel_framebuffer[i]);
         glBindFramebuffer(GL_FRAMEBUFFER, s->curvature_peel_framebuffer[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
@@ -259,7 +245,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
         glDrawBuffers(3, three_targets);
-        status = dp_check_framebuffer(s, "curvature peel", width, height, err);
+        status = oit_gpu_check_framebuffer(&s->gpu, "curvature peel", width, height, err);
         if (status != OIT_OK || !s->distance_targets)
             continue;
         glGenFramebuffers(1, &s->dist_curv_peel_framebuffer[i]);
@@ -271,7 +257,7 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
         glDrawBuffers(3, three_targets);
-        status = dp_check_framebuffer(s, "dist-curv peel", width, height, err);
+        status = oit_gpu_check_framebuffer(&s->gpu, "dist-curv peel", width, height, err);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status == OIT_OK)
@@ -522,23 +508,7 @@ static oit_status dp_distance_norm(dp_state *s, const oit_scene *scene,
                                       &s->gpu.stats.truncated, err);
     if (status != OIT_OK)
         return status;
-    oit_timer_stage_begin(&s->gpu.timer, "distance_max_read");
-    size_t pixels = (size_t)s->gpu.output.width * (size_t)s->gpu.output.height;
-    float *values = malloc(pixels * sizeof *values);
-    if (!values)
-        return oit_fail(err, OIT_E_RUNTIME, "dp: out of memory for the distance maximum");
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, s->distance_max_framebuffer);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, s->gpu.output.width, s->gpu.output.height, GL_RED, GL_FLOAT, values);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    float largest = 0.0f;
-    for (size_t i = 0; i < pixels; ++i)
-        largest = values[i] > largest ? values[i] : largest;
-    free(values);
-    oit_timer_stage_end(&s->gpu.timer);
-    *norm = largest > 0.0f ? largest : 1.0f;
-    return oit_gpu_stage_check(&s->gpu, "distance_max_read", err);
+    return oit_gpu_read_largest(&s->gpu, s->distance_max_framebuffer, norm, err);
 }
 
 static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,

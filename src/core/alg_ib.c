@@ -249,9 +249,9 @@ static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error
     oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->head_image);
     oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->count_image);
     s->head_image =
-        oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+        oit_gpu_target(&s->gpu, GL_R32UI, width, height);
     s->count_image =
-        oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+        oit_gpu_target(&s->gpu, GL_R32UI, width, height);
     const uint64_t tiles = (uint64_t)((width + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE) *
                            (uint64_t)((height + OIT_IB_TILE_SIZE - 1) / OIT_IB_TILE_SIZE);
     oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_SHADER_STORAGE_BUFFER,

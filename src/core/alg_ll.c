@@ -203,7 +203,7 @@ static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error
     s->band_plan.count = 0; /* bands of the old size */
     oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->head_image);
     s->head_image =
-        oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+        oit_gpu_target(&s->gpu, GL_R32UI, width, height);
 
     /* The first pool: a few fragments per pixel (or what the config asks for),
      * within the budget. Frames that need more grow it in render(). */

@@ -169,8 +169,8 @@ static oit_status mlab_resize(oit_algorithm *alg, int width, int height, oit_err
     glBindTexture(GL_TEXTURE_BUFFER, s->layer_texture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, s->layer_buffer);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
-    s->count_image = oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
-    s->lock_image = oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS, GL_R32UI, width, height);
+    s->count_image = oit_gpu_target(&s->gpu, GL_R32UI, width, height);
+    s->lock_image = oit_gpu_target(&s->gpu, GL_R32UI, width, height);
     GLenum error = glGetError();
     if (error != GL_NO_ERROR) {
         mlab_release_targets(s);

@@ -73,8 +73,8 @@ static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_er
         return status;
 
     oit_gl_memory *memory = &s->gpu.memory;
-    s->accumulation = oit_gl_memory_texture_2d(memory, OIT_GL_MEMORY_PIXELS, GL_RGBA32F, width, height);
-    s->revealage = oit_gl_memory_texture_2d(memory, OIT_GL_MEMORY_PIXELS, GL_R32F, width, height);
+    s->accumulation = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
+    s->revealage = oit_gpu_target(&s->gpu, GL_R32F, width, height);
     glGenFramebuffers(1, &s->accumulate_framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, s->accumulate_framebuffer);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->accumulation,
@@ -82,7 +82,7 @@ static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_er
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, s->revealage, 0);
     static const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, buffers);
-    status = oit_gl_check_framebuffer("wboit: the accumulation framebuffer", width, height, memory, err);
+    status = oit_gpu_check_framebuffer(&s->gpu, "accumulation", width, height, err);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status == OIT_OK)
         status = oit_gl_check("wboit: resize", err);

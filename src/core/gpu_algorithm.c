@@ -120,6 +120,40 @@ oit_status oit_gpu_frame_end(oit_gpu_algorithm *gpu, oit_status status, oit_erro
     return status;
 }
 
+GLuint oit_gpu_target(oit_gpu_algorithm *gpu, GLenum internal_format, int width, int height)
+{
+    return oit_gl_memory_texture_2d(&gpu->memory, OIT_GL_MEMORY_PIXELS, internal_format, width, height);
+}
+
+oit_status oit_gpu_check_framebuffer(const oit_gpu_algorithm *gpu, const char *what, int width, int height,
+                                     oit_error *err)
+{
+    char name[96];
+    snprintf(name, sizeof name, "%s: the %s framebuffer", gpu->name, what);
+    return oit_gl_check_framebuffer(name, width, height, &gpu->memory, err);
+}
+
+oit_status oit_gpu_read_largest(oit_gpu_algorithm *gpu, GLuint framebuffer, float *largest, oit_error *err)
+{
+    oit_timer_stage_begin(&gpu->timer, "distance_max_read");
+    size_t pixels = (size_t)gpu->output.width * (size_t)gpu->output.height;
+    float *values = malloc(pixels * sizeof *values);
+    if (!values)
+        return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory for the distance maximum", gpu->name);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, gpu->output.width, gpu->output.height, GL_RED, GL_FLOAT, values);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    float found = 0.0f;
+    for (size_t i = 0; i < pixels; ++i)
+        found = values[i] > found ? values[i] : found;
+    free(values);
+    oit_timer_stage_end(&gpu->timer);
+    *largest = found > 0.0f ? found : 1.0f;
+    return oit_gpu_stage_check(gpu, "distance_max_read", err);
+}
+
 oit_status oit_gpu_fullscreen_stage(oit_gpu_algorithm *gpu, oit_status status, const char *stage,
                                     GLuint program, GLbitfield barriers, const oit_frame_settings *frame,
                                     const oit_texture_unit *textures, int texture_count, oit_error *err)

@@ -57,6 +57,18 @@ oit_status oit_gpu_frame_begin(oit_gpu_algorithm *gpu, const oit_scene *scene, c
  * GL error where status was OIT_OK. */
 oit_status oit_gpu_frame_end(oit_gpu_algorithm *gpu, oit_status status, oit_error *err);
 
+/* A screen-sized 2D target (nearest, clamped), recorded in the tracker as
+ * per-pixel memory. */
+GLuint oit_gpu_target(oit_gpu_algorithm *gpu, GLenum internal_format, int width, int height);
+/* The bound framebuffer is complete, or OIT_E_RUNTIME "NAME: the WHAT
+ * framebuffer is incomplete (...)" naming its size and the memory held. */
+oit_status oit_gpu_check_framebuffer(const oit_gpu_algorithm *gpu, const char *what, int width, int height,
+                                     oit_error *err);
+/* The largest value of the R32F target of `framebuffer` (the frame's largest
+ * distance, for the automatic focus region), read back as the stage
+ * "distance_max_read"; 1 where every value is 0. */
+oit_status oit_gpu_read_largest(oit_gpu_algorithm *gpu, GLuint framebuffer, float *largest, oit_error *err);
+
 /* A texture a full-screen pass reads, and the unit it is bound to. */
 typedef struct oit_texture_unit {
     GLenum unit; /* OIT_TEXUNIT_* */
