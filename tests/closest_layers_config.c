@@ -36,7 +36,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s\n", err.message);
         return 1;
     }
-    const oit_algorithm_ops *algorithms[] = {&oit_algorithm_kbuffer, &oit_algorithm_hybrid};
+    const oit_algorithm_ops *algorithms[] = {oit_algorithm_find("kbuffer"), oit_algorithm_find("hybrid")};
     for (size_t a = 0; a < 2; ++a) {
         const oit_algorithm_ops *ops = algorithms[a];
         const int bad[] = {-1, 65, 1000};

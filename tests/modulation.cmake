@@ -25,11 +25,9 @@ foreach(scene ${MOD_SCENES})
   set(MOD_${scene}_light "--shading|headlight|--background|0.1,0.2,0.3")
 endforeach()
 
-# candidates: label:algorithm[:extra args]; exact ones must match the reference
-set(MOD_CANDIDATES "dp:dp" "ddp:ddp" "ll:ll" "llarray:ll:--sort:array" "ib:ib" "blend:blend" "wboit:wboit")
-set(MOD_EXACT dp ddp ll llarray ib)
-# osmesa: a subset (the back ends are checked identical in tests/CMakeLists.txt)
-set(MOD_OSMESA_CANDIDATES "dp:dp" "ll:ll" "ib:ib")
+# candidates (MOD_CANDIDATES, MOD_EXACT, MOD_OSMESA_CANDIDATES: OSMesa runs a
+# subset, the back ends being checked identical in tests/CMakeLists.txt) come
+# from each algorithm's tests/alg_NAME.cmake
 
 add_test(NAME modulation_dirs
   COMMAND ${CMAKE_COMMAND} -E make_directory ${WORK}/modulation/reference ${WORK}/modulation/egl

@@ -727,16 +727,7 @@ oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg
 const oit_algorithm_ops *const *oit_algorithm_list(size_t *count);
 const oit_algorithm_ops *oit_algorithm_find(const char *name);
 
-extern const oit_algorithm_ops oit_algorithm_blend;
-extern const oit_algorithm_ops oit_algorithm_dp;
-extern const oit_algorithm_ops oit_algorithm_ddp;
-extern const oit_algorithm_ops oit_algorithm_ll;
-extern const oit_algorithm_ops oit_algorithm_ib;
-extern const oit_algorithm_ops oit_algorithm_wboit;
-extern const oit_algorithm_ops oit_algorithm_kbuffer;
-extern const oit_algorithm_ops oit_algorithm_hybrid;
-extern const oit_algorithm_ops oit_algorithm_mboit;
-extern const oit_algorithm_ops oit_algorithm_mlab;
+/* The oracle, which shells name to compare against (the rest by oit_algorithm_find). */
 extern const oit_algorithm_ops oit_algorithm_reference;
 
 /* ------------------------------------------------------------- GL context */

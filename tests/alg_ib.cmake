@@ -1,7 +1,12 @@
-# Illustration Buffer tests (tests/ib.cmake), included by tests/CMakeLists.txt.
+# Illustration Buffer tests (tests/alg_ib.cmake), included by tests/CMakeLists.txt
+# before the image tests; its modulation candidates are run by tests/modulation.cmake.
 # Uses its fixtures: `scenes` (${SCENES}/<scene>.obj), reference images, and the
 # ll images (image_ll_<scene>_<backend>). docs/illustration-buffer.md explains
 # what each check means.
+
+list(APPEND MOD_CANDIDATES "ib:ib")
+list(APPEND MOD_EXACT ib)
+list(APPEND MOD_OSMESA_CANDIDATES "ib:ib")
 
 # Without modulation ib is an exact algorithm: the same image as the reference
 # and as ll, on both back ends, with the exact algorithms' tolerance.

@@ -1,0 +1,14 @@
+# ll: per-pixel linked lists (src/core/alg_ll.c), exact with either sort
+# (insertion in the lists, or a local array): both held to the reference's
+# tolerance, and to each other. Included by tests/CMakeLists.txt before the image tests.
+list(APPEND CANDIDATES "ll:ll:--sort:insertion" "llarray:ll:--sort:array")
+list(APPEND EXACT_CANDIDATES ll llarray)
+list(APPEND AGREE_PAIRS "ll:llarray")
+list(APPEND MOD_CANDIDATES "ll:ll" "llarray:ll:--sort:array")
+list(APPEND MOD_EXACT ll llarray)
+list(APPEND MOD_OSMESA_CANDIDATES "ll:ll")
+
+# Frames past one buffer's reach drawn in bands of rows equal the whole frame
+# (tests/ll_bands.sh).
+add_test(NAME ll_bands COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/ll_bands.sh ${OIT} ${WORK}/ll_bands ${SCENES})
+set_tests_properties(ll_bands PROPERTIES FIXTURES_REQUIRED scenes)
