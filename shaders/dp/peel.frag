@@ -11,7 +11,7 @@
 // draw call in triangle order. So coincident faces are peeled one after the
 // other instead of all but one being lost, as in plain depth peeling. The
 // winner's triangle index goes to the tie target for the next pass.
-// With DP_NEIGHBOURS defined (dp/peel_neighbours.frag: curvature, dist-curv)
+// With DP_NEIGHBOURS defined (alg_dp.c builds it so for curvature, dist-curv)
 // it also writes the layer's normal and component for blend_curvature.frag.
 #include "common/oit_shared.h"
 #include "common/shade.glsl"

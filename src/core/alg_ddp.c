@@ -61,7 +61,7 @@ typedef struct ddp_state {
     GLuint peel_framebuffer[2];
     GLuint back_framebuffer; /* back */
     /* distance modulation only (allocated on first use) */
-    GLuint distance_programs[2]; /* ddp/blend_distance.frag, ddp/distance_max.frag */
+    GLuint distance_programs[2]; /* ddp/blend_distance.frag, the same with DISTANCE_MAX */
     bool distance_targets;
     GLuint front_layer;          /* GL_RGBA32F: this pass's front layer, rgb + local factor */
     GLuint previous_far[2];      /* GL_R32F: far depth of the last back layer, < 0: none */
@@ -136,8 +136,8 @@ static oit_status ddp_create(const oit_algorithm_config *config, oit_algorithm *
         status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "ddp/blend_distance.frag",
                                 &s->distance_programs[0], err);
     if (status == OIT_OK)
-        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "ddp/distance_max.frag",
-                                &s->distance_programs[1], err);
+        status = oit_gpu_program_variant(&s->gpu, "common/fullscreen.vert", "ddp/blend_distance.frag",
+                                         "#define DISTANCE_MAX 1\n", &s->distance_programs[1], err);
     if (status == OIT_OK)
         status = oit_gl_check("ddp: create", err);
     if (status != OIT_OK) {

@@ -27,7 +27,7 @@
  * peeling allows. The Illustration Buffer finds a fragment's neighbours through
  * the surface in the adjacent pixels' lists; a peeled layer has one fragment
  * per pixel, so the neighbour here is the same layer's fragment in the adjacent
- * pixel, if it is on the same component. The peel (dp/peel_neighbours.frag)
+ * pixel, if it is on the same component. The peel (dp/peel.frag with DP_NEIGHBOURS)
  * also writes the layer's octahedral normal and component into an RG32UI
  * target, and the layer's blend pass becomes dp/blend_curvature.frag, which
  * computes the curvature exactly as ib does from those neighbours: same passes,
@@ -72,8 +72,8 @@ typedef struct dp_state {
     GLuint compose_program; /* fullscreen.vert + dp/compose.frag */
     GLuint samples_query;   /* GL_ANY_SAMPLES_PASSED of the peel pass */
     GLuint blend_distance_program; /* fullscreen.vert + dp/blend_distance.frag */
-    GLuint distance_max_program;   /* fullscreen.vert + dp/distance_max.frag */
-    GLuint peel_neighbours_program; /* geometry.vert + dp/peel_neighbours.frag */
+    GLuint distance_max_program;   /* fullscreen.vert + dp/blend_distance.frag, DISTANCE_MAX */
+    GLuint peel_neighbours_program; /* geometry.vert + dp/peel.frag, DP_NEIGHBOURS */
     GLuint blend_curvature_program; /* fullscreen.vert + dp/blend_curvature.frag */
 
     /* Two (depth, triangle) pairs used in turn: one is read (previous layer)
@@ -159,11 +159,11 @@ static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **
         status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
                                 "dp/blend_distance.frag", &s->blend_distance_program, err);
     if (status == OIT_OK)
-        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
-                                "dp/distance_max.frag", &s->distance_max_program, err);
+        status = oit_gpu_program_variant(&s->gpu, "common/fullscreen.vert", "dp/blend_distance.frag",
+                                         "#define DISTANCE_MAX 1\n", &s->distance_max_program, err);
     if (status == OIT_OK)
-        status = oit_gpu_program(&s->gpu, "common/geometry.vert",
-                                "dp/peel_neighbours.frag", &s->peel_neighbours_program, err);
+        status = oit_gpu_program_variant(&s->gpu, "common/geometry.vert", "dp/peel.frag",
+                                         "#define DP_NEIGHBOURS 1\n", &s->peel_neighbours_program, err);
     if (status == OIT_OK)
         status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
                                 "dp/blend_curvature.frag", &s->blend_curvature_program, err);

@@ -37,8 +37,8 @@ typedef struct mboit_state {
     oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
     oit_moments moments; /* config.moments resolved: never OIT_MOMENTS_DEFAULT */
 
-    GLuint moments_program;       /* geometry.vert + mboit/moments_<variant>.frag */
-    GLuint transmittance_program; /* geometry.vert + mboit/transmittance_<variant>.frag */
+    GLuint moments_program;       /* geometry.vert + mboit/moments.frag, MBOIT_VARIANT */
+    GLuint transmittance_program; /* geometry.vert + mboit/transmittance.frag, MBOIT_VARIANT */
     GLuint compose_program;       /* fullscreen.vert + mboit/compose.frag */
 
     GLuint b0;           /* GL_R32F: sum of optical depths */
@@ -86,15 +86,17 @@ static oit_status mboit_create(const oit_algorithm_config *config, oit_algorithm
     mboit_state *s = (mboit_state *)gpu;
     s->moments = moments;
 
-    const char *variant = oit_setting_word(OIT_SETTING_MOMENTS, moments);
-    char moments_path[64], transmittance_path[64];
-    snprintf(moments_path, sizeof moments_path, "mboit/moments_%s.frag", variant);
-    snprintf(transmittance_path, sizeof transmittance_path, "mboit/transmittance_%s.frag", variant);
-    status = oit_gpu_program(&s->gpu, "common/geometry.vert", moments_path,
-                                       &s->moments_program, err);
+    /* the shaders' variant: OIT_MBOIT_POWER4, _POWER6 or _TRIG3 (oit_shared.h) */
+    const int variant = moments == OIT_MOMENTS_POWER4   ? OIT_MBOIT_POWER4
+                        : moments == OIT_MOMENTS_POWER6 ? OIT_MBOIT_POWER6
+                                                        : OIT_MBOIT_TRIG3;
+    char defines[64];
+    snprintf(defines, sizeof defines, "#define MBOIT_VARIANT %d\n", variant);
+    status = oit_gpu_program_variant(&s->gpu, "common/geometry.vert", "mboit/moments.frag", defines,
+                                     &s->moments_program, err);
     if (status == OIT_OK)
-        status = oit_gpu_program(&s->gpu, "common/geometry.vert", transmittance_path,
-                                &s->transmittance_program, err);
+        status = oit_gpu_program_variant(&s->gpu, "common/geometry.vert", "mboit/transmittance.frag",
+                                         defines, &s->transmittance_program, err);
     if (status == OIT_OK)
         status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "mboit/compose.frag",
                                 &s->compose_program, err);

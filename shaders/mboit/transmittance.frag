@@ -1,5 +1,6 @@
-// mboit/transmittance.glsl: the "transmittance" pass (depth test off, additive
-// blending into an rgba32f target), included by transmittance_<variant>.frag.
+// mboit/transmittance.frag: the "transmittance" pass (depth test off, additive
+// blending into an rgba32f target), built once per variant (MBOIT_VARIANT, as
+// moments.frag).
 // Every fragment reads its pixel's moments (the "moments" pass), reconstructs
 // the transmittance T in front of its own depth (E4 in mboit/common.glsl) and
 // adds (T a c, T a): the sums of E5.

@@ -1,5 +1,6 @@
-// mboit/moments.glsl: the "moments" pass (depth test off, additive blending
-// into float targets), included by moments_<variant>.frag. Every fragment
+// mboit/moments.frag: the "moments" pass (depth test off, additive blending
+// into float targets), built once per variant (alg_mboit.c defines
+// MBOIT_VARIANT as OIT_MBOIT_POWER4, _POWER6 or _TRIG3). Every fragment
 // adds its optical depth -ln(1 - a) times the moment vector of its warped
 // depth (E3 in mboit/common.glsl: b = sum_l -ln(1 - a_l) b(z_l), accumulated
 // by additive blending, its "single precision" variant without rasterizer
