@@ -17,7 +17,6 @@
 // alg_reference.c computes the same in double.
 #include "common/shade.glsl"
 
-layout(location = OIT_UNIFORM_PLANE_TO_EYE) uniform mat4 u_plane_to_eye;
 layout(binding = OIT_TEXUNIT_TRIANGLE_PLANES) uniform usamplerBuffer oit_triangle_planes;
 layout(binding = OIT_TEXUNIT_PLANES) uniform samplerBuffer oit_planes;
 

@@ -1,7 +1,7 @@
 // local_modulation.glsl: the local opacity modulations every algorithm applies
 // per fragment (docs/modulation.md), the GLSL twin of src/core/local_modulation.c.
-// Uniforms are set by oit_gl_set_frame_uniforms() (gl_util.c) by these names;
-// the per-part opacity is a buffer texture, filled by oit_gl_bind_part_alpha().
+// Its parameters are the frame block's (common/frame.glsl); the per-part
+// opacity is a buffer texture, filled by oit_gl_bind_part_alpha().
 //   alpha' = alpha * component_alpha[component] * saturate(d / focus_region)
 // with d the distance, in model coordinates, to the focus point, to the focus
 // plane, or to the focus box (0 inside it). alpha' == 0: the fragment is never stored.
@@ -10,21 +10,11 @@
 #define OIT_LOCAL_MODULATION_GLSL
 #include "common/frame.glsl"
 
-layout(location = OIT_UNIFORM_LOCAL_FOCUS_SHAPE) uniform int u_local_focus_shape;
-layout(location = OIT_UNIFORM_LOCAL_FOCUS_A) uniform vec4 u_local_focus_a; // point xyz | plane abcd | box min
-layout(location = OIT_UNIFORM_LOCAL_FOCUS_B) uniform vec4 u_local_focus_b; // box max
-layout(location = OIT_UNIFORM_LOCAL_FOCUS_REGION) uniform float u_local_focus_region;
-layout(location = OIT_UNIFORM_LOCAL_CONTRAST) uniform float u_local_contrast;
-layout(location = OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW) uniform mat4 u_local_inverse_modelview;
 // Per-part opacity: one float per part of the model, every part (1 where the
 // frame sets none; no limit on the number of parts). The one place the GLSL
 // side reads oit_local_modulation.component_alpha.
 layout(binding = OIT_TEXUNIT_LOCAL_PART_ALPHA) uniform samplerBuffer u_local_part_alpha;
 
-layout(location = OIT_UNIFORM_LOCAL_INVERSE_PROJECTION) uniform mat4 u_local_inverse_projection;
-layout(location = OIT_UNIFORM_DISTANCE_MODE) uniform int u_distance_mode; // -1: off
-layout(location = OIT_UNIFORM_DISTANCE_SKIP) uniform int u_distance_skip;
-layout(location = OIT_UNIFORM_DISTANCE_NORM) uniform float u_distance_norm;
 
 // The pixel's ray in eye space: its points at NDC depth -1 and +1, where the
 // canonical depth (common/canonical_depth.glsl) is 0 and 1.

@@ -167,41 +167,45 @@
 #define OIT_TEXUNIT_MBOIT_EXTRA 26
 #define OIT_TEXUNIT_MBOIT_ACCUM 27
 
-/* ---- uniform locations shared by the algorithms' shaders ---- */
-#define OIT_UNIFORM_MODELVIEW 0
-#define OIT_UNIFORM_PROJECTION 1
-#define OIT_UNIFORM_NORMAL_MATRIX 2
-#define OIT_UNIFORM_ALPHA 3
-#define OIT_UNIFORM_SHADING 4
-#define OIT_UNIFORM_BACKGROUND 5
-#define OIT_UNIFORM_VIEWPORT 6
-/* local modulation (common/local_modulation.glsl, docs/modulation.md), set by
- * oit_gl_set_frame_uniforms: focus shape (int, OIT_FOCUS_*), its two vec4 of
- * parameters, fall-off length (float), contrast (float), inverse modelview
- * (mat4: four locations, 12..15) */
-#define OIT_UNIFORM_LOCAL_FOCUS_SHAPE 7
-#define OIT_UNIFORM_LOCAL_FOCUS_A 8
-#define OIT_UNIFORM_LOCAL_FOCUS_B 9
-#define OIT_UNIFORM_LOCAL_FOCUS_REGION 10
-#define OIT_UNIFORM_LOCAL_CONTRAST 11
-#define OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW 12
+/* ---- the frame's parameters: one std140 uniform block (common/frame.glsl) ----
+ * uploaded once per frame (oit_gpu_frame_begin: gl_util.h's oit_frame_block,
+ * which asserts these byte offsets; every program's are checked against them
+ * when it is linked). Every pass reads it at binding OIT_UBO_FRAME:
+ * the matrices (mat4; the normal matrix a mat3 of three vec4 columns), the
+ * background (vec3) and the frame's opacity multiplier, the local modulation
+ * (docs/modulation.md): focus shape (OIT_FOCUS_SHAPE_*), its two vec4 of
+ * parameters (point xyz | plane abcd | box min; box max), fall-off length,
+ * contrast, and the distance along the ray (dp, ddp, ll; ib has its own): mode
+ * (OIT_IB_DISTANCE_*, -1 when the frame's modulation is not distance), skip k,
+ * and the normalising length (the focus region, or the frame's largest
+ * distance once an algorithm knows it: it writes that field alone). The sort
+ * depth of every exact algorithm (common/canonical_depth.glsl) takes
+ * model-space planes to eye space with plane_to_eye, transpose(inverse(modelview)). */
+#define OIT_UBO_FRAME 0
+#define OIT_FRAME_MODELVIEW 0
+#define OIT_FRAME_PROJECTION 64
+#define OIT_FRAME_PLANE_TO_EYE 128
+#define OIT_FRAME_INVERSE_MODELVIEW 192
+#define OIT_FRAME_INVERSE_PROJECTION 256
+#define OIT_FRAME_NORMAL_MATRIX 320
+#define OIT_FRAME_BACKGROUND 368
+#define OIT_FRAME_ALPHA 380
+#define OIT_FRAME_FOCUS_A 384
+#define OIT_FRAME_FOCUS_B 400
+#define OIT_FRAME_VIEWPORT 416
+#define OIT_FRAME_SHADING 424
+#define OIT_FRAME_FOCUS_SHAPE 428
+#define OIT_FRAME_FOCUS_REGION 432
+#define OIT_FRAME_CONTRAST 436
+#define OIT_FRAME_DISTANCE_MODE 440
+#define OIT_FRAME_DISTANCE_SKIP 444
+#define OIT_FRAME_DISTANCE_NORM 448
+#define OIT_FRAME_BLOCK_BYTES 464
 /* per-part opacity (oit_local_modulation.component_alpha): no uniform, a buffer
  * texture (samplerBuffer, r32f) with one float per part of the model, every
  * part (1 where the frame sets none), filled each frame by
- * oit_gl_bind_part_alpha (gl_util.c) and read by oit_local_alpha */
+ * oit_gl_bind_part_alpha (gl_frame.c) and read by oit_local_alpha */
 #define OIT_TEXUNIT_LOCAL_PART_ALPHA 23
-/* distance along the ray (dp, ddp, ll; ib has its own): the inverse projection
- * (mat4, 52..55), the distance mode (int: OIT_IB_DISTANCE_*, -1 when the frame's
- * modulation is not distance), skip k (int) and the normalising length (float:
- * focus region, or the frame's largest distance once known) */
-#define OIT_UNIFORM_LOCAL_INVERSE_PROJECTION 52
-#define OIT_UNIFORM_DISTANCE_MODE 56
-#define OIT_UNIFORM_DISTANCE_SKIP 57
-#define OIT_UNIFORM_DISTANCE_NORM 58
-/* the sort depth of every exact algorithm (common/canonical_depth.glsl): the
- * matrix that takes a model-space plane to eye space,
- * transpose(inverse(modelview)) (mat4, 40..43) */
-#define OIT_UNIFORM_PLANE_TO_EYE 40
 /* a plane is seen edge-on from a pixel when its normal is within 1e-6 (in
  * millionths) of perpendicular to the pixel's ray: the interpolated depth is kept */
 #define OIT_EDGE_ON_PLANE_PPM 1

@@ -90,7 +90,6 @@ static oit_status blend_render(oit_algorithm *alg, const oit_scene *scene,
     /* alpha stays 1: the target starts opaque (the background) */
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
     glUseProgram(s->draw_program);
-    oit_gl_set_frame_uniforms(frame);
     oit_gl_draw_scene(scene);
     glDisable(GL_BLEND);
     status = oit_gpu_stage_check(&s->gpu, "draw", err);

@@ -311,8 +311,7 @@ static void ddp_distance_pass(ddp_state *s, const oit_frame_settings *frame, ddp
         glDisablei(GL_BLEND, 2);
     }
     glUseProgram(s->distance_programs[sweep == DDP_SWEEP_DISTANCE_MAX ? 1 : 0]);
-    oit_gl_set_frame_uniforms(frame);
-    glUniform1f(OIT_UNIFORM_DISTANCE_NORM, distance_norm);
+    oit_gpu_set_distance_norm(&s->gpu, distance_norm);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_NEXT_LAYER);
     glBindTexture(GL_TEXTURE_2D, s->front_layer);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_LAYER);
@@ -355,7 +354,6 @@ static oit_status ddp_sweep_layers(ddp_state *s, const oit_scene *scene,
     }
     ddp_enable_sweep_blending(sweep);
     glUseProgram(s->init_program);
-    oit_gl_set_frame_uniforms(frame);
     oit_gl_draw_scene(scene);
     glDisable(GL_BLEND);
     bool any_left = false, two_left = false;
@@ -383,7 +381,6 @@ static oit_status ddp_sweep_layers(ddp_state *s, const oit_scene *scene,
             glClearBufferfv(GL_COLOR, 1, empty_layer);
         ddp_enable_sweep_blending(sweep);
         glUseProgram(s->peel_program);
-        oit_gl_set_frame_uniforms(frame);
         glUniform1i(OIT_UNIFORM_DDP_PEEL_BACK, peel_back);
         glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_MINMAX);
         glBindTexture(GL_TEXTURE_2D, s->minmax[current]);

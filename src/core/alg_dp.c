@@ -302,7 +302,6 @@ static void dp_blend_curvature(dp_state *s, const oit_frame_settings *frame, GLu
     glBlendEquation(GL_FUNC_ADD);
     glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(s->blend_curvature_program);
-    oit_gl_set_frame_uniforms(frame);
     const oit_modulation resolved = oit_modulation_defaults(m);
     glUniform1f(OIT_UNIFORM_DP_CURVATURE_EFFECT, resolved.curvature_effect);
     glUniform1i(OIT_UNIFORM_DP_CURVATURE_NEIGHBOURS, resolved.curvature_neighbours);
@@ -310,7 +309,7 @@ static void dp_blend_curvature(dp_state *s, const oit_frame_settings *frame, GLu
     /* oit_modulation_mode and OIT_IB_MODE_* share their values */
     glUniform1i(OIT_UNIFORM_DP_NEIGHBOUR_MODE, (GLint)m->mode);
     if (dist_curv)
-        glUniform1f(OIT_UNIFORM_DISTANCE_NORM, distance_norm);
+        oit_gpu_set_distance_norm(&s->gpu, distance_norm);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_LAYER);
     glBindTexture(GL_TEXTURE_2D, colour);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_NORMAL);
@@ -338,7 +337,6 @@ static bool dp_draw_peel(dp_state *s, const oit_scene *scene, const oit_frame_se
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glUseProgram(program);
-    oit_gl_set_frame_uniforms(frame);
     glUniform1i(OIT_UNIFORM_DP_HAS_PREVIOUS, layer > 0);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);
     glBindTexture(GL_TEXTURE_2D, s->depth[previous]);
@@ -448,8 +446,7 @@ static oit_status dp_peel_sweep(dp_state *s, const oit_scene *scene, const oit_f
                 glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
                 glUseProgram(s->blend_distance_program);
             }
-            oit_gl_set_frame_uniforms(frame);
-            glUniform1f(OIT_UNIFORM_DISTANCE_NORM, distance_norm);
+            oit_gpu_set_distance_norm(&s->gpu, distance_norm);
             glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_PEEL_LAYER);
             glBindTexture(GL_TEXTURE_2D, s->distance_colour[previous]);
             glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_DEPTH_PREVIOUS);

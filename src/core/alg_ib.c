@@ -354,11 +354,10 @@ static void ib_barrier(void)
                     GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-/* glUseProgram(p) with the frame uniforms and the band of rows (ib_band). */
+/* glUseProgram(p) with the band of rows (ib_band); the frame block is bound for every pass. */
 static void ib_use_program(ib_state *s, enum ib_program p, const oit_frame_settings *frame)
 {
     glUseProgram(s->programs[p]);
-    oit_gl_set_frame_uniforms(frame);
     if (glGetUniformLocation(s->programs[p], "ib_band") == OIT_UNIFORM_IB_BAND)
         glUniform4iv(OIT_UNIFORM_IB_BAND, 1, s->band);
 }
@@ -416,7 +415,7 @@ static void ib_indirect_pass(ib_state *s, enum ib_program p, int slot,
 }
 
 /* One per-pixel pass of program p (compute over the rows of tiles that hold the
- * band's stored rows, or the full-screen compose), with the frame uniforms and
+ * band's stored rows, or the full-screen compose), with the band and
  * the pass parameter. */
 static void ib_pass(ib_state *s, enum ib_program p, const oit_frame_settings *frame,
                     int pass_parameter)
@@ -482,7 +481,6 @@ static void ib_clear_and_fill(ib_state *s, const oit_scene *scene, const oit_fra
 
     ib_stage(s, prefix, retry ? "fill_retry" : "fill");
     glUseProgram(s->programs[IB_FILL]);
-    oit_gl_set_frame_uniforms(frame);
     glUniform1ui(OIT_UNIFORM_IB_POOL_CAPACITY, (GLuint)s->pool.capacity);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     oit_gl_draw_scene(scene);

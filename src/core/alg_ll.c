@@ -263,7 +263,6 @@ static void ll_clear_and_fill(ll_state *s, GLuint fill_program, const oit_scene 
 
     oit_timer_stage_begin(&s->gpu.timer, names[1]);
     glUseProgram(fill_program);
-    oit_gl_set_frame_uniforms(frame);
     glUniform1ui(OIT_UNIFORM_LL_POOL_CAPACITY, (GLuint)s->pool.capacity);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     oit_gl_draw_scene(scene);
@@ -344,7 +343,6 @@ static oit_status ll_sort_and_compose(ll_state *s, GLuint compose_program,
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
         glUseProgram(compose_program);
-        oit_gl_set_frame_uniforms(frame);
         glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view);
         glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
         glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, 1);
@@ -358,7 +356,6 @@ static oit_status ll_sort_and_compose(ll_state *s, GLuint compose_program,
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(compose_program);
-    oit_gl_set_frame_uniforms(frame);
     glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, auto_region ? 2 : 0);
     glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view); /* numbers of OIT_LL_VIEW_* */
     glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);

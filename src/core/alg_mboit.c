@@ -201,7 +201,6 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
     if (mboit_has_extra(s->moments))
         glClearBufferfv(GL_COLOR, OIT_MBOIT_TARGET_EXTRA, zeros);
     glUseProgram(s->moments_program);
-    oit_gl_set_frame_uniforms(frame);
     oit_gl_draw_scene(scene);
     oit_timer_stage_end(&s->gpu.timer);
     status = oit_gpu_stage_check(&s->gpu, "moments", err);
@@ -212,7 +211,6 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
         glBindFramebuffer(GL_FRAMEBUFFER, s->transmittance_framebuffer);
         glClearBufferfv(GL_COLOR, 0, zeros);
         glUseProgram(s->transmittance_program);
-        oit_gl_set_frame_uniforms(frame);
         mboit_bind_texture(OIT_TEXUNIT_MBOIT_B0, s->b0);
         mboit_bind_texture(OIT_TEXUNIT_MBOIT_MOMENTS, s->moment_sums);
         if (mboit_has_extra(s->moments))

@@ -230,7 +230,6 @@ static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,
         /* the clears land before the insert's image and buffer atomics */
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         glUseProgram(s->insert_program);
-        oit_gl_set_frame_uniforms(frame);
         glUniform1ui(OIT_UNIFORM_MLAB_LAYERS, (GLuint)s->layers);
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         oit_gl_draw_scene(scene);

@@ -124,7 +124,6 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
     glBlendEquationi(1, GL_FUNC_ADD);
     glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
     glUseProgram(s->accumulate_program);
-    oit_gl_set_frame_uniforms(frame);
     oit_gl_draw_scene(scene);
     glDisable(GL_BLEND);
     oit_timer_stage_end(&s->gpu.timer);

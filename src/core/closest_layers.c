@@ -324,7 +324,6 @@ oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
         glBindFramebuffer(GL_FRAMEBUFFER, s->gpu.output.framebuffer);
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glUseProgram(s->select_program);
-        oit_gl_set_frame_uniforms(frame);
         glUniform1i(OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
         oit_gl_draw_scene(scene);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -336,7 +335,6 @@ oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
         glBindFramebuffer(GL_FRAMEBUFFER, s->tail_framebuffer);
         closest_set_tail_blending(s);
         glUseProgram(s->store_program);
-        oit_gl_set_frame_uniforms(frame);
         glUniform1i(OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
         oit_gl_draw_scene(scene);
         glDisable(GL_BLEND);

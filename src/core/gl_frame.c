@@ -9,59 +9,99 @@
 
 /* ------------------------------------------------------------- geometry */
 
-/* Uniform names as declared in shaders/common/frame.glsl. A uniform the
- * program does not use is inactive; setting its location would be
- * GL_INVALID_OPERATION, hence the lookup by name. */
-static bool uniform_active(GLuint program, const char *name, GLint location)
-{
-    return glGetUniformLocation(program, name) == location;
-}
-
 /* Matrices are double in C and float on the GPU: rounded here, once. */
-static void set_matrix4_uniform(GLint location, const double m[16])
+static void round_matrix4(const double m[16], float out[16])
 {
-    float rounded[16];
     for (int i = 0; i < 16; ++i)
-        rounded[i] = (float)m[i];
-    glUniformMatrix4fv(location, 1, GL_FALSE, rounded);
+        out[i] = (float)m[i];
 }
 
-/* The local modulation of common/local_modulation.glsl (docs/modulation.md). */
-static void set_local_uniforms(GLuint p, const oit_local_modulation *local,
-                               const oit_frame_settings *frame)
+void oit_gl_frame_block(const oit_frame_settings *frame, oit_frame_block *out)
 {
-    if (uniform_active(p, "u_local_focus_shape", OIT_UNIFORM_LOCAL_FOCUS_SHAPE))
-        glUniform1i(OIT_UNIFORM_LOCAL_FOCUS_SHAPE, (GLint)local->focus_shape);
-    if (uniform_active(p, "u_local_focus_a", OIT_UNIFORM_LOCAL_FOCUS_A))
-        glUniform4f(OIT_UNIFORM_LOCAL_FOCUS_A, (float)local->focus[0], (float)local->focus[1],
-                    (float)local->focus[2], local->focus_shape == OIT_FOCUS_BOX ? 0.0f : (float)local->focus[3]);
-    if (uniform_active(p, "u_local_focus_b", OIT_UNIFORM_LOCAL_FOCUS_B))
-        glUniform4f(OIT_UNIFORM_LOCAL_FOCUS_B, (float)local->focus[3], (float)local->focus[4],
-                    (float)local->focus[5], 0.0f);
-    if (uniform_active(p, "u_local_focus_region", OIT_UNIFORM_LOCAL_FOCUS_REGION))
-        glUniform1f(OIT_UNIFORM_LOCAL_FOCUS_REGION, oit_local_focus_region(frame));
-    if (uniform_active(p, "u_local_contrast", OIT_UNIFORM_LOCAL_CONTRAST))
-        glUniform1f(OIT_UNIFORM_LOCAL_CONTRAST, local->contrast);
-    if (uniform_active(p, "u_local_inverse_modelview", OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW)) {
-        double inverse[16];
-        oit_mat4_inverse_double(frame->modelview, inverse); /* zero if singular */
-        set_matrix4_uniform(OIT_UNIFORM_LOCAL_INVERSE_MODELVIEW, inverse);
+    memset(out, 0, sizeof *out);
+    round_matrix4(frame->modelview, out->modelview);
+    round_matrix4(frame->projection, out->projection);
+    double matrix[16];
+    oit_plane_to_eye_double(frame, matrix);
+    round_matrix4(matrix, out->plane_to_eye);
+    oit_mat4_inverse_double(frame->modelview, matrix); /* zero if singular */
+    round_matrix4(matrix, out->inverse_modelview);
+    oit_mat4_inverse_double(frame->projection, matrix); /* zero if singular */
+    round_matrix4(matrix, out->inverse_projection);
+    double normal_matrix[9];
+    if (!oit_mat4_normal_matrix(frame->modelview, normal_matrix)) {
+        /* singular modelview: fall back to its upper 3x3 */
+        for (int col = 0; col < 3; ++col)
+            for (int row = 0; row < 3; ++row)
+                normal_matrix[col * 3 + row] = frame->modelview[col * 4 + row];
     }
-    if (uniform_active(p, "u_local_inverse_projection", OIT_UNIFORM_LOCAL_INVERSE_PROJECTION)) {
-        double inverse[16];
-        oit_mat4_inverse_double(frame->projection, inverse); /* zero if singular */
-        set_matrix4_uniform(OIT_UNIFORM_LOCAL_INVERSE_PROJECTION, inverse);
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row)
+            out->normal_matrix[col * 4 + row] = (float)normal_matrix[col * 3 + row];
+    for (int c = 0; c < 3; ++c)
+        out->background[c] = frame->background[c];
+    out->alpha = frame->alpha;
+    out->viewport[0] = frame->width;
+    out->viewport[1] = frame->height;
+    out->shading = frame->shading == OIT_SHADE_HEADLIGHT ? OIT_SHADING_HEADLIGHT : OIT_SHADING_FLAT;
+    /* the local modulation of common/local_modulation.glsl (docs/modulation.md) */
+    const oit_local_modulation *local = &frame->local;
+    out->focus_shape = (int32_t)local->focus_shape;
+    for (int i = 0; i < 3; ++i) {
+        out->focus_a[i] = (float)local->focus[i];
+        out->focus_b[i] = (float)local->focus[3 + i];
     }
+    out->focus_a[3] = local->focus_shape == OIT_FOCUS_BOX ? 0.0f : (float)local->focus[3];
+    out->focus_region = oit_local_focus_region(frame);
+    out->contrast = local->contrast;
     const oit_modulation *m = &frame->modulation;
-    if (uniform_active(p, "u_distance_mode", OIT_UNIFORM_DISTANCE_MODE))
-        glUniform1i(OIT_UNIFORM_DISTANCE_MODE,
-                    m->mode == OIT_MODULATE_DISTANCE ? (GLint)m->distance : -1);
-    if (uniform_active(p, "u_distance_skip", OIT_UNIFORM_DISTANCE_SKIP))
-        glUniform1i(OIT_UNIFORM_DISTANCE_SKIP, m->distance_skip > 0 ? m->distance_skip : 2);
-    /* auto (0): the algorithm sets the frame's largest distance once it knows it */
-    if (uniform_active(p, "u_distance_norm", OIT_UNIFORM_DISTANCE_NORM))
-        glUniform1f(OIT_UNIFORM_DISTANCE_NORM, m->focus_region > 0.0f ? m->focus_region : 1.0f);
-    /* per-part opacity is no uniform: oit_gl_bind_part_alpha */
+    out->distance_mode = m->mode == OIT_MODULATE_DISTANCE ? (int32_t)m->distance : -1;
+    out->distance_skip = m->distance_skip > 0 ? m->distance_skip : 2;
+    /* auto (0): the algorithm writes the frame's largest distance once it knows it */
+    out->distance_norm = m->focus_region > 0.0f ? m->focus_region : 1.0f;
+    /* per-part opacity is no parameter: oit_gl_bind_part_alpha */
+}
+
+oit_status oit_gl_check_frame_block(GLuint program, const char *description, oit_error *err)
+{
+    if (glGetUniformBlockIndex(program, "oit_frame_block") == GL_INVALID_INDEX)
+        return OIT_OK;
+    static const struct {
+        const char *name;
+        GLint offset;
+    } members[] = {
+        {"u_modelview", OIT_FRAME_MODELVIEW},
+        {"u_projection", OIT_FRAME_PROJECTION},
+        {"u_plane_to_eye", OIT_FRAME_PLANE_TO_EYE},
+        {"u_local_inverse_modelview", OIT_FRAME_INVERSE_MODELVIEW},
+        {"u_local_inverse_projection", OIT_FRAME_INVERSE_PROJECTION},
+        {"u_normal_matrix", OIT_FRAME_NORMAL_MATRIX},
+        {"u_background", OIT_FRAME_BACKGROUND},
+        {"u_alpha", OIT_FRAME_ALPHA},
+        {"u_local_focus_a", OIT_FRAME_FOCUS_A},
+        {"u_local_focus_b", OIT_FRAME_FOCUS_B},
+        {"u_viewport", OIT_FRAME_VIEWPORT},
+        {"u_shading", OIT_FRAME_SHADING},
+        {"u_local_focus_shape", OIT_FRAME_FOCUS_SHAPE},
+        {"u_local_focus_region", OIT_FRAME_FOCUS_REGION},
+        {"u_local_contrast", OIT_FRAME_CONTRAST},
+        {"u_distance_mode", OIT_FRAME_DISTANCE_MODE},
+        {"u_distance_skip", OIT_FRAME_DISTANCE_SKIP},
+        {"u_distance_norm", OIT_FRAME_DISTANCE_NORM},
+    };
+    for (size_t i = 0; i < sizeof members / sizeof members[0]; ++i) {
+        GLuint index = GL_INVALID_INDEX;
+        glGetUniformIndices(program, 1, &members[i].name, &index);
+        if (index == GL_INVALID_INDEX)
+            continue; /* not used by this program */
+        GLint offset = -1;
+        glGetActiveUniformsiv(program, 1, &index, GL_UNIFORM_OFFSET, &offset);
+        if (offset != members[i].offset)
+            return oit_fail(err, OIT_E_RUNTIME,
+                            "%s: %s is at byte %d of the frame block, oit_shared.h says %d",
+                            description, members[i].name, offset, members[i].offset);
+    }
+    return OIT_OK;
 }
 
 static void bind_part_alpha_texture(const oit_scene *scene)
@@ -95,48 +135,6 @@ void oit_gl_bind_part_alpha(const oit_scene *scene, const oit_frame_settings *fr
                              GL_RED, GL_FLOAT, &one);
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
     bind_part_alpha_texture(scene);
-}
-
-void oit_gl_set_frame_uniforms(const oit_frame_settings *frame)
-{
-    GLint program = 0;
-    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
-    if (!program)
-        return;
-    GLuint p = (GLuint)program;
-    if (uniform_active(p, "u_modelview", OIT_UNIFORM_MODELVIEW))
-        set_matrix4_uniform(OIT_UNIFORM_MODELVIEW, frame->modelview);
-    if (uniform_active(p, "u_projection", OIT_UNIFORM_PROJECTION))
-        set_matrix4_uniform(OIT_UNIFORM_PROJECTION, frame->projection);
-    if (uniform_active(p, "u_normal_matrix", OIT_UNIFORM_NORMAL_MATRIX)) {
-        double normal_matrix[9];
-        float rounded[9];
-        if (!oit_mat4_normal_matrix(frame->modelview, normal_matrix)) {
-            /* singular modelview: fall back to its upper 3x3 */
-            for (int col = 0; col < 3; ++col)
-                for (int row = 0; row < 3; ++row)
-                    normal_matrix[col * 3 + row] = frame->modelview[col * 4 + row];
-        }
-        for (int i = 0; i < 9; ++i)
-            rounded[i] = (float)normal_matrix[i];
-        glUniformMatrix3fv(OIT_UNIFORM_NORMAL_MATRIX, 1, GL_FALSE, rounded);
-    }
-    if (uniform_active(p, "u_alpha", OIT_UNIFORM_ALPHA))
-        glUniform1f(OIT_UNIFORM_ALPHA, frame->alpha);
-    if (uniform_active(p, "u_shading", OIT_UNIFORM_SHADING))
-        glUniform1i(OIT_UNIFORM_SHADING,
-                    frame->shading == OIT_SHADE_HEADLIGHT ? OIT_SHADING_HEADLIGHT
-                                                          : OIT_SHADING_FLAT);
-    if (uniform_active(p, "u_background", OIT_UNIFORM_BACKGROUND))
-        glUniform3fv(OIT_UNIFORM_BACKGROUND, 1, frame->background);
-    if (uniform_active(p, "u_viewport", OIT_UNIFORM_VIEWPORT))
-        glUniform2i(OIT_UNIFORM_VIEWPORT, frame->width, frame->height);
-    if (uniform_active(p, "u_plane_to_eye", OIT_UNIFORM_PLANE_TO_EYE)) {
-        double plane_to_eye[16];
-        oit_plane_to_eye_double(frame, plane_to_eye);
-        set_matrix4_uniform(OIT_UNIFORM_PLANE_TO_EYE, plane_to_eye);
-    }
-    set_local_uniforms(p, &frame->local, frame);
 }
 
 /* --------------------------------------------------------------- limits */

@@ -6,6 +6,8 @@
 #define OIT_GL_UTIL_H
 
 #include <GL/glew.h>
+#include <stddef.h>
+#include <stdint.h>
 
 #include "oit.h"
 #include "oit_shared.h"
@@ -162,8 +164,45 @@ void oit_gl_draw_fullscreen(const oit_gl_output *output);
 
 /* ---- geometry ---- */
 
-/* Set the uniforms at OIT_UNIFORM_* locations for the currently bound program. */
-void oit_gl_set_frame_uniforms(const oit_frame_settings *frame);
+/* The frame's parameter block (common/frame.glsl, std140), as C lays it out:
+ * oit_shared.h's OIT_FRAME_* offsets, asserted below. */
+typedef struct oit_frame_block {
+    float modelview[16], projection[16], plane_to_eye[16];
+    float inverse_modelview[16], inverse_projection[16];
+    float normal_matrix[12]; /* mat3: three columns of vec4 */
+    float background[3], alpha;
+    float focus_a[4], focus_b[4];
+    int32_t viewport[2], shading, focus_shape;
+    float focus_region, contrast;
+    int32_t distance_mode, distance_skip;
+    float distance_norm, padding[3];
+} oit_frame_block;
+_Static_assert(offsetof(oit_frame_block, projection) == OIT_FRAME_PROJECTION &&
+                   offsetof(oit_frame_block, plane_to_eye) == OIT_FRAME_PLANE_TO_EYE &&
+                   offsetof(oit_frame_block, inverse_modelview) == OIT_FRAME_INVERSE_MODELVIEW &&
+                   offsetof(oit_frame_block, inverse_projection) == OIT_FRAME_INVERSE_PROJECTION &&
+                   offsetof(oit_frame_block, normal_matrix) == OIT_FRAME_NORMAL_MATRIX &&
+                   offsetof(oit_frame_block, background) == OIT_FRAME_BACKGROUND &&
+                   offsetof(oit_frame_block, alpha) == OIT_FRAME_ALPHA &&
+                   offsetof(oit_frame_block, focus_a) == OIT_FRAME_FOCUS_A &&
+                   offsetof(oit_frame_block, focus_b) == OIT_FRAME_FOCUS_B &&
+                   offsetof(oit_frame_block, viewport) == OIT_FRAME_VIEWPORT &&
+                   offsetof(oit_frame_block, shading) == OIT_FRAME_SHADING &&
+                   offsetof(oit_frame_block, focus_shape) == OIT_FRAME_FOCUS_SHAPE &&
+                   offsetof(oit_frame_block, focus_region) == OIT_FRAME_FOCUS_REGION &&
+                   offsetof(oit_frame_block, contrast) == OIT_FRAME_CONTRAST &&
+                   offsetof(oit_frame_block, distance_mode) == OIT_FRAME_DISTANCE_MODE &&
+                   offsetof(oit_frame_block, distance_skip) == OIT_FRAME_DISTANCE_SKIP &&
+                   offsetof(oit_frame_block, distance_norm) == OIT_FRAME_DISTANCE_NORM &&
+                   sizeof(oit_frame_block) == OIT_FRAME_BLOCK_BYTES,
+               "oit_frame_block differs from oit_shared.h's OIT_FRAME_* offsets");
+/* The block of a frame: its matrices rounded to float once, the inverses and
+ * the normal matrix computed in double first. */
+void oit_gl_frame_block(const oit_frame_settings *frame, oit_frame_block *out);
+/* A program's frame block at oit_shared.h's offsets (GL_UNIFORM_OFFSET of
+ * every member it uses), or OIT_E_RUNTIME naming the member; OK for a
+ * program without the block. */
+oit_status oit_gl_check_frame_block(GLuint program, const char *description, oit_error *err);
 /* One glDrawElements over the whole model, so gl_PrimitiveID is the triangle index. */
 void oit_gl_draw_scene(const oit_scene *scene);
 /* Per-part opacity for this frame: writes frame->local.component_alpha (its

@@ -25,6 +25,9 @@ oit_status oit_gpu_create(size_t state_size, const char *name, const oit_algorit
     gpu->output.memory = &gpu->memory;
     oit_stats_reset(&gpu->stats);
     oit_timer_create(&gpu->timer);
+    glGenBuffers(1, &gpu->frame_block);
+    oit_gl_memory_buffer_data(&gpu->memory, OIT_GL_MEMORY_FIXED, GL_UNIFORM_BUFFER, gpu->frame_block,
+                              OIT_FRAME_BLOCK_BYTES, NULL, GL_DYNAMIC_DRAW);
     *out = gpu;
     return OIT_OK;
 }
@@ -35,6 +38,7 @@ void oit_gpu_destroy(oit_gpu_algorithm *gpu)
         return;
     for (int i = 0; i < gpu->program_count; ++i)
         glDeleteProgram(gpu->programs[i]);
+    oit_gl_memory_delete_buffers(&gpu->memory, 1, &gpu->frame_block);
     oit_gl_output_release(&gpu->output);
     oit_timer_destroy(&gpu->timer);
     free(gpu->shader_dir);
@@ -46,6 +50,11 @@ static oit_status keep_program(oit_gpu_algorithm *gpu, oit_status status, GLuint
 {
     if (status != OIT_OK)
         return status;
+    status = oit_gl_check_frame_block(program, gpu->name, err);
+    if (status != OIT_OK) {
+        glDeleteProgram(program);
+        return status;
+    }
     if (gpu->program_count == OIT_GPU_PROGRAMS_MAX) {
         glDeleteProgram(program);
         return oit_fail(err, OIT_E_RUNTIME, "%s: more than %d programs", gpu->name, OIT_GPU_PROGRAMS_MAX);
@@ -99,8 +108,21 @@ oit_status oit_gpu_frame_begin(oit_gpu_algorithm *gpu, const oit_scene *scene, c
     oit_stats_reset(&gpu->stats);
     gpu->stats.memory_bytes = oit_gl_memory_total(&gpu->memory);
     oit_timer_frame_begin(&gpu->timer, frame);
+    oit_frame_block block;
+    oit_gl_frame_block(frame, &block);
+    glBindBuffer(GL_UNIFORM_BUFFER, gpu->frame_block);
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof block, &block);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, OIT_UBO_FRAME, gpu->frame_block);
     oit_gl_bind_part_alpha(scene, frame); /* per-part opacity, every part */
     return OIT_OK;
+}
+
+void oit_gpu_set_distance_norm(oit_gpu_algorithm *gpu, float norm)
+{
+    glBindBuffer(GL_UNIFORM_BUFFER, gpu->frame_block);
+    glBufferSubData(GL_UNIFORM_BUFFER, OIT_FRAME_DISTANCE_NORM, sizeof norm, &norm);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
 }
 
 oit_status oit_gpu_frame_end(oit_gpu_algorithm *gpu, oit_status status, oit_error *err)
@@ -165,7 +187,6 @@ oit_status oit_gpu_fullscreen_stage(oit_gpu_algorithm *gpu, oit_status status, c
         glMemoryBarrier(barriers);
     glBindFramebuffer(GL_FRAMEBUFFER, gpu->output.framebuffer);
     glUseProgram(program);
-    oit_gl_set_frame_uniforms(frame);
     for (int i = 0; i < texture_count; ++i) {
         glActiveTexture(GL_TEXTURE0 + textures[i].unit);
         glBindTexture(GL_TEXTURE_2D, textures[i].texture);

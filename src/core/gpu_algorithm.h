@@ -20,6 +20,7 @@ typedef struct oit_gpu_algorithm {
     oit_gl_memory memory; /* every texture and buffer the algorithm allocates, the output's too */
     oit_stage_timer timer;
     oit_stats stats;
+    GLuint frame_block; /* the frame's parameters (OIT_UBO_FRAME), uploaded by oit_gpu_frame_begin */
     GLuint programs[OIT_GPU_PROGRAMS_MAX]; /* built by oit_gpu_program*, deleted with the algorithm */
     int program_count;
 } oit_gpu_algorithm;
@@ -48,7 +49,8 @@ oit_status oit_gpu_stage_check(const oit_gpu_algorithm *gpu, const char *stage, 
 
 /* A frame's prologue: the scene must be on the GPU; statistics reset, the
  * memory held so far, the timer started (with the frame's progress
- * callback), the per-part opacity bound. */
+ * callback), the frame's parameter block uploaded and bound (every pass reads
+ * it), the per-part opacity bound. */
 oit_status oit_gpu_frame_begin(oit_gpu_algorithm *gpu, const oit_scene *scene, const oit_frame_settings *frame,
                                oit_error *err);
 /* Its epilogue: default framebuffer and program, the timer stopped (stage
@@ -56,6 +58,11 @@ oit_status oit_gpu_frame_begin(oit_gpu_algorithm *gpu, const oit_scene *scene, c
  * the bytes per pixel of the image-sized allocations. Returns status, or the
  * GL error where status was OIT_OK. */
 oit_status oit_gpu_frame_end(oit_gpu_algorithm *gpu, oit_status status, oit_error *err);
+
+/* The frame's normalising length for the distance modulation, once the
+ * algorithm knows it (the frame's largest distance): the block's one field
+ * written after the prologue. */
+void oit_gpu_set_distance_norm(oit_gpu_algorithm *gpu, float norm);
 
 /* A screen-sized 2D target (nearest, clamped), recorded in the tracker as
  * per-pixel memory. */
