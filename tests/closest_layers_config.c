@@ -73,11 +73,11 @@ int main(int argc, char **argv)
             check(status == OIT_OK && alg != NULL, what, status == OIT_OK ? NULL : &err);
             if (!alg)
                 continue;
-            status = ops->resize(alg, 64, 64, &err);
+            status = oit_algorithm_resize(ops, alg, 64, 64, &err);
             snprintf(what, sizeof what, "%s k %d: 64x64 fits a budget of exactly its bytes", ops->name,
                      good[g]);
             check(status == OIT_OK, what, status == OIT_OK ? NULL : &err);
-            status = ops->resize(alg, 64, 65, &err);
+            status = oit_algorithm_resize(ops, alg, 64, 65, &err);
             char needed[64];
             snprintf(needed, sizeof needed, "needs %llu bytes",
                      (unsigned long long)(64u * 65u * per_pixel + 69u * 4u));

@@ -447,7 +447,7 @@ oit_status RenderWorker::render_side(const FrameJob &job, const std::string &nam
 
     // the options this algorithm does not render are left out, and said (its capabilities)
     reduce_to_capabilities(ops, frame, left_out);
-    oit_status status = needs_resize ? ops->resize(algorithm, frame.width, frame.height, &err) : OIT_OK;
+    oit_status status = needs_resize ? oit_algorithm_resize(ops, algorithm, frame.width, frame.height, &err) : OIT_OK;
     if (status == OIT_OK) {
         reset_gl_state();
         status = oit_algorithm_render(ops, algorithm, scene, &frame, &err);

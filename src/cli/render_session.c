@@ -477,7 +477,7 @@ oit_status render_setup_create(session *s, const render_options *o, render_setup
     if (status == OIT_OK)
         status = ops->create(&config, &setup->alg, err);
     if (status == OIT_OK)
-        status = ops->resize(setup->alg, o->width, o->height, err);
+        status = oit_algorithm_resize(ops, setup->alg, o->width, o->height, err);
     setup->scene = ops->uses_gl ? &s->gpu_scene : &s->cpu_scene;
     return status;
 }

@@ -151,8 +151,6 @@ static oit_status ddp_create(const oit_algorithm_config *config, oit_algorithm *
 static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_error *err)
 {
     ddp_state *s = (ddp_state *)alg;
-    if (width < 1 || height < 1)
-        return oit_fail(err, OIT_E_INPUT, "ddp: bad size %dx%d", width, height);
     ddp_release_targets(s);
     oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)

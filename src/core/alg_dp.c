@@ -180,8 +180,6 @@ static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **
 static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error *err)
 {
     dp_state *s = (dp_state *)alg;
-    if (width < 1 || height < 1)
-        return oit_fail(err, OIT_E_INPUT, "dp: bad size %dx%d", width, height);
     dp_release_targets(s);
     oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)

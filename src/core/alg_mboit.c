@@ -131,8 +131,6 @@ static oit_status mboit_framebuffer(const mboit_state *s, GLuint *framebuffer, c
 static oit_status mboit_resize(oit_algorithm *alg, int width, int height, oit_error *err)
 {
     mboit_state *s = (mboit_state *)alg;
-    if (width < 1 || height < 1)
-        return oit_fail(err, OIT_E_INPUT, "mboit: bad size %dx%d", width, height);
     mboit_release_targets(s);
     oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)

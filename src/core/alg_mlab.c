@@ -132,8 +132,6 @@ static oit_status mlab_create(const oit_algorithm_config *config, oit_algorithm 
 static oit_status mlab_resize(oit_algorithm *alg, int width, int height, oit_error *err)
 {
     mlab_state *s = (mlab_state *)alg;
-    if (width < 1 || height < 1)
-        return oit_fail(err, OIT_E_INPUT, "mlab: bad size %dx%d", width, height);
     /* what the image size and k need, before anything is allocated */
     const uint64_t pixels = (uint64_t)width * (uint64_t)height;
     const uint64_t layer_count = pixels * (uint64_t)s->layers;

@@ -65,8 +65,6 @@ static oit_status wboit_create(const oit_algorithm_config *config, oit_algorithm
 static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_error *err)
 {
     wboit_state *s = (wboit_state *)alg;
-    if (width < 1 || height < 1)
-        return oit_fail(err, OIT_E_INPUT, "wboit: bad size %dx%d", width, height);
     wboit_release_targets(s);
     oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
     if (status != OIT_OK)

@@ -32,11 +32,23 @@ const oit_algorithm_ops *oit_algorithm_find(const char *name)
 
 static double as_float(double value) { return (double)(float)value; }
 
+oit_status oit_algorithm_resize(const oit_algorithm_ops *ops, oit_algorithm *alg, int width, int height,
+                                oit_error *err)
+{
+    if (!ops || !alg)
+        return oit_fail(err, OIT_E_INPUT, "resize: no algorithm");
+    if (width < 1 || height < 1)
+        return oit_fail(err, OIT_E_INPUT, "%s: bad size %dx%d", ops->name, width, height);
+    return ops->resize(alg, width, height, err);
+}
+
 oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg, const oit_scene *scene,
                                 const oit_frame_settings *frame, oit_error *err)
 {
     if (!ops || !alg || !scene || !scene->model || !frame)
         return oit_fail(err, OIT_E_INPUT, "render: no algorithm, scene or frame settings");
+    if (frame->width < 1 || frame->height < 1)
+        return oit_fail(err, OIT_E_INPUT, "%s: bad size %dx%d", ops->name, frame->width, frame->height);
     oit_status status = oit_frame_check(ops, frame, err);
     if (status == OIT_OK)
         status = oit_matrices_validate(frame->modelview, frame->projection, err);

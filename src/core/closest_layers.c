@@ -167,8 +167,6 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
 {
     closest_layers_state *s = closest_from(alg);
     const char *name = s->tail->algorithm;
-    if (width < 1 || height < 1)
-        return oit_fail(err, OIT_E_INPUT, "%s: bad size %dx%d", name, width, height);
     const uint64_t needed = closest_bytes_needed(s, width, height);
     if (needed > s->gpu.config.max_memory_bytes)
         return oit_fail(err, OIT_E_RUNTIME,

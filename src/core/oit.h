@@ -713,6 +713,10 @@ oit_status oit_frame_check(const oit_algorithm_ops *ops, const oit_frame_setting
 /* Whether it reads that OIT_OPTION_* (the option is ignored otherwise). */
 bool oit_algorithm_reads(const oit_algorithm_ops *ops, unsigned option);
 
+/* The one way to size an algorithm's output ahead of a frame (shells call it,
+ * never ops->resize): a size under 1x1 is refused here, for every algorithm. */
+oit_status oit_algorithm_resize(const oit_algorithm_ops *ops, oit_algorithm *alg, int width, int height,
+                                oit_error *err);
 /* The one way to render a frame (every shell calls it, never ops->render):
  * checks the frame against the algorithm's capabilities (oit_frame_check)
  * and validates the matrices, then hands the algorithm the frame as its GPU
