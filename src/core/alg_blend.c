@@ -37,12 +37,7 @@ static oit_status blend_create(const oit_algorithm_config *config, oit_algorithm
     status = oit_gpu_program(gpu, "common/geometry.vert", "blend/draw.frag", &s->draw_program, err);
     if (status == OIT_OK)
         status = oit_gpu_program(gpu, "common/fullscreen.vert", "blend/resolve.frag", &s->resolve_program, err);
-    if (status != OIT_OK) {
-        blend_destroy((oit_algorithm *)s);
-        return status;
-    }
-    *out = (oit_algorithm *)s;
-    return OIT_OK;
+    return oit_gpu_created(&s->gpu, status, blend_destroy, out, err);
 }
 
 static oit_status blend_resize(oit_algorithm *alg, int width, int height, oit_error *err)

@@ -138,14 +138,7 @@ static oit_status ddp_create(const oit_algorithm_config *config, oit_algorithm *
     if (status == OIT_OK)
         status = oit_gpu_program_variant(&s->gpu, "common/fullscreen.vert", "ddp/blend_distance.frag",
                                          "#define DISTANCE_MAX 1\n", &s->distance_programs[1], err);
-    if (status == OIT_OK)
-        status = oit_gl_check("ddp: create", err);
-    if (status != OIT_OK) {
-        ddp_destroy((oit_algorithm *)s);
-        return status;
-    }
-    *out = (oit_algorithm *)s;
-    return OIT_OK;
+    return oit_gpu_created(&s->gpu, status, ddp_destroy, out, err);
 }
 
 static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_error *err)

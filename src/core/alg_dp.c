@@ -167,14 +167,7 @@ static oit_status dp_create(const oit_algorithm_config *config, oit_algorithm **
     if (status == OIT_OK)
         status = oit_gpu_program(&s->gpu, "common/fullscreen.vert",
                                 "dp/blend_curvature.frag", &s->blend_curvature_program, err);
-    if (status == OIT_OK)
-        status = oit_gl_check("dp: create", err);
-    if (status != OIT_OK) {
-        dp_destroy((oit_algorithm *)s);
-        return status;
-    }
-    *out = (oit_algorithm *)s;
-    return OIT_OK;
+    return oit_gpu_created(&s->gpu, status, dp_destroy, out, err);
 }
 
 static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error *err)

@@ -230,13 +230,7 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
     oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                               s->param_buffer, sizeof(ib_params), NULL, GL_DYNAMIC_DRAW);
 
-    status = oit_gl_check("ib create", err);
-    if (status != OIT_OK) {
-        ib_destroy((oit_algorithm *)s);
-        return status;
-    }
-    *out = (oit_algorithm *)s;
-    return OIT_OK;
+    return oit_gpu_created(&s->gpu, status, ib_destroy, out, err);
 }
 
 static oit_status ib_resize(oit_algorithm *alg, int width, int height, oit_error *err)

@@ -185,13 +185,7 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
                               s->counter_buffer, OIT_LL_COUNTER_COUNT * sizeof(GLuint), NULL,
                               GL_DYNAMIC_READ);
 
-    status = oit_gl_check("ll create", err);
-    if (status != OIT_OK) {
-        ll_destroy((oit_algorithm *)s);
-        return status;
-    }
-    *out = (oit_algorithm *)s;
-    return OIT_OK;
+    return oit_gpu_created(&s->gpu, status, ll_destroy, out, err);
 }
 
 static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error *err)

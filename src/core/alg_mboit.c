@@ -100,14 +100,7 @@ static oit_status mboit_create(const oit_algorithm_config *config, oit_algorithm
     if (status == OIT_OK)
         status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", "mboit/compose.frag",
                                 &s->compose_program, err);
-    if (status == OIT_OK)
-        status = oit_gl_check("mboit: create", err);
-    if (status != OIT_OK) {
-        mboit_destroy((oit_algorithm *)s);
-        return status;
-    }
-    *out = (oit_algorithm *)s;
-    return OIT_OK;
+    return oit_gpu_created(&s->gpu, status, mboit_destroy, out, err);
 }
 
 /* A framebuffer over count colour textures (attachment i = textures[i]). */

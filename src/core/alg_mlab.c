@@ -120,13 +120,7 @@ static oit_status mlab_create(const oit_algorithm_config *config, oit_algorithm 
     oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                               s->counter_buffer, OIT_MLAB_COUNTER_COUNT * sizeof(GLuint), NULL,
                               GL_DYNAMIC_READ);
-    status = oit_gl_check("mlab: create", err);
-    if (status != OIT_OK) {
-        mlab_destroy((oit_algorithm *)s);
-        return status;
-    }
-    *out = (oit_algorithm *)s;
-    return OIT_OK;
+    return oit_gpu_created(&s->gpu, status, mlab_destroy, out, err);
 }
 
 static oit_status mlab_resize(oit_algorithm *alg, int width, int height, oit_error *err)

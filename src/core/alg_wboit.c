@@ -52,14 +52,7 @@ static oit_status wboit_create(const oit_algorithm_config *config, oit_algorithm
     status = oit_gpu_program(gpu, "common/geometry.vert", "wboit/accumulate.frag", &s->accumulate_program, err);
     if (status == OIT_OK)
         status = oit_gpu_program(gpu, "common/fullscreen.vert", "wboit/compose.frag", &s->compose_program, err);
-    if (status == OIT_OK)
-        status = oit_gl_check("wboit: create", err);
-    if (status != OIT_OK) {
-        wboit_destroy((oit_algorithm *)s);
-        return status;
-    }
-    *out = (oit_algorithm *)s;
-    return OIT_OK;
+    return oit_gpu_created(&s->gpu, status, wboit_destroy, out, err);
 }
 
 static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_error *err)

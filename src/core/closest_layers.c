@@ -138,16 +138,8 @@ oit_status closest_layers_create(const closest_layers_tail *tail, const oit_algo
         oit_gl_memory_buffer_data(&s->gpu.memory, OIT_GL_MEMORY_FIXED, GL_SHADER_STORAGE_BUFFER,
                                   s->counter_buffer, OIT_CLOSEST_COUNTER_COUNT * sizeof(GLuint), NULL,
                                   GL_DYNAMIC_READ);
-        char where[64];
-        snprintf(where, sizeof where, "%s: create", tail->algorithm);
-        status = oit_gl_check(where, err);
     }
-    if (status != OIT_OK) {
-        closest_layers_destroy((oit_algorithm *)s);
-        return status;
-    }
-    *out = (oit_algorithm *)s;
-    return OIT_OK;
+    return oit_gpu_created(&s->gpu, status, closest_layers_destroy, out, err);
 }
 
 /* ------------------------------------------------------------ resize */

@@ -32,6 +32,22 @@ oit_status oit_gpu_create(size_t state_size, const char *name, const oit_algorit
     return OIT_OK;
 }
 
+oit_status oit_gpu_created(oit_gpu_algorithm *gpu, oit_status status, void (*destroy)(oit_algorithm *alg),
+                           oit_algorithm **out, oit_error *err)
+{
+    if (status == OIT_OK) {
+        char where[64];
+        snprintf(where, sizeof where, "%s: create", gpu->name);
+        status = oit_gl_check(where, err);
+    }
+    if (status != OIT_OK) {
+        destroy((oit_algorithm *)gpu);
+        return status;
+    }
+    *out = (oit_algorithm *)gpu;
+    return OIT_OK;
+}
+
 void oit_gpu_destroy(oit_gpu_algorithm *gpu)
 {
     if (!gpu)

@@ -30,6 +30,11 @@ typedef struct oit_gpu_algorithm {
  * its memory, timer, statistics reset). */
 oit_status oit_gpu_create(size_t state_size, const char *name, const oit_algorithm_config *config,
                           oit_gpu_algorithm **out, oit_error *err);
+/* The end of an algorithm's create: with status OK and no GL error ("NAME:
+ * create"), *out is the algorithm; otherwise destroy(gpu) frees what it made
+ * and the error is returned. */
+oit_status oit_gpu_created(oit_gpu_algorithm *gpu, oit_status status, void (*destroy)(oit_algorithm *alg),
+                           oit_algorithm **out, oit_error *err);
 /* Frees what the base holds (programs, output, timer) and the state; the
  * algorithm frees its own objects first. NULL is allowed. */
 void oit_gpu_destroy(oit_gpu_algorithm *gpu);
