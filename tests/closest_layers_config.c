@@ -47,7 +47,7 @@ int main(int argc, char **argv)
             config.layers = bad[b];
             oit_algorithm *alg = NULL;
             memset(&err, 0, sizeof err);
-            oit_status status = ops->create(&config, &alg, &err);
+            oit_status status = oit_algorithm_create(ops, &config, &alg, &err);
             char what[128];
             snprintf(what, sizeof what, "%s config.layers %d refused", ops->name, bad[b]);
             check(status == OIT_E_INPUT && alg == NULL && strstr(err.message, "layers") &&
@@ -67,7 +67,7 @@ int main(int argc, char **argv)
             config.max_memory_bytes = 64u * 64u * per_pixel + 69u * 4u; /* exactly enough for 64x64 */
             oit_algorithm *alg = NULL;
             memset(&err, 0, sizeof err);
-            oit_status status = ops->create(&config, &alg, &err);
+            oit_status status = oit_algorithm_create(ops, &config, &alg, &err);
             char what[128];
             snprintf(what, sizeof what, "%s config.layers %d accepted", ops->name, good[g]);
             check(status == OIT_OK && alg != NULL, what, status == OIT_OK ? NULL : &err);

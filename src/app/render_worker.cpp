@@ -313,7 +313,7 @@ RenderWorker::CachedAlgorithm *RenderWorker::algorithm_for(const std::string &na
     oit_algorithm_config config = job.config;
     config.shader_dir = shader_dir_.c_str();
     oit_algorithm *algorithm = nullptr;
-    if (ops->create(&config, &algorithm, err) != OIT_OK)
+    if (oit_algorithm_create(ops, &config, &algorithm, err) != OIT_OK)
         return nullptr;
     cache_.push_back({key, ops, algorithm, ++use_counter_, 0, 0});
     return &cache_.back();
@@ -432,7 +432,7 @@ oit_status RenderWorker::render_side(const FrameJob &job, const std::string &nam
     if (fresh) {
         oit_algorithm_config config = job.config;
         config.shader_dir = shader_dir_.c_str();
-        if (ops->create(&config, &algorithm, &err) != OIT_OK)
+        if (oit_algorithm_create(ops, &config, &algorithm, &err) != OIT_OK)
             algorithm = nullptr;
     } else if (CachedAlgorithm *cached = algorithm_for(name, job, ops, &err)) {
         algorithm = cached->algorithm;

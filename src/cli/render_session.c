@@ -475,7 +475,7 @@ oit_status render_setup_create(session *s, const render_options *o, render_setup
     config.shader_dir = s->shader_dir;
     status = render_frame_settings(s, o, &setup->frame, err);
     if (status == OIT_OK)
-        status = ops->create(&config, &setup->alg, err);
+        status = oit_algorithm_create(ops, &config, &setup->alg, err);
     if (status == OIT_OK)
         status = oit_algorithm_resize(ops, setup->alg, o->width, o->height, err);
     setup->scene = ops->uses_gl ? &s->gpu_scene : &s->cpu_scene;

@@ -108,9 +108,6 @@ static oit_status ddp_create(const oit_algorithm_config *config, oit_algorithm *
                              oit_error *err)
 {
     *out = NULL;
-    if (config->max_layers < 0 || config->max_layers > OIT_PEEL_LAYER_CAP_MAX)
-        return oit_fail(err, OIT_E_INPUT, "ddp: config.max_layers %d outside 0 (no cap)..%d",
-                        config->max_layers, OIT_PEEL_LAYER_CAP_MAX);
     oit_gpu_algorithm *gpu;
     oit_status status = oit_gpu_create(sizeof(ddp_state), "ddp", config, &gpu, err);
     if (status != OIT_OK)

@@ -73,12 +73,8 @@ static oit_status mboit_create(const oit_algorithm_config *config, oit_algorithm
                                oit_error *err)
 {
     *out = NULL;
-    oit_moments moments = config->moments;
-    if (moments == OIT_MOMENTS_DEFAULT)
-        moments = OIT_MOMENTS_POWER4;
-    if (moments != OIT_MOMENTS_POWER4 && moments != OIT_MOMENTS_POWER6 && moments != OIT_MOMENTS_TRIG3)
-        return oit_fail(err, OIT_E_INPUT, "mboit: moments must be power4, power6 or trig3 (got %d)",
-                        (int)config->moments);
+    /* checked: oit_algorithm_create */
+    oit_moments moments = config->moments == OIT_MOMENTS_DEFAULT ? OIT_MOMENTS_POWER4 : config->moments;
     oit_gpu_algorithm *gpu;
     oit_status status = oit_gpu_create(sizeof(mboit_state), "mboit", config, &gpu, err);
     if (status != OIT_OK)

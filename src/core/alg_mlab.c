@@ -82,10 +82,7 @@ static oit_status mlab_create(const oit_algorithm_config *config, oit_algorithm 
                               oit_error *err)
 {
     *out = NULL;
-    int layers = config->layers ? config->layers : OIT_APPROX_LAYERS_DEFAULT;
-    if (layers < 1 || layers > OIT_APPROX_LAYERS_MAX)
-        return oit_fail(err, OIT_E_INPUT, "mlab: layers %d outside 1..%d (0: the default %d)",
-                        config->layers, OIT_APPROX_LAYERS_MAX, OIT_APPROX_LAYERS_DEFAULT);
+    int layers = config->layers ? config->layers : OIT_APPROX_LAYERS_DEFAULT; /* checked: oit_algorithm_create */
     if (!GLEW_VERSION_4_4 && !GLEW_ARB_clear_texture)
         return oit_fail(err, OIT_E_RUNTIME,
                         "mlab: needs OpenGL 4.4 or GL_ARB_clear_texture to clear the counts and locks");

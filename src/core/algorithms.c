@@ -32,6 +32,30 @@ const oit_algorithm_ops *oit_algorithm_find(const char *name)
 
 static double as_float(double value) { return (double)(float)value; }
 
+oit_status oit_algorithm_create(const oit_algorithm_ops *ops, const oit_algorithm_config *config,
+                                oit_algorithm **out, oit_error *err)
+{
+    *out = NULL;
+    if (!ops || !config)
+        return oit_fail(err, OIT_E_INPUT, "create: no algorithm or configuration");
+    if (oit_algorithm_reads(ops, OIT_OPTION_MAX_LAYERS) &&
+        (config->max_layers < 0 || config->max_layers > OIT_PEEL_LAYER_CAP_MAX))
+        return oit_fail(err, OIT_E_INPUT, "%s: config.max_layers %d outside 0 (no cap)..%d", ops->name,
+                        config->max_layers, OIT_PEEL_LAYER_CAP_MAX);
+    if (oit_algorithm_reads(ops, OIT_OPTION_LAYERS) && (config->layers < 0 || config->layers > OIT_LAYERS_MAX))
+        return oit_fail(err, OIT_E_INPUT, "%s: config.layers (k) %d outside 1..%d (0: the default %d)",
+                        ops->name, config->layers, OIT_LAYERS_MAX, OIT_LAYERS_DEFAULT);
+    if (oit_algorithm_reads(ops, OIT_OPTION_MOMENTS) &&
+        (config->moments < OIT_MOMENTS_DEFAULT || config->moments > OIT_MOMENTS_TRIG3))
+        return oit_fail(err, OIT_E_INPUT, "%s: config.moments %d is not power4, power6 or trig3 (0: power4)",
+                        ops->name, (int)config->moments);
+    if (oit_algorithm_reads(ops, OIT_OPTION_SORT) &&
+        config->ll_sort != OIT_LL_SORT_INSERTION && config->ll_sort != OIT_LL_SORT_LOCAL_ARRAY)
+        return oit_fail(err, OIT_E_INPUT, "%s: config.ll_sort %d is not insertion or array", ops->name,
+                        (int)config->ll_sort);
+    return ops->create(config, out, err);
+}
+
 oit_status oit_algorithm_resize(const oit_algorithm_ops *ops, oit_algorithm *alg, int width, int height,
                                 oit_error *err)
 {

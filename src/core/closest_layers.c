@@ -113,10 +113,6 @@ oit_status closest_layers_create(const closest_layers_tail *tail, const oit_algo
                                  oit_algorithm **out, oit_error *err)
 {
     *out = NULL;
-    if (config->layers < 0 || config->layers > OIT_APPROX_LAYERS_MAX)
-        return oit_fail(err, OIT_E_INPUT, "%s: config.layers (k) %d outside 1..%d (0: the default %d)",
-                        tail->algorithm, config->layers, OIT_APPROX_LAYERS_MAX,
-                        OIT_APPROX_LAYERS_DEFAULT);
     oit_gpu_algorithm *gpu;
     oit_status status = oit_gpu_create(sizeof(closest_layers_state), tail->algorithm, config, &gpu, err);
     if (status != OIT_OK)

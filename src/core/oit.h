@@ -713,6 +713,13 @@ oit_status oit_frame_check(const oit_algorithm_ops *ops, const oit_frame_setting
 /* Whether it reads that OIT_OPTION_* (the option is ignored otherwise). */
 bool oit_algorithm_reads(const oit_algorithm_ops *ops, unsigned option);
 
+/* The one way to create an algorithm (shells call it, never ops->create): the
+ * configuration's fields the algorithm reads (its capabilities' options) are
+ * checked here, once for every algorithm, each refusal naming the field:
+ * max_layers 0..OIT_PEEL_LAYER_CAP_MAX, layers 0..OIT_LAYERS_MAX, moments and
+ * ll_sort within their enums; then ops->create. */
+oit_status oit_algorithm_create(const oit_algorithm_ops *ops, const oit_algorithm_config *config,
+                                oit_algorithm **out, oit_error *err);
 /* The one way to size an algorithm's output ahead of a frame (shells call it,
  * never ops->resize): a size under 1x1 is refused here, for every algorithm. */
 oit_status oit_algorithm_resize(const oit_algorithm_ops *ops, oit_algorithm *alg, int width, int height,
