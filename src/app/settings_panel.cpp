@@ -29,38 +29,56 @@ void SettingsPanel::sync()
     syncing_ = false;
 }
 
-QWidget *SettingsPanel::slider_row(double low, double high, int decimals, std::function<float()> get,
-                                   std::function<void(float)> set, QSlider **slider_out)
+QWidget *SettingsPanel::linked_row(QSlider *&slider, QDoubleSpinBox *&spin,
+                                   std::function<void(QDoubleSpinBox *)> configure,
+                                   std::function<double(int)> from_slider, std::function<int(double)> to_slider,
+                                   std::function<void(float)> set, bool set_rounded)
 {
     auto *row = new QWidget;
     auto *layout = new QHBoxLayout(row);
     layout->setContentsMargins(0, 0, 0, 0);
-    auto *slider = new QSlider(Qt::Horizontal);
+    slider = new QSlider(Qt::Horizontal);
     slider->setRange(0, 1000);
-    auto *spin = new QDoubleSpinBox;
-    spin->setRange(low, high);
-    spin->setDecimals(decimals);
-    spin->setSingleStep(std::pow(10.0, -decimals) * 5);
+    spin = new QDoubleSpinBox;
+    configure(spin);
     layout->addWidget(slider, 1);
     layout->addWidget(spin);
-    auto to_slider = [=](double v) { return int(std::lround((v - low) / (high - low) * 1000.0)); };
-    connect(slider, &QSlider::valueChanged, spin, [=](int v) {
+    QSlider *s = slider;
+    QDoubleSpinBox *b = spin;
+    connect(s, &QSlider::valueChanged, b, [=](int position) {
         if (syncing_)
             return;
-        double value = low + (high - low) * v / 1000.0;
-        spin->blockSignals(true);
-        spin->setValue(value);
-        spin->blockSignals(false);
-        set(float(spin->value()));
+        double value = from_slider(position);
+        b->blockSignals(true);
+        b->setValue(value);
+        b->blockSignals(false);
+        set(float(set_rounded ? b->value() : value));
     });
-    connect(spin, QOverload<double>::of(&QDoubleSpinBox::valueChanged), slider, [=](double v) {
+    connect(b, QOverload<double>::of(&QDoubleSpinBox::valueChanged), s, [=](double v) {
         if (syncing_)
             return;
-        slider->blockSignals(true);
-        slider->setValue(to_slider(v));
-        slider->blockSignals(false);
+        s->blockSignals(true);
+        s->setValue(to_slider(v));
+        s->blockSignals(false);
         set(float(v));
     });
+    return row;
+}
+
+QWidget *SettingsPanel::slider_row(double low, double high, int decimals, std::function<float()> get,
+                                   std::function<void(float)> set, QSlider **slider_out)
+{
+    auto to_slider = [=](double v) { return int(std::lround((v - low) / (high - low) * 1000.0)); };
+    QSlider *slider;
+    QDoubleSpinBox *spin;
+    QWidget *row = linked_row(
+        slider, spin,
+        [=](QDoubleSpinBox *box) {
+            box->setRange(low, high);
+            box->setDecimals(decimals);
+            box->setSingleStep(std::pow(10.0, -decimals) * 5);
+        },
+        [=](int v) { return low + (high - low) * v / 1000.0; }, to_slider, set, true);
     on_sync([=] {
         spin->setValue(double(get()));
         slider->setValue(to_slider(double(get())));
@@ -73,16 +91,6 @@ QWidget *SettingsPanel::slider_row(double low, double high, int decimals, std::f
 QWidget *SettingsPanel::log_length_row(std::function<std::pair<double, double>()> range, std::function<float()> get,
                                        std::function<void(float)> set)
 {
-    auto *row = new QWidget;
-    auto *layout = new QHBoxLayout(row);
-    layout->setContentsMargins(0, 0, 0, 0);
-    auto *slider = new QSlider(Qt::Horizontal);
-    slider->setRange(0, 1000);
-    auto *spin = new QDoubleSpinBox;
-    spin->setDecimals(6);
-    spin->setSpecialValueText("auto");
-    layout->addWidget(slider, 1);
-    layout->addWidget(spin);
     auto to_slider = [range](double v) {
         auto [low, high] = range();
         if (!(v > 0.0))
@@ -90,24 +98,19 @@ QWidget *SettingsPanel::log_length_row(std::function<std::pair<double, double>()
         double t = std::log(std::max(v, low) / low) / std::log(high / low);
         return std::max(1, int(std::lround(std::min(1.0, t) * 1000.0)));
     };
-    connect(slider, &QSlider::valueChanged, spin, [=](int position) {
-        if (syncing_)
-            return;
+    auto from_slider = [range](int position) {
         auto [low, high] = range();
-        double value = position == 0 ? 0.0 : low * std::pow(high / low, position / 1000.0);
-        spin->blockSignals(true);
-        spin->setValue(value);
-        spin->blockSignals(false);
-        set(float(value));
-    });
-    connect(spin, QOverload<double>::of(&QDoubleSpinBox::valueChanged), slider, [=](double v) {
-        if (syncing_)
-            return;
-        slider->blockSignals(true);
-        slider->setValue(to_slider(v));
-        slider->blockSignals(false);
-        set(float(v));
-    });
+        return position == 0 ? 0.0 : low * std::pow(high / low, position / 1000.0);
+    };
+    QSlider *slider;
+    QDoubleSpinBox *spin;
+    QWidget *row = linked_row(
+        slider, spin,
+        [](QDoubleSpinBox *box) {
+            box->setDecimals(6);
+            box->setSpecialValueText("auto");
+        },
+        from_slider, to_slider, set, false);
     on_sync([=] {
         auto [low, high] = range();
         spin->setRange(0.0, high * 1000.0);

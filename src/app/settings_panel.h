@@ -20,6 +20,7 @@
 class QCheckBox;
 class QComboBox;
 class QIcon;
+class QDoubleSpinBox;
 class QSlider;
 class QSpinBox;
 
@@ -60,6 +61,13 @@ private:
     SettingsModel &model_;
     std::vector<std::function<void()>> sync_actions_;
     bool syncing_ = false; // true while sync() sets the controls
+    // A slider (0..1000) and a spin box (set up by configure first) in one row,
+    // each following the other: from_slider maps a position to a value,
+    // to_slider back; set gets the spin box's value (rounded to its decimals)
+    // when set_rounded, else the slider's own.
+    QWidget *linked_row(QSlider *&slider, QDoubleSpinBox *&spin, std::function<void(QDoubleSpinBox *)> configure,
+                        std::function<double(int)> from_slider, std::function<int(double)> to_slider,
+                        std::function<void(float)> set, bool set_rounded);
 };
 
 // content in a frameless scroll area that resizes it (a tab of the panel).

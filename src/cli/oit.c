@@ -663,15 +663,7 @@ static void on_interrupt(int signal_number)
     raise(signal_number); /* delivered when the handler returns */
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-#define ADDRESS_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ADDRESS_SANITIZER 1
-#endif
-#endif
-
-#ifndef ADDRESS_SANITIZER
+#ifndef OIT_ADDRESS_SANITIZER
 static char crash_limit_note[160]; /* composed at start: the handler only copies */
 
 /* A crash (in practice inside the GL driver, e.g. Mesa's shader compiler
@@ -718,7 +710,7 @@ static void install_signal_handlers(void)
         if (sigaction(interrupts[k], NULL, &previous) == 0 && previous.sa_handler != SIG_IGN)
             sigaction(interrupts[k], &action, NULL);
     }
-#ifndef ADDRESS_SANITIZER /* (ASan reports a crash itself, with its stack) */
+#ifndef OIT_ADDRESS_SANITIZER /* (ASan reports a crash itself, with its stack) */
     struct rlimit address_space;
     if (getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY)
         snprintf(crash_limit_note, sizeof crash_limit_note,

@@ -163,11 +163,7 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
                                const oit_frame_settings *frame, oit_error *err)
 {
     mboit_state *s = (mboit_state *)alg;
-    oit_status status = OIT_OK;
-    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height)
-        status = mboit_resize(alg, frame->width, frame->height, err);
-    if (status == OIT_OK)
-        status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    oit_status status = oit_gpu_frame_begin_sized(&s->gpu, mboit_resize, scene, frame, err);
     if (status != OIT_OK)
         return status;
 

@@ -90,11 +90,7 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
                                const oit_frame_settings *frame, oit_error *err)
 {
     wboit_state *s = (wboit_state *)alg;
-    oit_status status = OIT_OK;
-    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height)
-        status = wboit_resize(alg, frame->width, frame->height, err);
-    if (status == OIT_OK)
-        status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    oit_status status = oit_gpu_frame_begin_sized(&s->gpu, wboit_resize, scene, frame, err);
     if (status != OIT_OK)
         return status;
 

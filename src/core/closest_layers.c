@@ -286,11 +286,7 @@ oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
                                  const oit_frame_settings *frame, oit_error *err)
 {
     closest_layers_state *s = closest_from(alg);
-    oit_status status = OIT_OK;
-    if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height)
-        status = closest_layers_resize(alg, frame->width, frame->height, err);
-    if (status == OIT_OK)
-        status = oit_gpu_frame_begin(&s->gpu, scene, frame, err);
+    oit_status status = oit_gpu_frame_begin_sized(&s->gpu, closest_layers_resize, scene, frame, err);
     if (status != OIT_OK)
         return status;
 

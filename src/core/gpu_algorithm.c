@@ -134,6 +134,18 @@ oit_status oit_gpu_frame_begin(oit_gpu_algorithm *gpu, const oit_scene *scene, c
     return OIT_OK;
 }
 
+oit_status oit_gpu_frame_begin_sized(oit_gpu_algorithm *gpu,
+                                     oit_status (*resize)(oit_algorithm *alg, int width, int height, oit_error *err),
+                                     const oit_scene *scene, const oit_frame_settings *frame, oit_error *err)
+{
+    if (frame->width != gpu->output.width || frame->height != gpu->output.height) {
+        oit_status status = resize((oit_algorithm *)gpu, frame->width, frame->height, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    return oit_gpu_frame_begin(gpu, scene, frame, err);
+}
+
 void oit_gpu_set_distance_norm(oit_gpu_algorithm *gpu, float norm)
 {
     glBindBuffer(GL_UNIFORM_BUFFER, gpu->frame_block);

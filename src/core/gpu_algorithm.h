@@ -58,6 +58,12 @@ oit_status oit_gpu_stage_check(const oit_gpu_algorithm *gpu, const char *stage, 
  * it), the per-part opacity bound. */
 oit_status oit_gpu_frame_begin(oit_gpu_algorithm *gpu, const oit_scene *scene, const oit_frame_settings *frame,
                                oit_error *err);
+/* The same, first resizing (the algorithm's own resize) when the frame's
+ * size is not the output's: the prologue of every algorithm whose targets
+ * depend on the size alone. */
+oit_status oit_gpu_frame_begin_sized(oit_gpu_algorithm *gpu,
+                                     oit_status (*resize)(oit_algorithm *alg, int width, int height, oit_error *err),
+                                     const oit_scene *scene, const oit_frame_settings *frame, oit_error *err);
 /* Its epilogue: default framebuffer and program, the timer stopped (stage
  * times into the statistics), GL errors of the frame, the memory held and
  * the bytes per pixel of the image-sized allocations. Returns status, or the

@@ -32,6 +32,17 @@
 #include <stdint.h>
 #include <stdio.h> /* FILE */
 
+/* Defined in a build under AddressSanitizer, which reports crashes and limits
+ * memory its own way: the command line's crash handler and the import
+ * worker's address-space limit stand aside for it. */
+#if defined(__SANITIZE_ADDRESS__)
+#define OIT_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define OIT_ADDRESS_SANITIZER 1
+#endif
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif

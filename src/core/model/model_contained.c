@@ -39,14 +39,6 @@ extern char **environ;
 #define STREAM_MAGIC 0x4d54494fu /* "OITM" */
 #define STREAM_VERSION 1u
 
-#if defined(__SANITIZE_ADDRESS__)
-#define ADDRESS_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ADDRESS_SANITIZER 1
-#endif
-#endif
-
 static const char *base_name(const char *path)
 {
     const char *slash = strrchr(path, '/');
@@ -151,7 +143,7 @@ int oit_import_worker_main(int argc, char **argv)
         struct rlimit cpu = {seconds, seconds + 2}; /* SIGXCPU, then SIGKILL */
         setrlimit(RLIMIT_CPU, &cpu);
     }
-#ifndef ADDRESS_SANITIZER
+#ifndef OIT_ADDRESS_SANITIZER
     /* (AddressSanitizer reserves terabytes of address space for its shadow:
      * there a memory limit would fail every allocation, and ASan's own
      * limit on huge allocations stands in) */
