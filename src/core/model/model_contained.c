@@ -91,18 +91,24 @@ void oit_import_limits_for_file(long long file_bytes, oit_import_limits *limits)
 
 /* ------------------------------------------------------------ the worker */
 
+/* After one read or write of n bytes: true to go on (n added to done, or an
+ * interrupted or not-yet-ready call to retry), false at the end of the stream
+ * or on an error. */
+static bool advance(ssize_t n, size_t *done)
+{
+    if (n < 0 && (errno == EINTR || errno == EAGAIN))
+        return true;
+    if (n <= 0)
+        return false;
+    *done += (size_t)n;
+    return true;
+}
+
 static bool write_all(int fd, const void *data, size_t size)
 {
-    const char *p = data;
-    while (size > 0) {
-        ssize_t n = write(fd, p, size);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0)
+    for (size_t done = 0; done < size;)
+        if (!advance(write(fd, (const char *)data + done, size - done), &done))
             return false;
-        p += n;
-        size -= (size_t)n;
-    }
     return true;
 }
 
@@ -190,8 +196,7 @@ typedef struct stream {
 /* Read exactly size bytes; false at end of stream, on an error, or past the deadline. */
 static bool read_all(stream *s, void *data, size_t size)
 {
-    char *p = data;
-    while (size > 0) {
+    for (size_t done = 0; done < size;) {
         double left = s->deadline_ms - monotonic_ms();
         if (left <= 0) {
             s->timed_out = true;
@@ -205,13 +210,8 @@ static bool read_all(stream *s, void *data, size_t size)
             return false;
         if (polled == 0)
             continue; /* the deadline is checked above */
-        ssize_t n = read(s->fd, p, size);
-        if (n < 0 && (errno == EINTR || errno == EAGAIN))
-            continue;
-        if (n <= 0)
+        if (!advance(read(s->fd, (char *)data + done, size - done), &done))
             return false;
-        p += n;
-        size -= (size_t)n;
     }
     return true;
 }
