@@ -15,9 +15,11 @@ for algorithm in kbuffer hybrid; do
             --out "$work/${algorithm}_$k.png" >"$work/${algorithm}_$k.json" \
             || fail "$algorithm --layers $k render"
     done
-    python3 - "$work" "$algorithm" <<'PY' || fail "$algorithm statistics"
-import json, sys
+    python3 - "$work" "$algorithm" "$(cd "$(dirname "$0")/.." && pwd)/shaders/common/oit_shared.h" <<'PY' || fail "$algorithm statistics"
+import json, re, sys
 work, algorithm = sys.argv[1:3]
+# the frame's parameter block every GPU algorithm holds beside its targets
+FRAME_BLOCK = int(re.search(r"#define OIT_FRAME_BLOCK_BYTES (\d+)", open(sys.argv[3]).read()).group(1))
 ll = json.load(open(f"{work}/ll.json"))
 for k in (1, 8, 64):
     d = json.load(open(f"{work}/{algorithm}_{k}.json"))
@@ -30,7 +32,7 @@ for k in (1, 8, 64):
     # slots of 16 bytes per layer, a tail count, the tail targets and the output per pixel
     tail = 16 if algorithm == "kbuffer" else 20
     assert d["bytes_per_pixel"] == 16 * k + 4 + tail + 4, (k, d["bytes_per_pixel"])
-    assert d["memory_bytes"] == 128 * 128 * d["bytes_per_pixel"] + 69 * 4, (k, d["memory_bytes"])
+    assert d["memory_bytes"] == 128 * 128 * d["bytes_per_pixel"] + 69 * 4 + FRAME_BLOCK, (k, d["memory_bytes"])
     print(f"{algorithm} k={k}: fragments {d['fragments']}, max_list {d['max_list']}, "
           f"{d['bytes_per_pixel']} bytes per pixel, memory {d['memory_bytes']}: ok")
 PY

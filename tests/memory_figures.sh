@@ -23,10 +23,13 @@ source "$(dirname "$0")/lib.sh"
 oit=$1 work=$2 model=$3 mode=$4
 rm -rf "$work"; mkdir -p "$work"
 
-python3 - "$oit" "$work" "$model" "$mode" <<'PY' || fail "memory figures ($mode)"
-import json, subprocess, sys
+shared_header="$(cd "$(dirname "$0")/.." && pwd)/shaders/common/oit_shared.h"
+python3 - "$oit" "$work" "$model" "$mode" "$shared_header" <<'PY' || fail "memory figures ($mode)"
+import json, re, subprocess, sys
 
 oit, work, model, mode = sys.argv[1:5]
+# every GPU algorithm holds the frame's parameter block beside its targets
+FRAME_BLOCK = int(re.search(r"#define OIT_FRAME_BLOCK_BYTES (\d+)", open(sys.argv[5]).read()).group(1))
 failures = []
 
 
@@ -131,17 +134,19 @@ else:
             want = 48 if variant else 40
             check(per_pixel == want, f"mboit {' '.join(variant)}: {per_pixel:g} bytes per pixel == {want}")
         if algorithm in ("kbuffer", "hybrid"):  # per pixel, and 69 counters
-            check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel + 69 * 4,
-                  f"{algorithm}: everything it holds is per pixel (output included) but its counters")
+            check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel + 69 * 4 + FRAME_BLOCK,
+                  f"{algorithm}: everything it holds is per pixel (output included) but its counters "
+                  f"and the frame block")
         elif algorithm == "mlab":
             # per pixel k = 8 layers of 16 bytes, count, lock and output (4 each), and a
             # fixed block of counters (the same at both sizes, by the subtraction above)
             check(per_pixel == 8 * 16 + 12, f"mlab: {per_pixel:g} GL bytes per pixel == 8 x 16 + 12")
-            fixed = big["gl_allocated_bytes"] - pixels(SIZE) * per_pixel
-            check(0 < fixed <= 64, f"mlab: {fixed:g} bytes beside the per-pixel ones (its counters)")
+            fixed = big["gl_allocated_bytes"] - pixels(SIZE) * per_pixel - FRAME_BLOCK
+            check(0 < fixed <= 64, f"mlab: {fixed:g} bytes beside the per-pixel ones and the frame block "
+                                   f"(its counters)")
         elif algorithm not in ("ll", "ib"):
-            check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel,
-                  f"{algorithm}: everything it holds is per pixel (output included)")
+            check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel + FRAME_BLOCK,
+                  f"{algorithm}: everything it holds is per pixel (output included) but the frame block")
 
     # per fragment: two pool capacities that both hold the frame
     for algorithm in ("ll", "ib"):
