@@ -83,6 +83,15 @@ typedef struct oit_component {
     float longest_edge;       /* its longest triangle edge (model space; computed) */
 } oit_component;
 
+/* An assembly node (a STEP/IGES (sub)assembly or instance, a glTF, FBX or COLLADA
+ * node): the tree the parts panel shows and the paths --hide and --component-alpha
+ * accept. Components hang under nodes; a model without a tree has none. */
+#define OIT_NO_NODE UINT32_MAX
+typedef struct oit_model_node {
+    char name[OIT_NAME_SIZE]; /* unique among its siblings (nodes and components) */
+    uint32_t parent;          /* an earlier node's index, or OIT_NO_NODE at the top */
+} oit_model_node;
+
 typedef struct oit_model {
     /* The centre of the bounding box in the file's coordinates, a float value
      * (so most positions subtract from it exactly). Every coordinate below
@@ -101,6 +110,11 @@ typedef struct oit_model {
 
     uint32_t component_count;
     oit_component *components;
+    /* The assembly tree (NULL and 0 when the file has none): nodes, parents
+     * before children, and each component's node (OIT_NO_NODE: at the top). */
+    uint32_t node_count;
+    oit_model_node *nodes;
+    uint32_t *component_node; /* per component, or NULL */
 
     float bounds_min[3], bounds_max[3]; /* relative to origin */
     float radius; /* bounding sphere about origin: every vertex lies within it */
@@ -146,6 +160,10 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err);
  * given are file coordinates. */
 oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *err);
 void oit_model_free(oit_model *model);
+/* A component's path: its nodes' names and its own, joined by '/'
+ * ("gearbox/input_shaft/bearing_1"); its name alone when it has no node.
+ * Returns the path's length (snprintf's rule: >= size means cut short). */
+int oit_model_component_path(const oit_model *model, uint32_t component, char *out, size_t size);
 
 /* Import in a contained child process (model_contained.c): the program runs
  * itself (/proc/self/exe) with OIT_IMPORT_WORKER_FLAG as an import worker

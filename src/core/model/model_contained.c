@@ -37,7 +37,7 @@
 extern char **environ;
 
 #define STREAM_MAGIC 0x4d54494fu /* "OITM" */
-#define STREAM_VERSION 1u
+#define STREAM_VERSION 2u
 
 static const char *base_name(const char *path)
 {
@@ -177,6 +177,9 @@ int oit_import_worker_main(int argc, char **argv)
          write_array(1, model.welded_ids, v * sizeof(uint32_t)) &&
          write_array(1, model.indices, t * 3 * sizeof(uint32_t)) &&
          write_array(1, model.components, (uint64_t)model.component_count * sizeof(oit_component)) &&
+         write_array(1, model.nodes, (uint64_t)model.node_count * sizeof(oit_model_node)) &&
+         write_array(1, model.component_node,
+                     model.component_node ? (uint64_t)model.component_count * sizeof(uint32_t) : 0) &&
          write_array(1, model.planes, (uint64_t)model.plane_count * 4 * sizeof(float)) &&
          write_array(1, model.triangle_plane, t * sizeof(uint32_t)) &&
          write_array(1, model.warnings, (uint64_t)model.warning_count * OIT_ERROR_MESSAGE_SIZE) &&
@@ -251,11 +254,13 @@ static oit_status receive_model(stream *s, oit_model *out, bool *broken, oit_err
     if (!read_all(s, &m, sizeof m))
         return OIT_E_RUNTIME;
     const uint64_t v = m.vertex_count, t = m.triangle_count;
-    void *arrays[10] = {0};
+    void *arrays[12] = {0};
     bool ok = read_array(s, &arrays[0], v * 3 * sizeof(float)) && read_array(s, &arrays[1], v * 3 * sizeof(float)) &&
               read_array(s, &arrays[2], v * sizeof(uint32_t)) && read_array(s, &arrays[3], v * sizeof(uint32_t)) &&
               read_array(s, &arrays[4], t * 3 * sizeof(uint32_t)) &&
               read_array(s, &arrays[5], (uint64_t)m.component_count * sizeof(oit_component)) &&
+              read_array(s, &arrays[10], (uint64_t)m.node_count * sizeof(oit_model_node)) &&
+              read_array(s, &arrays[11], m.component_node ? (uint64_t)m.component_count * sizeof(uint32_t) : 0) &&
               read_array(s, &arrays[6], (uint64_t)m.plane_count * 4 * sizeof(float)) &&
               read_array(s, &arrays[7], t * sizeof(uint32_t)) &&
               read_array(s, &arrays[8], (uint64_t)m.warning_count * OIT_ERROR_MESSAGE_SIZE);
@@ -272,6 +277,8 @@ static oit_status receive_model(stream *s, oit_model *out, bool *broken, oit_err
     m.welded_ids = arrays[3];
     m.indices = arrays[4];
     m.components = arrays[5];
+    m.nodes = arrays[10];
+    m.component_node = arrays[11];
     m.planes = arrays[6];
     m.triangle_plane = arrays[7];
     m.warnings = arrays[8];

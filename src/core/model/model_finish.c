@@ -3,6 +3,7 @@
  * the exact vertex join and welding, bounds, reach; then the coplanar planes
  * (model_planes.c). It reads no file and includes no Assimp header: the import
  * (model_import.c) calls it. */
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,6 +40,8 @@ void oit_model_free(oit_model *model)
     free(model->welded_ids);
     free(model->indices);
     free(model->components);
+    free(model->nodes);
+    free(model->component_node);
     free(model->triangle_reach);
     free(model->warnings);
     free(model->planes);
@@ -330,6 +333,56 @@ static oit_status check_components(oit_model *model, oit_error *err)
     return OIT_OK;
 }
 
+/* The tree: parents before children (so there is no cycle), each component's
+ * node in range, and both arrays present or absent together. */
+static oit_status check_nodes(const oit_model *model, oit_error *err)
+{
+    if (!model->nodes != (model->node_count == 0))
+        return oit_fail(err, OIT_E_INPUT, "%u assembly nodes but %s", model->node_count,
+                        model->nodes ? "a node array" : "no node array");
+    if ((uint64_t)model->node_count > OIT_MODEL_LIMIT)
+        return oit_fail(err, OIT_E_INPUT, "too many assembly nodes (%u)", model->node_count);
+    for (uint32_t n = 0; n < model->node_count; ++n) {
+        const oit_model_node *node = &model->nodes[n];
+        if (node->parent != OIT_NO_NODE && node->parent >= n)
+            return oit_fail(err, OIT_E_INPUT, "assembly node %u (%.*s) has parent %u, not an earlier node", n,
+                            (int)sizeof node->name, node->name, node->parent);
+        if (memchr(node->name, '\0', sizeof node->name) == NULL)
+            return oit_fail(err, OIT_E_INPUT, "assembly node %u has an unterminated name", n);
+    }
+    if (!model->component_node)
+        return OIT_OK;
+    for (uint32_t c = 0; c < model->component_count; ++c)
+        if (model->component_node[c] != OIT_NO_NODE && model->component_node[c] >= model->node_count)
+            return oit_fail(err, OIT_E_INPUT, "component %u (%s) hangs under node %u of %u", c,
+                            model->components[c].name, model->component_node[c], model->node_count);
+    return OIT_OK;
+}
+
+int oit_model_component_path(const oit_model *model, uint32_t component, char *out, size_t size)
+{
+    if (!model || component >= model->component_count)
+        return snprintf(out, size, "%s", "");
+    /* the chain from the component up, then written top first */
+    uint32_t chain[256];
+    uint32_t depth = 0;
+    uint32_t node = model->component_node ? model->component_node[component] : OIT_NO_NODE;
+    while (node != OIT_NO_NODE && node < model->node_count && depth < sizeof chain / sizeof chain[0]) {
+        chain[depth++] = node;
+        node = model->nodes[node].parent;
+    }
+    size_t length = 0;
+    for (uint32_t k = depth; k-- > 0;) {
+        int wrote = snprintf(length < size ? out + length : NULL, length < size ? size - length : 0, "%s/",
+                             model->nodes[chain[k]].name);
+        length += wrote > 0 ? (size_t)wrote : 0;
+    }
+    int wrote = snprintf(length < size ? out + length : NULL, length < size ? size - length : 0, "%s",
+                         model->components[component].name);
+    length += wrote > 0 ? (size_t)wrote : 0;
+    return length > INT_MAX ? INT_MAX : (int)length;
+}
+
 /* Indices within the vertices, finite coordinates. */
 static oit_status check_geometry(const oit_model *model, oit_error *err)
 {
@@ -482,6 +535,8 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
     oit_status status = check_geometry(model, err);
     if (status == OIT_OK)
         status = check_components(model, err);
+    if (status == OIT_OK)
+        status = check_nodes(model, err);
     if (status != OIT_OK)
         return status;
     centre_positions(model);
