@@ -390,8 +390,12 @@ static int command_info(int argc, char **argv)
                m.origin[0], m.origin[1], m.origin[2], m.radius, m.longest_edge);
         for (uint32_t c = 0; c < m.component_count; ++c) {
             const oit_component *p = &m.components[c];
+            char path[OIT_NAME_SIZE * 8];
+            oit_model_component_path(&m, c, path, sizeof path);
             printf("%s{\"name\": ", c ? ", " : "");
             json_string(stdout, p->name);
+            printf(", \"path\": ");
+            json_string(stdout, path);
             printf(", \"colour\": [%.4g, %.4g, %.4g], \"opacity\": %.4g, \"triangles\": %u, "
                    "\"longest_edge\": %.9g}",
                    p->colour[0], p->colour[1], p->colour[2], p->opacity, p->triangle_count,
