@@ -5,9 +5,15 @@ every algorithm through `oit bench`, the builds taking turns (before, after, bef
 after/before, paired round by round (pairing keeps the ratio meaningful when the machine's
 speed drifts), with its median and range over the rounds.
 
+With --cpu the figure is CPU time per frame instead of the frame's wall time: each scene and
+algorithm runs twice per build and round, with 1 and 1 + --frames frames, llvmpipe rendering on
+the calling thread (LP_NUM_THREADS=0), and the difference of the two processes' user + system
+time divided by --frames. Other work on the machine slows the wall clock but hardly the CPU time
+a process is charged, so this is the measure to use on a shared machine.
+
     python3 bat/ab_frames.py --before OLD/src/cli/oit --after NEW/src/cli/oit \\
         [--before-shaders DIR] [--after-shaders DIR] [--scene-list build/bench/scenes.txt]
-        [--scenes gearbox-general,...] [--algorithms dp,ll,...] [--size 256] [--rounds 3]
+        [--scenes gearbox-general,...] [--algorithms dp,ll,...] [--size 256] [--rounds 3] [--cpu]
 
 The scene list is bat/setup.py's (bat/run_comparison.sh writes it). A refactoring that
 leaves the passes alone should give ratios around 1 within their range; the range is the
@@ -38,6 +44,30 @@ def bench(oit, shaders, args, out):
     return {(r["scene"], r["algorithm"]): r["cpu_ms"]["median"] for r in json.load(open(out))["results"]}
 
 
+def cpu_per_frame(oit, shaders, args, scene, algorithm, out):
+    """CPU seconds per frame of one scene and algorithm: two runs, 1 and 1 + frames frames."""
+    env = dict(os.environ, LP_NUM_THREADS="0")
+    if shaders:
+        env["OIT_SHADER_DIR"] = shaders
+    spent = []
+    for frames in (1, 1 + args.frames):
+        command = [oit, "bench", "--scene-list", args.scene_list, "--scenes", scene, "--algorithms", algorithm,
+                   "--sizes", str(args.size), "--frames", str(frames), "--warmup", "0",
+                   "--reference-max-pixels", "0", "--quiet", "--json", out]
+        start = os.times()
+        done = subprocess.run(command, env=env, capture_output=True, text=True)
+        end = os.times()
+        if done.returncode != 0:
+            sys.exit(f"ab_frames: {' '.join(command)} failed ({done.returncode}): {done.stderr.strip()}")
+        spent.append((end.children_user - start.children_user) + (end.children_system - start.children_system))
+    return 1000.0 * (spent[1] - spent[0]) / args.frames
+
+
+def bench_cpu(oit, shaders, args, out):
+    return {(scene, algorithm): cpu_per_frame(oit, shaders, args, scene, algorithm, out)
+            for scene in args.scenes.split(",") for algorithm in args.algorithms.split(",")}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--before", required=True)
@@ -50,16 +80,19 @@ def main():
     parser.add_argument("--size", type=int, default=256)
     parser.add_argument("--frames", type=int, default=5)
     parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--cpu", action="store_true", help="CPU time per frame instead of wall time")
     args = parser.parse_args()
+    measure = bench_cpu if args.cpu else bench
     rounds = []
     with tempfile.TemporaryDirectory(prefix="oit-ab-") as work:
         for r in range(args.rounds):
-            before = bench(args.before, args.before_shaders, args, os.path.join(work, f"a{r}.json"))
-            after = bench(args.after, args.after_shaders, args, os.path.join(work, f"b{r}.json"))
+            before = measure(args.before, args.before_shaders, args, os.path.join(work, f"a{r}.json"))
+            after = measure(args.after, args.after_shaders, args, os.path.join(work, f"b{r}.json"))
             rounds.append((before, after))
             print(f"ab_frames: round {r + 1} of {args.rounds} done", file=sys.stderr)
     keys = [k for k in rounds[0][0] if all(k in a and k in b for a, b in rounds)]
-    print(f"| scene | algorithm | before ms | after ms | after/before (median, range over {args.rounds} rounds) |")
+    unit = "CPU ms per frame" if args.cpu else "ms"
+    print(f"| scene | algorithm | before {unit} | after {unit} | after/before (median, range over {args.rounds} rounds) |")
     print("| --- | --- | ---: | ---: | --- |")
     all_ratios = []
     for key in keys:

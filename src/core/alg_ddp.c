@@ -455,7 +455,7 @@ static oit_status ddp_render(oit_algorithm *alg, const oit_scene *scene,
 
     const oit_texture_unit composed[] = {{OIT_TEXUNIT_ACCUM_FRONT, s->front},
                                          {OIT_TEXUNIT_ACCUM_BACK, s->back}};
-    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, frame, composed,
+    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, composed,
                                       2, err);
 
     s->gpu.stats.layers = layers;

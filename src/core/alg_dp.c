@@ -538,7 +538,7 @@ static oit_status dp_render(oit_algorithm *alg, const oit_scene *scene,
                                distance_norm, &layers, &s->gpu.stats.truncated, err);
 
     const oit_texture_unit composed[] = {{OIT_TEXUNIT_ACCUM_FRONT, s->accumulation}};
-    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, frame, composed,
+    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, composed,
                                       1, err);
 
     s->gpu.stats.layers = layers;

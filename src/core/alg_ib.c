@@ -105,6 +105,10 @@ static const char *const ib_shaders[IB_PROGRAM_COUNT] = {
 typedef struct ib_state {
     oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
     GLuint programs[IB_PROGRAM_COUNT];
+    /* which programs declare the band (ib_band) and the pass parameter (item_count,
+     * pass_parameter, source_copy or fields_copy at OIT_UNIFORM_IB_PASS): asked
+     * once at create, not by name on every pass */
+    bool uses_band[IB_PROGRAM_COUNT], uses_pass_parameter[IB_PROGRAM_COUNT];
 
     GLuint head_image, count_image;
     oit_fragment_pool pool;
@@ -176,6 +180,14 @@ static oit_status ib_create(const oit_algorithm_config *config, oit_algorithm **
                 &s->programs[p], err);
         else
             status = oit_gpu_compute_program(gpu, ib_shaders[p], &s->programs[p], err);
+        if (status == OIT_OK) {
+            static const char *const pass_parameters[] = {"item_count", "pass_parameter", "source_copy",
+                                                          "fields_copy"};
+            s->uses_band[p] = glGetUniformLocation(s->programs[p], "ib_band") == OIT_UNIFORM_IB_BAND;
+            for (size_t k = 0; k < sizeof pass_parameters / sizeof pass_parameters[0]; ++k)
+                s->uses_pass_parameter[p] |=
+                    glGetUniformLocation(s->programs[p], pass_parameters[k]) == OIT_UNIFORM_IB_PASS;
+        }
     }
     if (status != OIT_OK) {
         ib_destroy((oit_algorithm *)s);
@@ -349,10 +361,10 @@ static void ib_barrier(void)
 }
 
 /* glUseProgram(p) with the band of rows (ib_band); the frame block is bound for every pass. */
-static void ib_use_program(ib_state *s, enum ib_program p, const oit_frame_settings *frame)
+static void ib_use_program(ib_state *s, enum ib_program p)
 {
     glUseProgram(s->programs[p]);
-    if (glGetUniformLocation(s->programs[p], "ib_band") == OIT_UNIFORM_IB_BAND)
+    if (s->uses_band[p])
         glUniform4iv(OIT_UNIFORM_IB_BAND, 1, s->band);
 }
 
@@ -369,8 +381,7 @@ static void ib_set_band(ib_state *s, int stored_first, int stored_end, int first
 /* A pass of program p with one invocation per item (work groups of
  * OIT_IB_ITEMS_PER_GROUP, in rows past the work-group count limit); the shader
  * skips those past the end. */
-static void ib_item_pass(ib_state *s, enum ib_program p, const oit_frame_settings *frame,
-                         GLuint items)
+static void ib_item_pass(ib_state *s, enum ib_program p, GLuint items)
 {
     GLuint groups = (items + OIT_IB_ITEMS_PER_GROUP - 1u) / OIT_IB_ITEMS_PER_GROUP;
     GLuint rows = 1;
@@ -379,8 +390,8 @@ static void ib_item_pass(ib_state *s, enum ib_program p, const oit_frame_setting
         rows *= 2u;
     }
     ib_barrier();
-    ib_use_program(s, p, frame);
-    if (glGetUniformLocation(s->programs[p], "item_count") == OIT_UNIFORM_IB_PASS)
+    ib_use_program(s, p);
+    if (s->uses_pass_parameter[p])
         glUniform1i(OIT_UNIFORM_IB_PASS, (GLint)items);
     if (items > 0)
         glDispatchCompute(groups, rows, 1);
@@ -397,12 +408,11 @@ static void ib_count_groups(ib_state *s, enum ib_program counts)
 
 /* Program p with the work-group counts at counter `slot` that ib_count_groups
  * wrote: exactly the groups its items or tiles need. */
-static void ib_indirect_pass(ib_state *s, enum ib_program p, int slot,
-                             const oit_frame_settings *frame)
+static void ib_indirect_pass(ib_state *s, enum ib_program p, int slot)
 {
     ib_barrier();
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
-    ib_use_program(s, p, frame);
+    ib_use_program(s, p);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counter_buffer);
     glDispatchComputeIndirect((GLintptr)(slot * sizeof(GLuint)));
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -415,11 +425,8 @@ static void ib_pass(ib_state *s, enum ib_program p, const oit_frame_settings *fr
                     int pass_parameter)
 {
     ib_barrier();
-    ib_use_program(s, p, frame);
-    if (glGetUniformLocation(s->programs[p], p == IB_BLUR         ? "pass_parameter"
-                                             : p == IB_DIFFUSION  ? "source_copy"
-                                                                  : "fields_copy") ==
-        OIT_UNIFORM_IB_PASS)
+    ib_use_program(s, p);
+    if (s->uses_pass_parameter[p])
         glUniform1i(OIT_UNIFORM_IB_PASS, pass_parameter);
     if (p == IB_COMPOSE || p == IB_COMPOSE_PLAIN) {
         oit_gl_draw_fullscreen(&s->gpu.output);
@@ -510,18 +517,18 @@ static oit_status ib_resolve(ib_state *s, const oit_scene *scene, const oit_fram
      * fragments the first search queued (at most all of them) */
     ib_stage(s, prefix, "neighbours");
     if (triangles)
-        ib_item_pass(s, IB_TRIANGLES, frame, scene->index_count / 3u);
-    ib_indirect_pass(s, IB_NEIGHBOURS, OIT_IB_COUNTER_TILE_DISPATCH, frame);
+        ib_item_pass(s, IB_TRIANGLES, scene->index_count / 3u);
+    ib_indirect_pass(s, IB_NEIGHBOURS, OIT_IB_COUNTER_TILE_DISPATCH);
     if (plan->params.search != OIT_NEIGHBOURS_INDEX) {
         /* a stage of its own: how much of the search the fallback costs is worth seeing */
         ib_stage(s, prefix, "neighbours_epsilon");
         ib_count_groups(s, IB_EPSILON_DISPATCH);
-        ib_indirect_pass(s, IB_NEIGHBOURS_EPSILON, OIT_IB_COUNTER_EPSILON_DISPATCH, frame);
+        ib_indirect_pass(s, IB_NEIGHBOURS_EPSILON, OIT_IB_COUNTER_EPSILON_DISPATCH);
     }
     if (s->gpu.config.neighbour_quality) {
         /* diagnostics, not part of the frame: oit bench and oit measure turn it off */
         ib_stage(s, prefix, "neighbour_stats");
-        ib_indirect_pass(s, IB_NEIGHBOUR_STATS, OIT_IB_COUNTER_TILE_DISPATCH, frame);
+        ib_indirect_pass(s, IB_NEIGHBOUR_STATS, OIT_IB_COUNTER_TILE_DISPATCH);
     }
     oit_status status = oit_gpu_stage_check(&s->gpu, "neighbours", err);
     if (status != OIT_OK)

@@ -207,7 +207,7 @@ static oit_status mboit_render(oit_algorithm *alg, const oit_scene *scene,
     /* 3. the normalised composite over the background */
     const oit_texture_unit composed[] = {{OIT_TEXUNIT_MBOIT_B0, s->b0},
                                          {OIT_TEXUNIT_MBOIT_ACCUM, s->accumulation}};
-    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, frame, composed,
+    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, composed,
                                       2, err);
     glActiveTexture(GL_TEXTURE0);
     return oit_gpu_frame_end(&s->gpu, status, err);

@@ -226,8 +226,7 @@ static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,
     glProgramUniform1ui(s->resolve_program, OIT_UNIFORM_MLAB_LAYERS, (GLuint)s->layers);
     status = oit_gpu_fullscreen_stage(&s->gpu, status, "resolve", s->resolve_program,
                                       GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
-                                          GL_TEXTURE_FETCH_BARRIER_BIT,
-                                      frame, NULL, 0, err);
+                                          GL_TEXTURE_FETCH_BARRIER_BIT, NULL, 0, err);
 
     GLuint counters[OIT_MLAB_COUNTER_COUNT] = {0};
     if (status == OIT_OK) {

@@ -118,7 +118,7 @@ static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,
 
     const oit_texture_unit composed[] = {{OIT_TEXUNIT_ACCUM, s->accumulation},
                                          {OIT_TEXUNIT_REVEALAGE, s->revealage}};
-    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, frame, composed,
+    status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program, 0, composed,
                                       2, err);
     return oit_gpu_frame_end(&s->gpu, status, err);
 }

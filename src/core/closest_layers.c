@@ -328,8 +328,7 @@ oit_status closest_layers_render(oit_algorithm *alg, const oit_scene *scene,
     glProgramUniform1i(s->compose_program, OIT_UNIFORM_CLOSEST_LAYERS, s->layers);
     status = oit_gpu_fullscreen_stage(&s->gpu, status, "compose", s->compose_program,
                                       GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                                          GL_FRAMEBUFFER_BARRIER_BIT,
-                                      frame, tail, s->tail->target_count, err);
+                                          GL_FRAMEBUFFER_BARRIER_BIT, tail, s->tail->target_count, err);
     if (status == OIT_OK)
         closest_finish_stats(s, &s->gpu.stats);
     return oit_gpu_frame_end(&s->gpu, status, err);

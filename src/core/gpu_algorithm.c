@@ -205,8 +205,7 @@ oit_status oit_gpu_read_largest(oit_gpu_algorithm *gpu, GLuint framebuffer, floa
 }
 
 oit_status oit_gpu_fullscreen_stage(oit_gpu_algorithm *gpu, oit_status status, const char *stage,
-                                    GLuint program, GLbitfield barriers, const oit_frame_settings *frame,
-                                    const oit_texture_unit *textures, int texture_count, oit_error *err)
+                                    GLuint program, GLbitfield barriers, const oit_texture_unit *textures, int texture_count, oit_error *err)
 {
     if (status != OIT_OK)
         return status;

@@ -100,8 +100,7 @@ typedef struct oit_texture_unit {
  * algorithm's own is set before, with glProgramUniform*. Does nothing unless
  * status is OIT_OK, and returns the stage's status. */
 oit_status oit_gpu_fullscreen_stage(oit_gpu_algorithm *gpu, oit_status status, const char *stage,
-                                    GLuint program, GLbitfield barriers, const oit_frame_settings *frame,
-                                    const oit_texture_unit *textures, int texture_count, oit_error *err);
+                                    GLuint program, GLbitfield barriers, const oit_texture_unit *textures, int texture_count, oit_error *err);
 
 /* The operations table's read_image and stats, for every GPU algorithm. */
 oit_status oit_gpu_read_image(oit_algorithm *alg, oit_image *out, oit_error *err);
