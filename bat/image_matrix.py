@@ -104,8 +104,10 @@ def main():
         for build, name, code in pool.map(run, jobs):
             codes[build, name] = code
     for build, (oit, shaders) in builds.items():
-        subprocess.run([oit, "demo", "--size", "96x96", "--out", os.path.join(work, build, "demo")], check=True,
-                       capture_output=True, env=dict(os.environ, OIT_SHADER_DIR=shaders))
+        done = subprocess.run([oit, "demo", "--size", "96x96", "--out", os.path.join(work, build, "demo")],
+                              capture_output=True, text=True, env=dict(os.environ, OIT_SHADER_DIR=shaders))
+        if done.returncode != 0:
+            sys.exit(f"image_matrix: {oit} demo failed ({done.returncode}): {done.stderr.strip()}")
 
     names = sorted({name for _, name in codes})
     same = differ = failed = 0

@@ -57,10 +57,11 @@ if [ -z "${ASAN_OPTIONS:-}" ]; then
 else
     echo "skipped under ASan: the tight address-space limit"
 fi
-# a frame whose targets the driver cannot allocate: the error names the framebuffer, the
+# a frame whose targets the driver cannot allocate: the error names the framebuffer (every
+# algorithm as "NAME: the WHAT framebuffer", oit_gpu_framebuffer), the
 # size and the memory it needed, not only "incomplete (0x8cd6)"
 if [ -z "${ASAN_OPTIONS:-}" ]; then
-    expect_exit 3 "^oit: error: blend: the RGBA32F target is incomplete \(GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT, 0x8cd6\): the driver could not allocate its textures at 16384x16384, the frame's textures and buffers needing 5.00 GiB in all" -- \
+    expect_exit 3 "^oit: error: blend: the accumulation framebuffer is incomplete \(GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT, 0x8cd6\): the driver could not allocate its textures at 16384x16384, the frame's textures and buffers needing 5.00 GiB in all" -- \
         bash -c 'ulimit -v 2000000; exec "$@"' _ "$oit" render --algorithm blend --model "$model" --size 16384x16384 \
         --out "$work/huge.png"
     [ ! -e "$work/huge.png" ] || fail "an image was written for a frame without targets"

@@ -47,18 +47,10 @@ static oit_status blend_resize(oit_algorithm *alg, int width, int height, oit_er
     if (status != OIT_OK)
         return status;
     oit_gl_memory_delete_textures(&s->gpu.memory, 1, &s->accumulation);
-    if (!s->accumulation_framebuffer)
-        glGenFramebuffers(1, &s->accumulation_framebuffer);
     s->accumulation = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
-    glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                           s->accumulation, 0);
-    status = oit_gl_check_framebuffer("blend: the RGBA32F target", width, height, &s->gpu.memory, err);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (status != OIT_OK)
-        return status;
-    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
-    return oit_gl_check("blend: resize", err);
+    status = oit_gpu_framebuffer(&s->gpu, &s->accumulation_framebuffer, "accumulation", &s->accumulation, 1, 0,
+                                 width, height, err);
+    return oit_gpu_resize_end(&s->gpu, status, width, height, err);
 }
 
 static oit_status blend_render(oit_algorithm *alg, const oit_scene *scene,

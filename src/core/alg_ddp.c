@@ -149,75 +149,35 @@ static oit_status ddp_resize(oit_algorithm *alg, int width, int height, oit_erro
     s->front = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
     s->back_layer = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
     s->back = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
-    static const GLenum peel_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-                                           GL_COLOR_ATTACHMENT2};
     for (int i = 0; i < 2 && status == OIT_OK; ++i) {
         s->minmax[i] = oit_gpu_target(&s->gpu, GL_RG32F, width, height);
-        glGenFramebuffers(1, &s->peel_framebuffer[i]);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[i]);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->minmax[i],
-                               0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, s->front, 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
-                               s->back_layer, 0);
-        glDrawBuffers(3, peel_buffers);
-        status = oit_gpu_check_framebuffer(&s->gpu, "peel", width, height, err);
+        const GLuint peel[3] = {s->minmax[i], s->front, s->back_layer};
+        status = oit_gpu_framebuffer(&s->gpu, &s->peel_framebuffer[i], "peel", peel, 3, 0, width, height, err);
     }
-    if (status == OIT_OK) {
-        glGenFramebuffers(1, &s->back_framebuffer);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->back_framebuffer);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->back, 0);
-        status = oit_gpu_check_framebuffer(&s->gpu, "back", width, height, err);
-    }
+    if (status == OIT_OK)
+        status = oit_gpu_framebuffer(&s->gpu, &s->back_framebuffer, "back", &s->back, 1, 0, width, height, err);
     if (status == OIT_OK && s->distance_targets) {
         s->front_layer = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
         s->distance_max = oit_gpu_target(&s->gpu, GL_R32F, width, height);
-        static const GLenum two[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
         for (int i = 0; i < 2 && status == OIT_OK; ++i) {
             s->previous_far[i] = oit_gpu_target(&s->gpu, GL_R32F, width, height);
-            glGenFramebuffers(1, &s->distance_peel_framebuffer[i]);
-            glBindFramebuffer(GL_FRAMEBUFFER, s->distance_peel_framebuffer[i]);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                                   s->minmax[i], 0);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
-                                   s->front_layer, 0);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
-                                   s->back_layer, 0);
-            glDrawBuffers(3, peel_buffers);
-            status = oit_gpu_check_framebuffer(&s->gpu, "distance peel", width, height, err);
-            if (status != OIT_OK)
-                break;
-            glGenFramebuffers(1, &s->distance_blend_framebuffer[i]);
-            glBindFramebuffer(GL_FRAMEBUFFER, s->distance_blend_framebuffer[i]);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->front, 0);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, s->back, 0);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
-                                   s->previous_far[i], 0);
-            glDrawBuffers(3, peel_buffers);
-            status = oit_gpu_check_framebuffer(&s->gpu, "distance blend", width, height, err);
-            if (status != OIT_OK)
-                break;
-            glGenFramebuffers(1, &s->distance_max_framebuffer[i]);
-            glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer[i]);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                                   s->distance_max, 0);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
-                                   s->previous_far[i], 0);
-            glDrawBuffers(2, two);
-            status = oit_gpu_check_framebuffer(&s->gpu, "distance maximum", width, height, err);
+            const GLuint distance_peel[3] = {s->minmax[i], s->front_layer, s->back_layer};
+            const GLuint distance_blend[3] = {s->front, s->back, s->previous_far[i]};
+            const GLuint distance_max[2] = {s->distance_max, s->previous_far[i]};
+            status = oit_gpu_framebuffer(&s->gpu, &s->distance_peel_framebuffer[i], "distance peel",
+                                         distance_peel, 3, 0, width, height, err);
+            if (status == OIT_OK)
+                status = oit_gpu_framebuffer(&s->gpu, &s->distance_blend_framebuffer[i], "distance blend",
+                                             distance_blend, 3, 0, width, height, err);
+            if (status == OIT_OK)
+                status = oit_gpu_framebuffer(&s->gpu, &s->distance_max_framebuffer[i], "distance maximum",
+                                             distance_max, 2, 0, width, height, err);
         }
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (status == OIT_OK)
-        status = oit_gl_check("ddp: resize", err);
-    if (status != OIT_OK) {
+    status = oit_gpu_resize_end(&s->gpu, status, width, height, err);
+    if (status != OIT_OK)
         ddp_release_targets(s);
-        return status;
-    }
-    s->gpu.output.width = width;
-    s->gpu.output.height = height;
-    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
-    return OIT_OK;
+    return status;
 }
 
 /* The blending of the peel framebuffer's three targets, for init and peel. */

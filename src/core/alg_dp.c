@@ -176,88 +176,46 @@ static oit_status dp_resize(oit_algorithm *alg, int width, int height, oit_error
         return status;
 
     /* every peel framebuffer: colour 0, (normal 1,) tie OIT_DP_TIE_LOCATION */
-    _Static_assert(OIT_DP_TIE_LOCATION == 2, "the draw buffer lists below put the tie at 2");
-    static const GLenum colour_and_tie[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_COLOR_ATTACHMENT2};
-    static const GLenum three_targets[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-                                            GL_COLOR_ATTACHMENT2};
+    _Static_assert(OIT_DP_TIE_LOCATION == 2, "the target lists below put the tie at 2");
     s->layer_colour = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < 2 && status == OIT_OK; ++i) {
         s->depth[i] = oit_gpu_target(&s->gpu, GL_DEPTH_COMPONENT32F, width, height);
         s->tie[i] = oit_gpu_target(&s->gpu, GL_R32UI, width, height);
-        glGenFramebuffers(1, &s->peel_framebuffer[i]);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->peel_framebuffer[i]);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                               s->layer_colour, 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
-        glDrawBuffers(3, colour_and_tie);
-        status = oit_gpu_check_framebuffer(&s->gpu, "peel", width, height, err);
-        if (status != OIT_OK)
-            break;
+        const GLuint peel[3] = {s->layer_colour, 0, s->tie[i]};
+        status = oit_gpu_framebuffer(&s->gpu, &s->peel_framebuffer[i], "peel", peel, 3, s->depth[i], width,
+                                     height, err);
     }
     if (status == OIT_OK) {
         s->accumulation = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
-        glGenFramebuffers(1, &s->accumulation_framebuffer);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->accumulation_framebuffer);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                               s->accumulation, 0);
-        status = oit_gpu_check_framebuffer(&s->gpu, "accumulation", width, height, err);
+        status = oit_gpu_framebuffer(&s->gpu, &s->accumulation_framebuffer, "accumulation", &s->accumulation, 1,
+                                     0, width, height, err);
     }
     for (int i = 0; status == OIT_OK && s->distance_targets && i < 2; ++i) {
         s->distance_colour[i] = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
-        glGenFramebuffers(1, &s->distance_peel_framebuffer[i]);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->distance_peel_framebuffer[i]);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                               s->distance_colour[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
-        glDrawBuffers(3, colour_and_tie);
-        status = oit_gpu_check_framebuffer(&s->gpu, "distance peel", width, height, err);
+        const GLuint distance_peel[3] = {s->distance_colour[i], 0, s->tie[i]};
+        status = oit_gpu_framebuffer(&s->gpu, &s->distance_peel_framebuffer[i], "distance peel", distance_peel, 3,
+                                     s->depth[i], width, height, err);
     }
     if (status == OIT_OK && s->distance_targets) {
         s->distance_max = oit_gpu_target(&s->gpu, GL_R32F, width, height);
-        glGenFramebuffers(1, &s->distance_max_framebuffer);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->distance_max_framebuffer);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                               s->distance_max, 0);
-        status = oit_gpu_check_framebuffer(&s->gpu, "distance maximum", width, height, err);
+        status = oit_gpu_framebuffer(&s->gpu, &s->distance_max_framebuffer, "distance maximum", &s->distance_max,
+                                     1, 0, width, height, err);
     }
     for (int i = 0; status == OIT_OK && s->normal_targets && i < 2; ++i) {
         s->layer_normal[i] = oit_gpu_target(&s->gpu, GL_RG32UI, width, height);
-        glGenFramebuffers(1, &s->curvature_peel_framebuffer[i]);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->curvature_peel_framebuffer[i]);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                               s->layer_colour, 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
-                               s->layer_normal[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
-        glDrawBuffers(3, three_targets);
-        status = oit_gpu_check_framebuffer(&s->gpu, "curvature peel", width, height, err);
+        const GLuint curvature_peel[3] = {s->layer_colour, s->layer_normal[i], s->tie[i]};
+        status = oit_gpu_framebuffer(&s->gpu, &s->curvature_peel_framebuffer[i], "curvature peel", curvature_peel,
+                                     3, s->depth[i], width, height, err);
         if (status != OIT_OK || !s->distance_targets)
             continue;
-        glGenFramebuffers(1, &s->dist_curv_peel_framebuffer[i]);
-        glBindFramebuffer(GL_FRAMEBUFFER, s->dist_curv_peel_framebuffer[i]);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                               s->distance_colour[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
-                               s->layer_normal[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->tie[i], 0);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, s->depth[i], 0);
-        glDrawBuffers(3, three_targets);
-        status = oit_gpu_check_framebuffer(&s->gpu, "dist-curv peel", width, height, err);
+        const GLuint dist_curv_peel[3] = {s->distance_colour[i], s->layer_normal[i], s->tie[i]};
+        status = oit_gpu_framebuffer(&s->gpu, &s->dist_curv_peel_framebuffer[i], "dist-curv peel", dist_curv_peel,
+                                     3, s->depth[i], width, height, err);
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (status == OIT_OK)
-        status = oit_gl_check("dp: resize", err);
-    if (status != OIT_OK) {
+    status = oit_gpu_resize_end(&s->gpu, status, width, height, err);
+    if (status != OIT_OK)
         dp_release_targets(s);
-        return status;
-    }
-    s->gpu.output.width = width;
-    s->gpu.output.height = height;
-    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
-    return OIT_OK;
+    return status;
 }
 
 /* What one peeling sweep does with each layer. */

@@ -100,23 +100,6 @@ static oit_status mboit_create(const oit_algorithm_config *config, oit_algorithm
 }
 
 /* A framebuffer over count colour textures (attachment i = textures[i]). */
-static oit_status mboit_framebuffer(const mboit_state *s, GLuint *framebuffer, const GLuint *textures, int count,
-                                    const char *name, int width, int height, oit_error *err)
-{
-    static const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-                                      GL_COLOR_ATTACHMENT2};
-    glGenFramebuffers(1, framebuffer);
-    glBindFramebuffer(GL_FRAMEBUFFER, *framebuffer);
-    for (int i = 0; i < count; ++i)
-        glFramebufferTexture2D(GL_FRAMEBUFFER, buffers[i], GL_TEXTURE_2D, textures[i], 0);
-    glDrawBuffers(count, buffers);
-    char what[64];
-    snprintf(what, sizeof what, "mboit: the %s framebuffer", name);
-    oit_status status = oit_gl_check_framebuffer(what, width, height, &s->gpu.memory, err);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return status;
-}
-
 static oit_status mboit_resize(oit_algorithm *alg, int width, int height, oit_error *err)
 {
     mboit_state *s = (mboit_state *)alg;
@@ -136,21 +119,15 @@ static oit_status mboit_resize(oit_algorithm *alg, int width, int height, oit_er
     targets[OIT_MBOIT_TARGET_B0] = s->b0;
     targets[OIT_MBOIT_TARGET_MOMENTS] = s->moment_sums;
     targets[OIT_MBOIT_TARGET_EXTRA] = s->extra_sums;
-    status = mboit_framebuffer(s, &s->moments_framebuffer, targets, mboit_has_extra(s->moments) ? 3 : 2,
-                               "moments", width, height, err);
+    status = oit_gpu_framebuffer(&s->gpu, &s->moments_framebuffer, "moments", targets,
+                                 mboit_has_extra(s->moments) ? 3 : 2, 0, width, height, err);
     if (status == OIT_OK)
-        status = mboit_framebuffer(s, &s->transmittance_framebuffer, &s->accumulation, 1, "transmittance",
-                                   width, height, err);
-    if (status == OIT_OK)
-        status = oit_gl_check("mboit: resize", err);
-    if (status != OIT_OK) {
+        status = oit_gpu_framebuffer(&s->gpu, &s->transmittance_framebuffer, "transmittance", &s->accumulation, 1,
+                                     0, width, height, err);
+    status = oit_gpu_resize_end(&s->gpu, status, width, height, err);
+    if (status != OIT_OK)
         mboit_release_targets(s);
-        return status;
-    }
-    s->gpu.output.width = width;
-    s->gpu.output.height = height;
-    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
-    return OIT_OK;
+    return status;
 }
 
 static void mboit_bind_texture(GLenum unit, GLuint texture)

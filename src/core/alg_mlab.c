@@ -168,10 +168,10 @@ static oit_status mlab_resize(oit_algorithm *alg, int width, int height, oit_err
                         "0x%04x",
                         s->layers, width, height, (double)needed / MLAB_MEGABYTE, (unsigned)error);
     }
-    s->gpu.output.width = width;
-    s->gpu.output.height = height;
-    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
-    return OIT_OK;
+    status = oit_gpu_resize_end(&s->gpu, OIT_OK, width, height, err);
+    if (status != OIT_OK)
+        mlab_release_targets(s);
+    return status;
 }
 
 static oit_status mlab_render(oit_algorithm *alg, const oit_scene *scene,

@@ -63,27 +63,17 @@ static oit_status wboit_resize(oit_algorithm *alg, int width, int height, oit_er
     if (status != OIT_OK)
         return status;
 
-    oit_gl_memory *memory = &s->gpu.memory;
     s->accumulation = oit_gpu_target(&s->gpu, GL_RGBA32F, width, height);
     s->revealage = oit_gpu_target(&s->gpu, GL_R32F, width, height);
-    glGenFramebuffers(1, &s->accumulate_framebuffer);
-    glBindFramebuffer(GL_FRAMEBUFFER, s->accumulate_framebuffer);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->accumulation,
-                           0);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, s->revealage, 0);
-    static const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glDrawBuffers(2, buffers);
-    status = oit_gpu_check_framebuffer(&s->gpu, "accumulation", width, height, err);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (status == OIT_OK)
-        status = oit_gl_check("wboit: resize", err);
+    const GLuint accumulate[2] = {s->accumulation, s->revealage};
+    status = oit_gpu_framebuffer(&s->gpu, &s->accumulate_framebuffer, "accumulation", accumulate, 2, 0, width,
+                                 height, err);
+    status = oit_gpu_resize_end(&s->gpu, status, width, height, err);
     if (status != OIT_OK) {
         wboit_release_targets(s);
         s->gpu.output.width = s->gpu.output.height = 0;
-        return status;
     }
-    s->gpu.stats.memory_bytes = oit_gl_memory_total(memory);
-    return OIT_OK;
+    return status;
 }
 
 static oit_status wboit_render(oit_algorithm *alg, const oit_scene *scene,

@@ -195,34 +195,15 @@ oit_status closest_layers_resize(oit_algorithm *alg, int width, int height, oit_
                         name, (unsigned long long)slot_bytes, (unsigned)error);
     }
 
-    glGenFramebuffers(1, &s->tail_framebuffer);
-    glBindFramebuffer(GL_FRAMEBUFFER, s->tail_framebuffer);
-    GLenum draw_buffers[CLOSEST_LAYERS_MAX_TAIL_TARGETS];
-    for (int t = 0; t < s->tail->target_count; ++t) {
+    for (int t = 0; t < s->tail->target_count; ++t)
         s->tail_textures[t] = oit_gl_memory_texture_2d(&s->gpu.memory, OIT_GL_MEMORY_PIXELS,
                                                        s->tail->targets[t].format, width, height);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)t, GL_TEXTURE_2D,
-                               s->tail_textures[t], 0);
-        draw_buffers[t] = GL_COLOR_ATTACHMENT0 + (GLenum)t;
-    }
-    glDrawBuffers(s->tail->target_count, draw_buffers);
-    char what[64];
-    snprintf(what, sizeof what, "%s: the tail framebuffer", name);
-    status = oit_gl_check_framebuffer(what, width, height, &s->gpu.memory, err);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (status == OIT_OK) {
-        char where[64];
-        snprintf(where, sizeof where, "%s: resize", name);
-        status = oit_gl_check(where, err);
-    }
-    if (status != OIT_OK) {
+    status = oit_gpu_framebuffer(&s->gpu, &s->tail_framebuffer, "tail", s->tail_textures, s->tail->target_count, 0,
+                                 width, height, err);
+    status = oit_gpu_resize_end(&s->gpu, status, width, height, err);
+    if (status != OIT_OK)
         closest_release_targets(s);
-        return status;
-    }
-    s->gpu.output.width = width;
-    s->gpu.output.height = height;
-    s->gpu.stats.memory_bytes = oit_gl_memory_total(&s->gpu.memory);
-    return OIT_OK;
+    return status;
 }
 
 /* ------------------------------------------------------------ render */

@@ -151,7 +151,7 @@ oit_status oit_gl_output_resize(oit_gl_output *output, int width, int height, oi
 /* glCheckFramebufferStatus of the bound GL_FRAMEBUFFER; when incomplete,
  * OIT_E_RUNTIME naming WHAT, the status, the image size and what the
  * algorithm's textures and buffers (memory, may be NULL) needed in all: e.g.
- * "blend: the RGBA32F target is incomplete (GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT,
+ * "blend: the accumulation framebuffer is incomplete (GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT,
  * 0x8cd6): the driver could not allocate its textures at 16384x16384, the
  * frame's textures and buffers needing 5.00 GiB in all". */
 oit_status oit_gl_check_framebuffer(const char *what, int width, int height, const oit_gl_memory *memory,

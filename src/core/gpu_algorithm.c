@@ -183,6 +183,42 @@ oit_status oit_gpu_check_framebuffer(const oit_gpu_algorithm *gpu, const char *w
     return oit_gl_check_framebuffer(name, width, height, &gpu->memory, err);
 }
 
+oit_status oit_gpu_framebuffer(const oit_gpu_algorithm *gpu, GLuint *framebuffer, const char *what,
+                               const GLuint *colour, int colour_count, GLuint depth, int width, int height,
+                               oit_error *err)
+{
+    GLenum draw[4];
+    if (colour_count < 0 || colour_count > 4)
+        return oit_fail(err, OIT_E_RUNTIME, "%s: the %s framebuffer has %d colour targets (at most 4)", gpu->name,
+                        what, colour_count);
+    if (!*framebuffer)
+        glGenFramebuffers(1, framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, *framebuffer);
+    for (int i = 0; i < colour_count; ++i) {
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, colour[i], 0);
+        draw[i] = colour[i] ? GL_COLOR_ATTACHMENT0 + (GLenum)i : GL_NONE;
+    }
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth, 0);
+    glDrawBuffers(colour_count, draw);
+    return oit_gpu_check_framebuffer(gpu, what, width, height, err);
+}
+
+oit_status oit_gpu_resize_end(oit_gpu_algorithm *gpu, oit_status status, int width, int height, oit_error *err)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (status == OIT_OK) {
+        char where[64];
+        snprintf(where, sizeof where, "%s: resize", gpu->name);
+        status = oit_gl_check(where, err);
+    }
+    if (status != OIT_OK)
+        return status;
+    gpu->output.width = width;
+    gpu->output.height = height;
+    gpu->stats.memory_bytes = oit_gl_memory_total(&gpu->memory);
+    return OIT_OK;
+}
+
 oit_status oit_gpu_read_largest(oit_gpu_algorithm *gpu, GLuint framebuffer, float *largest, oit_error *err)
 {
     oit_timer_stage_begin(&gpu->timer, "distance_max_read");

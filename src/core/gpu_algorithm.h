@@ -82,6 +82,18 @@ GLuint oit_gpu_target(oit_gpu_algorithm *gpu, GLenum internal_format, int width,
  * framebuffer is incomplete (...)" naming its size and the memory held. */
 oit_status oit_gpu_check_framebuffer(const oit_gpu_algorithm *gpu, const char *what, int width, int height,
                                      oit_error *err);
+/* A framebuffer drawing to colour[i] at GL_COLOR_ATTACHMENTi (GL_NONE where
+ * colour[i] is 0) and depth-testing against `depth` (none if 0): created
+ * into *framebuffer unless it holds one already (then re-attached), left
+ * bound, and checked as oit_gpu_check_framebuffer(WHAT). At most 4 colours. */
+oit_status oit_gpu_framebuffer(const oit_gpu_algorithm *gpu, GLuint *framebuffer, const char *what,
+                               const GLuint *colour, int colour_count, GLuint depth, int width, int height,
+                               oit_error *err);
+/* The end of every resize: no framebuffer bound, GL errors checked ("NAME:
+ * resize"), and when all went well the output's size and the memory figure
+ * recorded. Returns the resize's status; the caller releases its targets if
+ * it is not OIT_OK. */
+oit_status oit_gpu_resize_end(oit_gpu_algorithm *gpu, oit_status status, int width, int height, oit_error *err);
 /* The largest value of the R32F target of `framebuffer` (the frame's largest
  * distance, for the automatic focus region), read back as the stage
  * "distance_max_read"; 1 where every value is 0. */
