@@ -1071,7 +1071,8 @@ void PartsPanel::select_part(int index)
     if (!model_->filter_shows_part(index))
         filter_->clear();
     const QModelIndex row = proxy_->mapFromSource(model_->part_index(index));
-    // its assemblies open, top first (a collapsed ancestor hides the row, even from scrollTo on a hidden view)
+    // its assemblies open, top first (QTreeView::scrollTo opens them too, but not while the view is
+    // in the middle of a drag or an edit)
     std::vector<QModelIndex> ancestors;
     for (QModelIndex parent = row.parent(); parent.isValid(); parent = parent.parent())
         ancestors.push_back(parent);
