@@ -1,7 +1,8 @@
 /* local_options.c: the flags of the local opacity modulations every algorithm
  * supports (docs/modulation.md): --component-alpha, --hide, --focus-point,
- * --focus-plane, --focus-box, --contrast. Component names are kept as given
- * and resolved against the model once it is loaded. */
+ * --focus-plane, --focus-box, --contrast. Component names, indices and
+ * assembly paths are kept as given and resolved against the model once it is
+ * loaded (oit_model_match_parts). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,7 +17,7 @@
 #define NAMES_LISTED 6
 
 typedef struct component_setting {
-    char *name; /* as given: a component name or an index */
+    char *name; /* as given: a component name, an index or an assembly path */
     float alpha;
     const char *flag; /* for messages */
 } component_setting;
@@ -157,7 +158,8 @@ int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oi
         const char *equals = strrchr(value, '=');
         float alpha;
         if (!equals || equals == value)
-            BAD("--component-alpha must be NAME=A (a component name or index, A in [0, 1]), got '%s'",
+            BAD("--component-alpha must be NAME=A (a component name, index or assembly path, A in [0, 1]), "
+                "got '%s'",
                 value);
         if (!parse_number(equals + 1, 0.0, 1.0, &alpha))
             BAD("--component-alpha %s: the opacity must be a number in [0, 1], got '%s'", value,
@@ -166,7 +168,7 @@ int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oi
     }
     if (strcmp(flag, "--hide") == 0) {
         if (value[0] == '\0')
-            BAD("--hide needs a component name or index");
+            BAD("--hide needs a component name, index or assembly path");
         return add_setting(value, strlen(value), 0.0f, flag, err, status);
     }
     if (strcmp(flag, "--focus-point") == 0) {
@@ -203,23 +205,6 @@ int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oi
 #undef BAD
 }
 
-/* The component a setting names: an exact name first, then an index. */
-static bool find_component(const oit_model *model, const char *name, uint32_t *out)
-{
-    for (uint32_t c = 0; c < model->component_count; ++c)
-        if (strcmp(model->components[c].name, name) == 0) {
-            *out = c;
-            return true;
-        }
-    char *end = NULL;
-    unsigned long index = strtoul(name, &end, 10);
-    if (name[0] >= '0' && name[0] <= '9' && *end == '\0' && index < model->component_count) {
-        *out = (uint32_t)index;
-        return true;
-    }
-    return false;
-}
-
 oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modulation *local,
                                          oit_error *err)
 {
@@ -244,10 +229,15 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
                         model->component_count);
     for (uint32_t c = 0; c < model->component_count; ++c)
         alpha[c] = 1.0f;
+    bool *selected = malloc(model->component_count * sizeof *selected);
+    if (!selected) {
+        free(alpha);
+        return oit_fail(err, OIT_E_RUNTIME, "out of memory for %u component opacities",
+                        model->component_count);
+    }
     for (size_t s = 0; s < options.count; ++s) {
         const component_setting *setting = &options.settings[s];
-        uint32_t c;
-        if (!find_component(model, setting->name, &c)) {
+        if (oit_model_match_parts(model, setting->name, selected) == 0) {
             char known[OIT_ERROR_MESSAGE_SIZE / 2] = "";
             size_t used = 0;
             for (uint32_t k = 0; k < model->component_count && k < NAMES_LISTED &&
@@ -255,15 +245,30 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
                  ++k)
                 used += (size_t)snprintf(known + used, sizeof known - used, "%s'%s'", k ? ", " : "",
                                          model->components[k].name);
+            /* a model with a tree: one part's path shows what a path looks like */
+            char example[OIT_ERROR_MESSAGE_SIZE / 4] = "";
+            for (uint32_t k = 0; model->component_node && k < model->component_count; ++k)
+                if (model->component_node[k] != OIT_NO_NODE) {
+                    char path[OIT_ERROR_MESSAGE_SIZE / 4 - 32];
+                    if (oit_model_component_path(model, k, path, sizeof path) < (int)sizeof path)
+                        snprintf(example, sizeof example, " or an assembly path such as '%s'", path);
+                    break;
+                }
+            free(selected);
             free(alpha);
             return oit_fail(err, OIT_E_INPUT,
-                            "%s: no component '%s' (the model has %u: %s%s; or give an index 0..%u)",
+                            "%s: no component '%s' (the model has %u: %s%s; or give an index 0..%u%s)",
                             setting->flag, setting->name, model->component_count, known,
                             model->component_count > NAMES_LISTED ? ", ..." : "",
-                            model->component_count - 1);
+                            model->component_count - 1, example);
         }
-        alpha[c] = setting->alpha; /* later flags win; any part of the model (no GPU limit) */
+        /* later flags win; a subassembly sets every part under it; any part
+         * of the model (no GPU limit) */
+        for (uint32_t c = 0; c < model->component_count; ++c)
+            if (selected[c])
+                alpha[c] = setting->alpha;
     }
+    free(selected);
     options.resolved_alpha = alpha;
     local->component_alpha = alpha;
     local->component_count = model->component_count;
@@ -274,7 +279,9 @@ void oit_cli_print_local_help(FILE *out)
 {
     fputs("Local modulation (every algorithm and the reference; docs/modulation.md):\n"
           "  --component-alpha NAME=A  opacity of one part, A in [0, 1], times its material's;\n"
-          "                         NAME is a component name (oit info) or index; repeatable\n"
+          "                         NAME is a component name (oit info), index or assembly\n"
+          "                         path (a/b/c; a subassembly's sets every part under it);\n"
+          "                         repeatable, later ones win\n"
           "  --hide NAME            the part's fragments are never stored (= NAME=0); repeatable\n"
           "  --focus-point X,Y,Z    alpha *= saturate(|p - f| / R): transparent at the point\n"
           "  --focus-plane A,B,C,D  alpha *= saturate(dist(p, plane Ax+By+Cz+D=0) / R)\n"

@@ -164,6 +164,13 @@ void oit_model_free(oit_model *model);
  * ("gearbox/input_shaft/bearing_1"); its name alone when it has no node.
  * Returns the path's length (snprintf's rule: >= size means cut short). */
 int oit_model_component_path(const oit_model *model, uint32_t component, char *out, size_t size);
+/* The parts a name or path names (--hide, --component-alpha, the workbench's
+ * filter): selected[c] (one per component) is set for each and cleared for
+ * the others; returns how many. In this order: a component's exact name; else
+ * an index ("3"); else an assembly path as oit_model_component_path writes
+ * it: a node's path selects every part under it (a subassembly), a part's
+ * path that part. 0: none. */
+uint32_t oit_model_match_parts(const oit_model *model, const char *name_or_path, bool *selected);
 
 /* Import in a contained child process (model_contained.c): the program runs
  * itself (/proc/self/exe) with OIT_IMPORT_WORKER_FLAG as an import worker

@@ -1,6 +1,7 @@
 /* model_assimp.c: every format but OBJ read through Assimp: the scene's node
  * tree walked iteratively, each mesh a node instances one component, node
- * transforms applied, materials' colour and opacity; Assimp's log gathered as
+ * transforms applied, materials' colour and opacity, the named nodes kept as
+ * the model's assembly tree; Assimp's log gathered as
  * warnings, and the files a model refers to read through a file system of
  * our own, so that a failing one is named. The model it makes is finished by
  * model_import.c. The only file of the core that includes Assimp's importer. */
@@ -62,6 +63,15 @@ typedef struct load_state {
     uint32_t *vertex_owner; /* per vertex: the component that filled it */
     float *texture_coordinates; /* per vertex: the first UV(W) channel, or 0 */
     name_set *names;
+    /* Per node visited (depth first, parents first): its parent's visit, the
+     * components it holds and those in its subtree (pass 1); the assembly
+     * node its contents hang under (pass 2). */
+    size_t visit_count, visit_capacity;
+    uint32_t *visit_parent, *visit_own, *visit_anchor;
+    uint64_t *visit_subtree;
+    uint32_t *node_depth; /* per assembly node, 1 at the top */
+    bool root_may_be_node; /* glTF: the root can be the file's own node */
+    bool visit_out_of_memory;
     bool bad_index; /* first face index outside its mesh, for the message */
     uint32_t bad_mesh_face, bad_mesh_index;
     char bad_mesh_name[OIT_NAME_SIZE];
@@ -123,15 +133,18 @@ static void normal_matrix(const struct aiMatrix4x4 *m, double n[9], double *dete
 typedef struct node_entry {
     const struct aiNode *node;
     struct aiMatrix4x4 global;
+    uint32_t visit, parent_visit; /* the order of the visits (UINT32_MAX: the root's parent) */
 } node_entry;
 
 typedef struct node_walk {
     node_entry *entries;
     size_t count, capacity;
+    uint32_t visits;
     bool out_of_memory;
 } node_walk;
 
-static void walk_push(node_walk *walk, const struct aiNode *node, const struct aiMatrix4x4 *global)
+static void walk_push(node_walk *walk, const struct aiNode *node, const struct aiMatrix4x4 *global,
+                      uint32_t parent_visit)
 {
     if (!node || walk->out_of_memory)
         return;
@@ -147,6 +160,7 @@ static void walk_push(node_walk *walk, const struct aiNode *node, const struct a
     }
     walk->entries[walk->count].node = node;
     walk->entries[walk->count].global = *global;
+    walk->entries[walk->count].parent_visit = parent_visit;
     ++walk->count;
 }
 
@@ -154,24 +168,43 @@ static void walk_push(node_walk *walk, const struct aiNode *node, const struct a
  * when the walk is over (or out of memory: walk->out_of_memory). */
 static bool walk_next(node_walk *walk, node_entry *out)
 {
+    if (walk->visits == UINT32_MAX)
+        walk->out_of_memory = true; /* no scene holds 2^32 nodes */
     if (walk->count == 0 || walk->out_of_memory)
         return false;
     *out = walk->entries[--walk->count];
+    out->visit = walk->visits++;
     for (unsigned i = out->node->mNumChildren; i-- > 0;) {
         const struct aiNode *child = out->node->mChildren[i];
         if (!child)
             continue;
         struct aiMatrix4x4 global;
         multiply(&out->global, &child->mTransformation, &global);
-        walk_push(walk, child, &global);
+        walk_push(walk, child, &global, out->visit);
     }
     return true;
 }
 
 /* Pass 1: count what one node instantiates (a mesh used by two nodes
- * becomes two components). */
-static void count_node(load_state *st, const struct aiNode *node)
+ * becomes two components), and remember the visit for the tree. */
+static void count_node(load_state *st, const node_entry *entry)
 {
+    const struct aiNode *node = entry->node;
+    if (st->visit_count == st->visit_capacity) {
+        size_t capacity = st->visit_capacity ? st->visit_capacity * 2 : 64;
+        uint32_t *parent = realloc(st->visit_parent, capacity * sizeof *parent);
+        if (parent)
+            st->visit_parent = parent;
+        uint32_t *own = realloc(st->visit_own, capacity * sizeof *own);
+        if (own)
+            st->visit_own = own;
+        if (!parent || !own) {
+            st->visit_out_of_memory = true;
+            return;
+        }
+        st->visit_capacity = capacity;
+    }
+    const uint64_t components_before = st->component_count;
     for (unsigned i = 0; i < node->mNumMeshes; ++i) {
         unsigned m = node->mMeshes[i];
         if (m >= st->scene->mNumMeshes)
@@ -189,6 +222,9 @@ static void count_node(load_state *st, const struct aiNode *node)
         st->component_count += 1;
         st->any_normals |= mesh->mNormals != NULL;
     }
+    st->visit_parent[st->visit_count] = entry->parent_visit;
+    st->visit_own[st->visit_count] = (uint32_t)(st->component_count - components_before);
+    ++st->visit_count;
 }
 
 static void material_properties(const struct aiScene *scene, unsigned index, oit_component *comp)
@@ -229,11 +265,228 @@ static void material_properties(const struct aiScene *scene, unsigned index, oit
     oit_clamp_material(comp);
 }
 
-/* Pass 2: copy one node's vertices (transformed to model space), triangles,
- * components. */
-static void fill_node(load_state *st, const struct aiNode *node, const struct aiMatrix4x4 *node_global)
+/* ---------------------------------------------------------- the assembly tree */
+
+/* The assembly tree (oit_model.nodes; docs/cli.md, "Assemblies") is Assimp's
+ * node hierarchy with only the nodes someone looking for a part needs:
+ * - a node is kept when it has a name of the file's own and a part in it or
+ *   below it. Nodes without a name and the ones Assimp invents (glTF's
+ *   "nodes[3]", FBX's pivot helpers "..._$AssimpFbx$_...", roots like
+ *   "<3DSRoot>", "$dummy_root", FBX's "RootNode", glTF's "ROOT") hand their
+ *   contents to their parent;
+ * - the root is kept only when it is the file's own and holds no mesh itself
+ *   (a glTF scene of one node "gearbox"); STL, PLY and OFF put their meshes
+ *   in the root and so keep no tree (component_node NULL);
+ * - a node holding one part and nothing below it, the part named after it,
+ *   is that part (gearbox/bolt_1, not gearbox/bolt_1/bolt_1); a part named
+ *   otherwise (a mesh name) stays under its node (gearbox/shaft/Cylinder.001);
+ * - at most ASSIMP_TREE_DEPTH levels: the parts of deeper nodes hang under the
+ *   deepest kept one (a hostile file nests nodes 100,000 deep).
+ * Components keep the names and the order they have without a tree; a node
+ * whose name a sibling (node or part) has already gets "#2", "#3"... */
+#define ASSIMP_TREE_DEPTH 32
+
+static bool invented_node_name(const struct aiNode *node, bool root)
 {
-    struct aiMatrix4x4 global = *node_global;
+    const char *name = node->mName.data;
+    const char *end = memchr(name, '\0', sizeof node->mName.data);
+    if (!end || end == name)
+        return true;
+    size_t length = (size_t)(end - name);
+    if (strncmp(name, "nodes[", 6) == 0 || strstr(name, "$AssimpFbx$") || name[0] == '$' ||
+        (name[0] == '<' && name[length - 1] == '>'))
+        return true;
+    return root && (strcmp(name, "RootNode") == 0 || strcmp(name, "ROOT") == 0);
+}
+
+/* A node's name as a part's is made (control characters replaced, cut to fit). */
+static void copy_node_name(char *out, const char *in)
+{
+    size_t i = 0;
+    for (; in[i] && i + 1 < OIT_NAME_SIZE; ++i)
+        out[i] = (unsigned char)in[i] < 0x20 ? '_' : in[i];
+    out[i] = '\0';
+}
+
+/* The part took the node's name, maybe with a "#N" of the unique-name rule
+ * (which cuts a long name short to fit). */
+static bool named_after(const char *part, const char *node)
+{
+    if (strcmp(part, node) == 0)
+        return true;
+    const char *hash = strrchr(part, '#');
+    if (!hash || hash == part || !hash[1] || strspn(hash + 1, "0123456789") != strlen(hash + 1))
+        return false;
+    size_t base = (size_t)(hash - part);
+    return strncmp(part, node, base) == 0 && (node[base] == '\0' || strlen(part) == OIT_NAME_SIZE - 1);
+}
+
+/* Pass 2, after a node's components are made: is it a node of the tree? */
+static void place_node(load_state *st, const node_entry *entry, uint32_t first_component)
+{
+    oit_model *model = st->model;
+    const uint32_t v = entry->visit;
+    const bool root = entry->parent_visit == UINT32_MAX;
+    uint32_t parent = OIT_NO_NODE;
+    if (!root && entry->parent_visit < st->visit_count)
+        parent = st->visit_anchor[entry->parent_visit];
+    for (uint32_t c = first_component; c < model->component_count; ++c)
+        model->component_node[c] = parent;
+    if (v >= st->visit_count)
+        return; /* (the walks visit the same nodes) */
+    st->visit_anchor[v] = parent;
+    if (st->visit_subtree[v] == 0 || invented_node_name(entry->node, root) ||
+        (root && (!st->root_may_be_node || st->visit_own[v] > 0)))
+        return;
+    if (parent != OIT_NO_NODE && st->node_depth[parent] >= ASSIMP_TREE_DEPTH)
+        return;
+    char name[OIT_NAME_SIZE];
+    copy_node_name(name, entry->node->mName.data);
+    if (st->visit_own[v] == 1 && st->visit_subtree[v] == 1 && first_component < model->component_count &&
+        named_after(model->components[first_component].name, name))
+        return;
+    const uint32_t n = model->node_count++;
+    memcpy(model->nodes[n].name, name, sizeof name);
+    model->nodes[n].parent = parent;
+    st->node_depth[n] = parent == OIT_NO_NODE ? 1 : st->node_depth[parent] + 1;
+    st->visit_anchor[v] = n;
+    for (uint32_t c = first_component; c < model->component_count; ++c)
+        model->component_node[c] = n;
+}
+
+/* Names unique among siblings: a hash set over (parent, name) of the parts
+ * (unique already: their names are unique in the model) and the nodes, in
+ * order. Entry i < component_count is a part, the others nodes. Like
+ * name_set, each entry remembers the next "#N" to try. */
+typedef struct sibling_names {
+    const oit_model *model;
+    uint32_t *slots; /* entry + 1; 0 = empty */
+    uint32_t *next_suffix;
+    uint64_t mask;
+} sibling_names;
+
+static void sibling_key(const sibling_names *set, uint32_t entry, uint32_t *parent, const char **name)
+{
+    const oit_model *m = set->model;
+    if (entry < m->component_count) {
+        *parent = m->component_node[entry];
+        *name = m->components[entry].name;
+    } else {
+        *parent = m->nodes[entry - m->component_count].parent;
+        *name = m->nodes[entry - m->component_count].name;
+    }
+}
+
+static uint64_t sibling_slot(const sibling_names *set, uint32_t parent, const char *name)
+{
+    uint64_t h = 0xcbf29ce484222325ull; /* FNV-1a over the parent, then the name */
+    for (int k = 0; k < 4; ++k) {
+        h ^= (parent >> (8 * k)) & 0xffu;
+        h *= 0x100000001b3ull;
+    }
+    for (const char *c = name; *c; ++c) {
+        h ^= (unsigned char)*c;
+        h *= 0x100000001b3ull;
+    }
+    for (uint64_t slot = h & set->mask;; slot = (slot + 1) & set->mask) {
+        if (!set->slots[slot])
+            return slot;
+        uint32_t other_parent;
+        const char *other_name;
+        sibling_key(set, set->slots[slot] - 1, &other_parent, &other_name);
+        if (other_parent == parent && strcmp(other_name, name) == 0)
+            return slot;
+    }
+}
+
+static bool unique_sibling_names(oit_model *model)
+{
+    const uint64_t entries = (uint64_t)model->component_count + model->node_count;
+    uint64_t capacity = 16;
+    while (capacity < entries * 2)
+        capacity *= 2;
+    sibling_names set = {.model = model, .mask = capacity - 1};
+    set.slots = oit_model_calloc_array(capacity, sizeof *set.slots);
+    set.next_suffix = oit_model_alloc_array(entries, sizeof *set.next_suffix);
+    bool ok = set.slots && set.next_suffix;
+    for (uint64_t e = 0; ok && e < entries; ++e) {
+        uint32_t parent;
+        const char *name;
+        sibling_key(&set, (uint32_t)e, &parent, &name);
+        set.next_suffix[e] = 2;
+        uint64_t slot = sibling_slot(&set, parent, name);
+        if (set.slots[slot] && e >= model->component_count) {
+            char *out = model->nodes[e - model->component_count].name;
+            char base[OIT_NAME_SIZE];
+            memcpy(base, out, sizeof base);
+            const uint32_t owner = set.slots[slot] - 1;
+            for (uint32_t suffix = set.next_suffix[owner];; ++suffix) {
+                char tail[16];
+                int tail_length = snprintf(tail, sizeof tail, "#%u", suffix);
+                size_t keep = strlen(base);
+                if (keep + (size_t)tail_length >= OIT_NAME_SIZE)
+                    keep = OIT_NAME_SIZE - 1 - (size_t)tail_length;
+                memcpy(out, base, keep);
+                memcpy(out + keep, tail, (size_t)tail_length + 1);
+                slot = sibling_slot(&set, parent, out);
+                if (!set.slots[slot]) {
+                    set.next_suffix[owner] = suffix + 1;
+                    break;
+                }
+            }
+        }
+        set.slots[slot] = (uint32_t)e + 1; /* (two parts with one name: cannot be, they are unique) */
+    }
+    free(set.slots);
+    free(set.next_suffix);
+    return ok;
+}
+
+/* After pass 1: each visit's subtree count, and room for the tree. */
+static bool prepare_tree(load_state *st)
+{
+    oit_model *model = st->model;
+    st->visit_subtree = oit_model_alloc_array(st->visit_count, sizeof *st->visit_subtree);
+    st->visit_anchor = oit_model_alloc_array(st->visit_count, sizeof *st->visit_anchor);
+    if (!st->visit_subtree || !st->visit_anchor)
+        return false;
+    for (size_t v = 0; v < st->visit_count; ++v)
+        st->visit_subtree[v] = st->visit_own[v];
+    uint64_t candidates = 0;
+    for (size_t v = st->visit_count; v-- > 0;) {
+        if (v > 0 && st->visit_parent[v] < v)
+            st->visit_subtree[st->visit_parent[v]] += st->visit_subtree[v];
+        candidates += st->visit_subtree[v] > 0;
+    }
+    model->nodes = oit_model_calloc_array(candidates, sizeof *model->nodes);
+    st->node_depth = oit_model_alloc_array(candidates, sizeof *st->node_depth);
+    model->component_node = oit_model_alloc_array(st->component_count, sizeof *model->component_node);
+    return model->nodes && st->node_depth && model->component_node;
+}
+
+/* After pass 2: no tree when no node was kept; names unique among siblings. */
+static bool finish_tree(oit_model *model)
+{
+    if (model->node_count == 0) {
+        free(model->nodes);
+        free(model->component_node);
+        model->nodes = NULL;
+        model->component_node = NULL;
+        return true;
+    }
+    oit_model_node *fitted = realloc(model->nodes, (size_t)model->node_count * sizeof *fitted);
+    if (fitted)
+        model->nodes = fitted;
+    return unique_sibling_names(model);
+}
+
+/* Pass 2: copy one node's vertices (transformed to model space), triangles,
+ * components; then place it in the assembly tree. */
+static void fill_node(load_state *st, const node_entry *entry)
+{
+    const struct aiNode *node = entry->node;
+    struct aiMatrix4x4 global = entry->global;
+    const uint32_t first_component = st->model->component_count;
     double nm[9], determinant;
     normal_matrix(&global, nm, &determinant);
     oit_model *model = st->model;
@@ -299,28 +552,22 @@ static void fill_node(load_state *st, const struct aiNode *node, const struct ai
             uv[2] = in ? (float)in->z : 0.0f;
         }
     }
+    place_node(st, entry, first_component);
 }
 
 /* Runs visit on every node of the scene, depth first; false when out of memory. */
-static bool walk_scene(load_state *st, void (*visit)(load_state *, const struct aiNode *,
-                                                     const struct aiMatrix4x4 *))
+static bool walk_scene(load_state *st, void (*visit)(load_state *, const node_entry *))
 {
     /* The root node's transform is applied too: importers put axis
      * conversions (e.g. Z-up to Y-up) there. */
     node_walk walk = {0};
-    walk_push(&walk, st->scene->mRootNode, &st->scene->mRootNode->mTransformation);
+    walk_push(&walk, st->scene->mRootNode, &st->scene->mRootNode->mTransformation, UINT32_MAX);
     node_entry entry;
     while (walk_next(&walk, &entry))
-        visit(st, entry.node, &entry.global);
-    bool ok = !walk.out_of_memory;
+        visit(st, &entry);
+    bool ok = !walk.out_of_memory && !st->visit_out_of_memory;
     free(walk.entries);
     return ok;
-}
-
-static void count_visit(load_state *st, const struct aiNode *node, const struct aiMatrix4x4 *global)
-{
-    (void)global;
-    count_node(st, node);
 }
 
 /* ------------------------------------------------- files the model refers to */
@@ -505,7 +752,10 @@ oit_status oit_model_read_assimp(const char *path, const char *name, long long f
     }
 
     oit_status status = OIT_OK;
-    load_state st = {.scene = scene, .model = out};
+    const char *extension = strrchr(name, '.');
+    load_state st = {.scene = scene, .model = out,
+                     .root_may_be_node = extension && (strcasecmp(extension, ".gltf") == 0 ||
+                                                       strcasecmp(extension, ".glb") == 0)};
     name_set names = {0};
     st.names = &names;
     st.mesh_uses = oit_model_calloc_array(scene->mNumMeshes, sizeof *st.mesh_uses);
@@ -513,7 +763,7 @@ oit_status oit_model_read_assimp(const char *path, const char *name, long long f
         status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
         goto done;
     }
-    if (!walk_scene(&st, count_visit)) {
+    if (!walk_scene(&st, count_node)) {
         status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory walking the node tree", name);
         goto done;
     }
@@ -544,8 +794,14 @@ oit_status oit_model_read_assimp(const char *path, const char *name, long long f
                           (unsigned long long)st.vertex_count);
         goto done;
     }
+    if (!prepare_tree(&st)) {
+        status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory for the assembly tree", name);
+        goto done;
+    }
     if (!walk_scene(&st, fill_node))
         status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory walking the node tree", name);
+    else if (!finish_tree(out))
+        status = oit_fail(err, OIT_E_RUNTIME, "%s: out of memory for the assembly tree", name);
     else if (st.bad_index)
         status = oit_fail(err, OIT_E_INPUT,
                           "%s: face %u of mesh '%s' refers to vertex %u, outside the mesh", name,
@@ -558,6 +814,11 @@ done:
     free(st.mesh_uses);
     free(st.vertex_owner);
     free(st.texture_coordinates);
+    free(st.visit_parent);
+    free(st.visit_own);
+    free(st.visit_subtree);
+    free(st.visit_anchor);
+    free(st.node_depth);
     oit_name_set_free(&names);
     *any_normals = st.any_normals;
     return status;

@@ -383,6 +383,71 @@ int oit_model_component_path(const oit_model *model, uint32_t component, char *o
     return length > INT_MAX ? INT_MAX : (int)length;
 }
 
+/* Does the query, from *at, begin with name followed by the query's end or a
+ * '/'? Then *at moves past the name (and the '/'); end: the query ends there. */
+static bool match_segment(const char *query, size_t length, size_t *at, const char *name, bool *end)
+{
+    size_t n = strlen(name);
+    if (length - *at < n || memcmp(query + *at, name, n) != 0)
+        return false;
+    *end = *at + n == length;
+    if (!*end && query[*at + n] != '/')
+        return false;
+    *at += n + 1;
+    return true;
+}
+
+uint32_t oit_model_match_parts(const oit_model *model, const char *name_or_path, bool *selected)
+{
+    if (!model || !selected)
+        return 0;
+    memset(selected, 0, (size_t)model->component_count * sizeof *selected);
+    if (!name_or_path || !name_or_path[0])
+        return 0;
+    uint32_t matched = 0;
+    for (uint32_t c = 0; c < model->component_count; ++c)
+        if (strcmp(model->components[c].name, name_or_path) == 0) {
+            selected[c] = true;
+            ++matched;
+        }
+    if (matched)
+        return matched;
+    char *end = NULL;
+    unsigned long index = strtoul(name_or_path, &end, 10);
+    if (name_or_path[0] >= '0' && name_or_path[0] <= '9' && *end == '\0' && index < model->component_count) {
+        selected[index] = true;
+        return 1;
+    }
+    if (!model->component_node)
+        return 0;
+    /* A path: the nodes from the top (as oit_model_component_path writes
+     * them) consume the query segment by segment; a node that ends it holds
+     * the part, or the part's own name does. */
+    const size_t length = strlen(name_or_path);
+    for (uint32_t c = 0; c < model->component_count; ++c) {
+        uint32_t chain[256];
+        uint32_t depth = 0;
+        uint32_t node = model->component_node[c];
+        while (node != OIT_NO_NODE && node < model->node_count && depth < sizeof chain / sizeof chain[0]) {
+            chain[depth++] = node;
+            node = model->nodes[node].parent;
+        }
+        if (depth == 0)
+            continue; /* at the top: its path is its name, which did not match */
+        size_t at = 0;
+        bool ended = false, follows = true;
+        for (uint32_t k = depth; k-- > 0 && follows && !ended;)
+            follows = match_segment(name_or_path, length, &at, model->nodes[chain[k]].name, &ended);
+        if (follows && !ended)
+            follows = match_segment(name_or_path, length, &at, model->components[c].name, &ended) && ended;
+        if (follows && ended) {
+            selected[c] = true;
+            ++matched;
+        }
+    }
+    return matched;
+}
+
 /* Indices within the vertices, finite coordinates. */
 static oit_status check_geometry(const oit_model *model, oit_error *err)
 {
