@@ -5,11 +5,18 @@
 // 10,000 leaves. Run under Xvfb by CTest (tests/app/parts_panel.cmake).
 // Timings are printed (qInfo), never asserted: the machine is shared.
 
+// Also a glTF written by tests/assembly_gltf.py and imported by Assimp: the
+// tree the import makes, shown row for row as oit_model_component_path says.
+
 // Mouse events go through the window like real input (as test_parts_panel.cpp).
 #define QTEST_QPA_MOUSE_HANDLING
 
 #include <QCheckBox>
 #include <QElapsedTimer>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QProcess>
+#include <QTemporaryDir>
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
@@ -438,6 +445,77 @@ private slots:
         QCOMPARE(frame.last().at(0).value<std::vector<int>>(), std::vector<int>{4});
         QTest::mouseClick(show_all, Qt::LeftButton);
         QCOMPARE(int(std::count(panel.visible().begin(), panel.visible().end(), char(1))), 7);
+    }
+
+    void generated_gltf_assembly()
+    {
+        // the file and, per part in order, its name and path (tests/assembly_gltf.py)
+        QTemporaryDir dir;
+        QVERIFY(dir.isValid());
+        const QString file = dir.filePath("gearbox.gltf");
+        QProcess python;
+        python.start("python3", {QStringLiteral(OIT_SOURCE_DIR "/tests/assembly_gltf.py"), file});
+        QVERIFY(python.waitForFinished(30000));
+        QCOMPARE(python.exitCode(), 0);
+        const QJsonArray expected = QJsonDocument::fromJson(python.readAllStandardOutput()).array();
+        QVERIFY(expected.size() >= 5);
+        Model model;
+        oit_error err{};
+        QVERIFY2(oit_model_load(file.toUtf8().constData(), &model.m, &err) == OIT_OK, err.message);
+        QCOMPARE(int(model.m.component_count), expected.size());
+        QVERIFY(model.m.node_count > 0);
+
+        PartsPanel panel;
+        show_panel(panel, model);
+        auto *tree = qobject_cast<QTreeView *>(panel.view());
+        tree->expandAll();
+        // every row: a part's path from its row's ancestors, each part once
+        QAbstractItemModel *rows = panel.view()->model();
+        QHash<QString, QString> shown_path; // part name -> path through the rows
+        std::vector<std::pair<QModelIndex, QString>> stack{{QModelIndex(), QString()}};
+        while (!stack.empty()) {
+            const auto [parent, prefix] = stack.back();
+            stack.pop_back();
+            for (int r = 0; r < rows->rowCount(parent); ++r) {
+                const QModelIndex row = rows->index(r, 0, parent);
+                const QString path = prefix + row.data().toString();
+                if (rows->flags(row) & Qt::ItemNeverHasChildren) {
+                    QVERIFY2(!shown_path.contains(row.data().toString()), qPrintable(path));
+                    shown_path.insert(row.data().toString(), path);
+                } else {
+                    stack.push_back({row, path + '/'});
+                }
+            }
+        }
+        QCOMPARE(shown_path.size(), expected.size());
+        for (int c = 0; c < expected.size(); ++c) {
+            const QString name = expected[c].toArray()[0].toString(), path = expected[c].toArray()[1].toString();
+            QCOMPARE(shown_path.value(name), path);
+            char core_path[1024];
+            oit_model_component_path(&model.m, uint32_t(c), core_path, sizeof core_path);
+            QCOMPARE(QString::fromUtf8(core_path), path);
+        }
+
+        // the deepest part revealed from a closed tree, as a pick does
+        tree->collapseAll();
+        const int last = expected.size() - 1;
+        panel.select_part(last);
+        QCOMPARE(panel.selected_parts(), std::vector<int>{last});
+        QVERIFY(on_screen(panel, tree->currentIndex()));
+        QCOMPARE(tree->currentIndex().siblingAtColumn(0).data().toString(), expected[last].toArray()[0].toString());
+
+        // output_shaft's slider reaches exactly the parts whose path is under it
+        const QModelIndex output = row_of(panel, {"gearbox", "output_shaft"});
+        QVERIFY(output.isValid());
+        QVERIFY(rows->setData(output.siblingAtColumn(PartsModel::OpacityColumn), 0.3, PartsModel::AlphaRole));
+        int under = 0;
+        for (int c = 0; c < expected.size(); ++c) {
+            const bool in = expected[c].toArray()[1].toString().startsWith("gearbox/output_shaft/");
+            QCOMPARE(panel.alpha()[size_t(c)], in ? 0.3f : 1.0f);
+            under += in;
+        }
+        QVERIFY(under >= 2);
+        panel.set_model(nullptr, {}, {});
     }
 
     void ten_thousand_leaves()
