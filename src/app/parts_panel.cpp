@@ -62,8 +62,6 @@ void PartsModel::set_model(const oit_model *model, const std::vector<float> &alp
     nodes_.clear();
     names_.clear();
     swatches_.clear();
-    filter_shown_.clear();
-    filtering_ = false;
     const size_t count = model && model->components ? model->component_count : 0;
     // a tree only when every part's node is known (component_node NULL: the file has none)
     const size_t node_count = count && model->nodes && model->component_node ? model->node_count : 0;
@@ -125,6 +123,7 @@ void PartsModel::set_model(const oit_model *model, const std::vector<float> &alp
         children_[next[group]++] = item;
     }
     take_values(alpha, visible);
+    set_filter(filter_text_); // the filter field keeps its text across models
     endResetModel();
 }
 
@@ -454,6 +453,7 @@ void PartsModel::emit_parts_changed(const std::vector<char> &dirty)
 
 void PartsModel::set_filter(const QString &text)
 {
+    filter_text_ = text;
     filtering_ = !text.isEmpty();
     if (!filtering_) {
         filter_shown_.clear();
@@ -1017,9 +1017,15 @@ void PartsPanel::set_model(const oit_model *model, const std::vector<float> &alp
     const bool tree = model_->node_count() > 0;
     view_->setRootIsDecorated(tree);
     view_->setItemsExpandable(tree);
+    // an assembly's percent can be a range ("20-100%")
+    view_->header()->resizeSection(PartsModel::PercentColumn,
+                                   view_->fontMetrics().horizontalAdvance(tree ? "100-100%" : "100%") + 16);
     if (tree) {
-        // the top assemblies open: their subassemblies in sight, the rest on demand
-        view_->expandToDepth(0);
+        // the top assemblies open: their subassemblies in sight, the rest on demand (a filter's matches: all)
+        if (filter_->text().isEmpty())
+            view_->expandToDepth(0);
+        else
+            view_->expandAll();
         note_->setText(QStringLiteral("%1 parts in %2 assemblies; checkbox: visible, slider: opacity "
                                       "(--component-alpha); an assembly's: every part under it.")
                            .arg(count)
@@ -1071,8 +1077,8 @@ void PartsPanel::select_part(int index)
     if (!model_->filter_shows_part(index))
         filter_->clear();
     const QModelIndex row = proxy_->mapFromSource(model_->part_index(index));
-    // its assemblies open, top first (QTreeView::scrollTo opens them too, but not while the view is
-    // in the middle of a drag or an edit)
+    // its assemblies open, top first (a new current row opens them too, through the view's
+    // autoScroll and QTreeView::scrollTo, but only while the view is not in a drag or an edit)
     std::vector<QModelIndex> ancestors;
     for (QModelIndex parent = row.parent(); parent.isValid(); parent = parent.parent())
         ancestors.push_back(parent);

@@ -141,6 +141,7 @@ private:
     std::vector<uint32_t> item_row_;    // per item: its row among its siblings
     std::vector<uint32_t> item_parent_; // per item: its node, OIT_NO_NODE at the top
     std::vector<char> filter_shown_;    // per item, while a filter is set
+    QString filter_text_;
     bool filtering_ = false;
     mutable QHash<QRgb, QIcon> swatches_; // by colour, made when first shown
     std::vector<float> alpha_;

@@ -395,6 +395,17 @@ private slots:
         panel.filter()->setText("shaft");
         QCOMPARE(child_names(panel, row_of(panel, {"gearbox"})), (QStringList{"input_shaft", "output_shaft"}));
         QCOMPARE(child_names(panel, row_of(panel, {"gearbox", "output_shaft"})), (QStringList{"bearings", "shaft"}));
+        // a new model (the same file loaded again) keeps the filter, opened
+        panel.set_model(&gearbox_.m, {}, {});
+        QCOMPARE(child_names(panel, row_of(panel, {"gearbox"})), (QStringList{"input_shaft", "output_shaft"}));
+        QVERIFY(on_screen(panel, row_of(panel, {"gearbox", "output_shaft", "shaft"})));
+        // an assembly's percent range is not cut short
+        QAbstractItemModel *rows = panel.view()->model();
+        QVERIFY(rows->setData(row_of(panel, {"gearbox", "input_shaft"}, PartsModel::OpacityColumn), 0.2,
+                              PartsModel::AlphaRole));
+        const QModelIndex range = row_of(panel, {"gearbox"}, PartsModel::PercentColumn);
+        QCOMPARE(range.data().toString(), QString("20-100%"));
+        QVERIFY(tree->fontMetrics().horizontalAdvance(range.data().toString()) < tree->visualRect(range).width());
         // nothing matches: nothing shown
         panel.filter()->setText("no such part");
         QCOMPARE(panel.shown_row_count(), 0);
