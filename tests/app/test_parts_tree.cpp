@@ -12,6 +12,7 @@
 #define QTEST_QPA_MOUSE_HANDLING
 
 #include <QCheckBox>
+#include <QDir>
 #include <QElapsedTimer>
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -68,6 +69,14 @@ std::vector<Part> gearbox_parts()
 }
 
 QString leaf_name(int i) { return QString::asprintf("part_%05d", i); }
+
+// Keep a screenshot in $OIT_TEST_WORK (when set) for a look by eye.
+void keep(QWidget &widget, const QString &name)
+{
+    const QString work = qEnvironmentVariable("OIT_TEST_WORK");
+    if (!work.isEmpty() && QDir().mkpath(work))
+        widget.grab().save(QDir(work).filePath(name));
+}
 
 } // namespace
 
@@ -315,6 +324,7 @@ private slots:
             QCOMPARE(int(panel.visible()[size_t(part)]), 1);
         QCOMPARE(changed.count(), before + 5);
 
+        keep(panel, "parts_tree_gearbox.png"); // output_shaft at 70%, gearbox mixed
         // an outside change (undo, preset) reaches the assemblies' rows
         std::vector<char> visible(7, 1);
         visible[4] = 0;
