@@ -421,8 +421,11 @@ void MainWindow::pick_at(const QPoint &pixel)
         return;
     }
     parts_panel_->select_part(hit.component);
+    // its path through the assembly tree (its name when the file has none): names repeat across assemblies
+    char path[1024];
+    oit_model_component_path(model_.get(), uint32_t(hit.component), path, sizeof path);
     status_label_->setText(QString("picked part %1 (%2), triangle %3")
-                               .arg(QString::fromUtf8(model_->components[hit.component].name))
+                               .arg(QString::fromUtf8(path))
                                .arg(hit.component)
                                .arg(hit.triangle));
 }

@@ -50,7 +50,7 @@ QString opacity_help()
 
 // ------------------------------------------------------------------ PartsModel
 
-PartsModel::PartsModel(QObject *parent) : QAbstractTableModel(parent) {}
+PartsModel::PartsModel(QObject *parent) : QAbstractItemModel(parent) {}
 
 int PartsModel::percent(float alpha) { return int(std::lround(double(clamp_alpha(alpha)) * 100.0)); }
 
@@ -59,16 +59,32 @@ void PartsModel::set_model(const oit_model *model, const std::vector<float> &alp
 {
     beginResetModel();
     parts_.clear();
+    nodes_.clear();
     names_.clear();
     swatches_.clear();
     const size_t count = model && model->components ? model->component_count : 0;
+    // a tree only when every part's node is known (component_node NULL: the file has none)
+    const size_t node_count = count && model->nodes && model->component_node ? model->node_count : 0;
     parts_.reserve(count);
+    nodes_.reserve(node_count);
     // the names' bytes in one block, a QString made when a row is shown or
     // filtered: at 100,000 parts one string each kept the GUI thread 3 times longer
     size_t bytes = 0;
     for (size_t i = 0; i < count; ++i)
         bytes += strnlen(model->components[i].name, sizeof model->components[i].name);
+    for (size_t n = 0; n < node_count; ++n)
+        bytes += strnlen(model->nodes[n].name, sizeof model->nodes[n].name);
     names_.reserve(int(bytes));
+    for (size_t n = 0; n < node_count; ++n) {
+        const oit_model_node &source = model->nodes[n];
+        Node node{};
+        node.name_offset = uint32_t(names_.size());
+        node.name_length = uint32_t(strnlen(source.name, sizeof source.name));
+        names_.append(source.name, int(node.name_length));
+        // oit_model_finish checked parents come first; a model that was not finished falls to the top
+        node.parent = source.parent < n ? source.parent : OIT_NO_NODE;
+        nodes_.push_back(node);
+    }
     for (size_t i = 0; i < count; ++i) {
         const oit_component &c = model->components[i];
         Part part;
@@ -80,7 +96,34 @@ void PartsModel::set_model(const oit_model *model, const std::vector<float> &alp
         part.triangle_count = c.triangle_count;
         parts_.push_back(part);
     }
+
+    // children per group (a counting sort: nodes first, then parts, each in index order)
+    const uint32_t items = item_count();
+    auto parent_group = [&](uint32_t item) -> uint32_t {
+        uint32_t parent = OIT_NO_NODE;
+        if (item < node_count)
+            parent = nodes_[item].parent;
+        else if (node_count)
+            parent = model->component_node[item - node_count];
+        return parent < node_count ? parent + 1 : 0;
+    };
+    group_first_.assign(node_count + 2, 0);
+    for (uint32_t item = 0; item < items; ++item)
+        ++group_first_[parent_group(item) + 1];
+    for (size_t g = 1; g < group_first_.size(); ++g)
+        group_first_[g] += group_first_[g - 1];
+    children_.resize(items);
+    item_row_.resize(items);
+    item_parent_.resize(items);
+    std::vector<uint32_t> next(group_first_.begin(), group_first_.end() - 1);
+    for (uint32_t item = 0; item < items; ++item) {
+        const uint32_t group = parent_group(item);
+        item_parent_[item] = group ? group - 1 : OIT_NO_NODE;
+        item_row_[item] = next[group] - group_first_[group];
+        children_[next[group]++] = item;
+    }
     take_values(alpha, visible);
+    set_filter(filter_text_); // the filter field keeps its text across models
     endResetModel();
 }
 
@@ -96,7 +139,175 @@ void PartsModel::take_values(const std::vector<float> &alpha, const std::vector<
         alpha_.assign(count, 1.0f);
         visible_.assign(count, 1);
     }
+    update_nodes();
 }
+
+void PartsModel::update_nodes()
+{
+    if (nodes_.empty())
+        return;
+    for (Node &node : nodes_) {
+        node.part_count = node.visible_count = 0;
+        node.alpha_min = 1.0f;
+        node.alpha_max = 0.0f;
+        node.alpha_sum = 0.0;
+    }
+    const uint32_t node_count = uint32_t(nodes_.size());
+    for (size_t part = 0; part < parts_.size(); ++part) {
+        const int node = part_node(int(part));
+        if (node < 0)
+            continue;
+        Node &n = nodes_[size_t(node)];
+        ++n.part_count;
+        n.visible_count += visible_[part] ? 1 : 0;
+        n.alpha_min = std::min(n.alpha_min, alpha_[part]);
+        n.alpha_max = std::max(n.alpha_max, alpha_[part]);
+        n.alpha_sum += double(alpha_[part]);
+    }
+    // children before parents: backwards, since parents come first
+    for (uint32_t node = node_count; node-- > 0;) {
+        const Node &n = nodes_[node];
+        if (n.parent == OIT_NO_NODE || n.part_count == 0)
+            continue;
+        Node &p = nodes_[n.parent];
+        p.part_count += n.part_count;
+        p.visible_count += n.visible_count;
+        p.alpha_min = std::min(p.alpha_min, n.alpha_min);
+        p.alpha_max = std::max(p.alpha_max, n.alpha_max);
+        p.alpha_sum += n.alpha_sum;
+    }
+    for (Node &node : nodes_)
+        if (node.part_count == 0) // nothing under it: shown as visible at full opacity
+            node.alpha_min = node.alpha_max = 1.0f;
+}
+
+int PartsModel::part_node(int part) const
+{
+    if (part < 0 || part >= part_count())
+        return -1;
+    const uint32_t parent = item_parent_[nodes_.size() + size_t(part)];
+    return parent == OIT_NO_NODE ? -1 : int(parent);
+}
+
+int PartsModel::node_parent(int node) const
+{
+    if (node < 0 || node >= node_count() || nodes_[size_t(node)].parent == OIT_NO_NODE)
+        return -1;
+    return int(nodes_[size_t(node)].parent);
+}
+
+void PartsModel::parts_under(int node, std::vector<int> &out) const
+{
+    if (node < 0 || node >= node_count())
+        return;
+    // depth first through the children arrays, without recursion (trees can be deep)
+    std::vector<uint32_t> stack{uint32_t(node)};
+    const uint32_t node_count = uint32_t(nodes_.size());
+    while (!stack.empty()) {
+        const uint32_t group = stack.back() + 1;
+        stack.pop_back();
+        // its child nodes come first: push them in reverse, take its parts now
+        const uint32_t first = group_first_[group], end = group_first_[group + 1];
+        uint32_t k = first;
+        while (k < end && children_[k] < node_count)
+            ++k;
+        for (uint32_t j = k; j-- > first;)
+            stack.push_back(children_[j]);
+        for (; k < end; ++k)
+            out.push_back(int(children_[k] - node_count));
+    }
+}
+
+float PartsModel::node_alpha(int node) const
+{
+    const Node &n = nodes_[size_t(node)];
+    if (n.part_count == 0)
+        return 1.0f;
+    return n.alpha_min == n.alpha_max ? n.alpha_min : clamp_alpha(float(n.alpha_sum / double(n.part_count)));
+}
+
+int PartsModel::part_at(const QModelIndex &index) const
+{
+    if (!index.isValid() || index.model() != this)
+        return -1;
+    const uint32_t item = item_of(index);
+    return item >= nodes_.size() && item < item_count() ? int(item - nodes_.size()) : -1;
+}
+
+int PartsModel::node_at(const QModelIndex &index) const
+{
+    if (!index.isValid() || index.model() != this)
+        return -1;
+    const uint32_t item = item_of(index);
+    return item < nodes_.size() ? int(item) : -1;
+}
+
+QModelIndex PartsModel::item_index(uint32_t item, int column) const
+{
+    if (item >= item_count() || column < 0 || column >= ColumnCount)
+        return {};
+    return createIndex(int(item_row_[item]), column, quintptr(item));
+}
+
+QModelIndex PartsModel::part_index(int part, int column) const
+{
+    if (part < 0 || part >= part_count())
+        return {};
+    return item_index(uint32_t(nodes_.size() + size_t(part)), column);
+}
+
+QModelIndex PartsModel::node_index(int node, int column) const
+{
+    if (node < 0 || node >= node_count())
+        return {};
+    return item_index(uint32_t(node), column);
+}
+
+uint32_t PartsModel::group_of(const QModelIndex &parent) const
+{
+    if (!parent.isValid())
+        return 0;
+    const uint32_t item = item_of(parent);
+    return item < nodes_.size() ? item + 1 : UINT32_MAX;
+}
+
+QModelIndex PartsModel::index(int row, int column, const QModelIndex &parent) const
+{
+    if (row < 0 || column < 0 || column >= ColumnCount || (parent.isValid() && parent.column() != 0))
+        return {};
+    const uint32_t group = group_of(parent);
+    if (group == UINT32_MAX || group + 1 >= group_first_.size())
+        return {};
+    const uint32_t first = group_first_[group];
+    if (uint32_t(row) >= group_first_[group + 1] - first)
+        return {};
+    return createIndex(row, column, quintptr(children_[first + uint32_t(row)]));
+}
+
+QModelIndex PartsModel::parent(const QModelIndex &child) const
+{
+    if (!child.isValid() || item_of(child) >= item_count())
+        return {};
+    const uint32_t parent = item_parent_[item_of(child)];
+    return parent == OIT_NO_NODE ? QModelIndex() : item_index(parent, 0);
+}
+
+int PartsModel::rowCount(const QModelIndex &parent) const
+{
+    if (parent.isValid() && parent.column() != 0)
+        return 0;
+    const uint32_t group = group_of(parent);
+    if (group == UINT32_MAX || group + 1 >= group_first_.size())
+        return 0;
+    return int(group_first_[group + 1] - group_first_[group]);
+}
+
+int PartsModel::columnCount(const QModelIndex &parent) const
+{
+    return group_of(parent) == UINT32_MAX ? 0 : ColumnCount;
+}
+
+bool PartsModel::hasChildren(const QModelIndex &parent) const { return rowCount(parent) > 0; }
 
 void PartsModel::set_values(const std::vector<float> &alpha, const std::vector<char> &visible)
 {
@@ -105,14 +316,10 @@ void PartsModel::set_values(const std::vector<float> &alpha, const std::vector<c
     const std::vector<float> old_alpha = alpha_;
     const std::vector<char> old_visible = visible_;
     take_values(alpha, visible);
-    int first = -1, last = -1;
-    for (int row = 0; row < part_count(); ++row)
-        if (alpha_[size_t(row)] != old_alpha[size_t(row)] || visible_[size_t(row)] != old_visible[size_t(row)]) {
-            if (first < 0)
-                first = row;
-            last = row;
-        }
-    emit_rows_changed(first, last);
+    std::vector<char> dirty(parts_.size(), 0);
+    for (size_t part = 0; part < parts_.size(); ++part)
+        dirty[part] = alpha_[part] != old_alpha[part] || visible_[part] != old_visible[part];
+    emit_parts_changed(dirty);
 }
 
 bool PartsModel::set_alpha(int part, float alpha)
@@ -123,7 +330,8 @@ bool PartsModel::set_alpha(int part, float alpha)
     if (alpha_[size_t(part)] == alpha)
         return false;
     alpha_[size_t(part)] = alpha;
-    emit dataChanged(index(part, OpacityColumn), index(part, PercentColumn));
+    update_nodes();
+    emit_part_changed(part);
     return true;
 }
 
@@ -132,7 +340,8 @@ bool PartsModel::set_visible(int part, bool visible)
     if (part < 0 || part >= part_count() || bool(visible_[size_t(part)]) == visible)
         return false;
     visible_[size_t(part)] = visible;
-    emit dataChanged(index(part, PartColumn), index(part, PartColumn), {Qt::CheckStateRole});
+    update_nodes();
+    emit_part_changed(part);
     return true;
 }
 
@@ -140,8 +349,8 @@ bool PartsModel::set_all(const std::vector<float> &alpha, const std::vector<char
 {
     if (alpha.size() != parts_.size() || visible.size() != parts_.size())
         return false;
-    // one dataChanged over the changed span, not one per row
-    int first = -1, last = -1;
+    std::vector<char> dirty(parts_.size(), 0);
+    bool changed = false;
     for (size_t i = 0; i < parts_.size(); ++i) {
         const float a = clamp_alpha(alpha[i]);
         const char v = visible[i] != 0;
@@ -149,23 +358,141 @@ bool PartsModel::set_all(const std::vector<float> &alpha, const std::vector<char
             continue;
         alpha_[i] = a;
         visible_[i] = v;
-        if (first < 0)
-            first = int(i);
-        last = int(i);
+        dirty[i] = changed = true;
     }
-    emit_rows_changed(first, last);
-    return first >= 0;
+    if (!changed)
+        return false;
+    update_nodes();
+    emit_parts_changed(dirty);
+    return true;
 }
 
-void PartsModel::emit_rows_changed(int first, int last)
+bool PartsModel::set_node_alpha(int node, float alpha)
 {
-    if (first >= 0 && last >= first)
-        emit dataChanged(index(first, 0), index(last, ColumnCount - 1));
+    std::vector<int> parts;
+    parts_under(node, parts);
+    alpha = clamp_alpha(alpha);
+    std::vector<char> dirty(parts_.size(), 0);
+    bool changed = false;
+    for (int part : parts)
+        if (alpha_[size_t(part)] != alpha) {
+            alpha_[size_t(part)] = alpha;
+            dirty[size_t(part)] = changed = true;
+        }
+    if (!changed)
+        return false;
+    update_nodes();
+    emit_parts_changed(dirty);
+    return true;
 }
 
-int PartsModel::rowCount(const QModelIndex &parent) const { return parent.isValid() ? 0 : part_count(); }
+bool PartsModel::set_node_visible(int node, bool visible)
+{
+    std::vector<int> parts;
+    parts_under(node, parts);
+    std::vector<char> dirty(parts_.size(), 0);
+    bool changed = false;
+    for (int part : parts)
+        if (bool(visible_[size_t(part)]) != visible) {
+            visible_[size_t(part)] = visible;
+            dirty[size_t(part)] = changed = true;
+        }
+    if (!changed)
+        return false;
+    update_nodes();
+    emit_parts_changed(dirty);
+    return true;
+}
 
-int PartsModel::columnCount(const QModelIndex &parent) const { return parent.isValid() ? 0 : ColumnCount; }
+void PartsModel::emit_part_changed(int part)
+{
+    // the row and its ancestors' (their check box and slider sum it up)
+    uint32_t item = uint32_t(nodes_.size() + size_t(part));
+    while (item != OIT_NO_NODE) {
+        emit dataChanged(item_index(item, 0), item_index(item, ColumnCount - 1));
+        item = item_parent_[item];
+    }
+}
+
+void PartsModel::emit_parts_changed(const std::vector<char> &dirty)
+{
+    // the dirty items: the parts, then their ancestors (parents come first, so backwards)
+    const size_t node_count = nodes_.size();
+    std::vector<char> item_dirty(item_count(), 0);
+    bool any = false;
+    for (size_t part = 0; part < dirty.size() && part < parts_.size(); ++part)
+        if (dirty[part]) {
+            item_dirty[node_count + part] = any = true;
+            const uint32_t parent = item_parent_[node_count + part];
+            if (parent != OIT_NO_NODE)
+                item_dirty[parent] = 1;
+        }
+    if (!any)
+        return;
+    for (size_t node = node_count; node-- > 0;)
+        if (item_dirty[node] && nodes_[node].parent != OIT_NO_NODE)
+            item_dirty[nodes_[node].parent] = 1;
+    // one dataChanged per group over its dirty rows' span, not one per row
+    for (size_t group = 0; group + 1 < group_first_.size(); ++group) {
+        if (group > 0 && !item_dirty[group - 1])
+            continue; // nothing under a clean node changed
+        int first = -1, last = -1;
+        for (uint32_t k = group_first_[group]; k < group_first_[group + 1]; ++k)
+            if (item_dirty[children_[k]]) {
+                const int row = int(k - group_first_[group]);
+                if (first < 0)
+                    first = row;
+                last = row;
+            }
+        if (first < 0)
+            continue;
+        const QModelIndex parent = group ? item_index(uint32_t(group - 1), 0) : QModelIndex();
+        emit dataChanged(index(first, 0, parent), index(last, ColumnCount - 1, parent));
+    }
+}
+
+void PartsModel::set_filter(const QString &text)
+{
+    filter_text_ = text;
+    filtering_ = !text.isEmpty();
+    if (!filtering_) {
+        filter_shown_.clear();
+        return;
+    }
+    const size_t node_count = nodes_.size();
+    const uint32_t items = item_count();
+    // 1: its own name matches or an ancestor's does (shows everything under a matching node)
+    // 2: something under it matches (shows the way down to a match)
+    std::vector<char> state(items, 0);
+    for (uint32_t item = 0; item < items; ++item) {
+        const QString name = item < node_count ? node_name(int(item)) : this->name(int(item - node_count));
+        const uint32_t parent = item_parent_[item];
+        // parents come first among the nodes, and every node before every part
+        if (name.contains(text, Qt::CaseInsensitive) || (parent != OIT_NO_NODE && (state[parent] & 1)))
+            state[item] |= 1;
+    }
+    for (uint32_t item = items; item-- > 0;) {
+        const uint32_t parent = item_parent_[item];
+        if (parent != OIT_NO_NODE && (state[item] & 3))
+            state[parent] |= 2;
+    }
+    filter_shown_.assign(items, 0);
+    for (uint32_t item = 0; item < items; ++item)
+        filter_shown_[item] = state[item] != 0;
+}
+
+bool PartsModel::filter_shows(int row, const QModelIndex &parent) const
+{
+    if (!filtering_)
+        return true;
+    const QModelIndex child = index(row, 0, parent);
+    return child.isValid() && filter_shown_[item_of(child)];
+}
+
+bool PartsModel::filter_shows_part(int part) const
+{
+    return !filtering_ || (part >= 0 && part < part_count() && filter_shown_[nodes_.size() + size_t(part)]);
+}
 
 QIcon PartsModel::swatch(const float colour[3]) const
 {
@@ -188,9 +515,61 @@ QIcon PartsModel::swatch(const float colour[3]) const
 
 QVariant PartsModel::data(const QModelIndex &index, int role) const
 {
-    if (!index.isValid() || index.row() >= part_count())
+    if (!index.isValid() || item_of(index) >= item_count())
         return {};
-    const size_t row = size_t(index.row());
+    const int node = node_at(index);
+    if (node >= 0) {
+        const Node &n = nodes_[size_t(node)];
+        const bool mixed = node_mixed_alpha(node);
+        auto opacity_text = [&] {
+            return mixed ? QStringLiteral("%1-%2%").arg(percent(n.alpha_min)).arg(percent(n.alpha_max))
+                         : QStringLiteral("%1%").arg(percent(n.alpha_min));
+        };
+        auto opacity_tip = [&] {
+            return QStringLiteral("opacity of every part under %1: %2 (%3)")
+                .arg(node_name(node), opacity_text(), opacity_help());
+        };
+        switch (index.column()) {
+        case PartColumn:
+            switch (role) {
+            case Qt::DisplayRole:
+                return node_name(node);
+            case Qt::CheckStateRole:
+                return n.visible_count == n.part_count ? Qt::Checked
+                       : n.visible_count == 0         ? Qt::Unchecked
+                                                      : Qt::PartiallyChecked;
+            case Qt::ToolTipRole:
+                return node_name(node) + QStringLiteral(": an assembly of ") + QString::number(n.part_count) +
+                       QStringLiteral(" parts, ") + QString::number(n.visible_count) +
+                       QStringLiteral(" visible; its check box and slider set every part under it");
+            }
+            break;
+        case OpacityColumn:
+            switch (role) {
+            case AlphaRole:
+                return double(node_alpha(node));
+            case MixedAlphaRole:
+                return mixed;
+            case Qt::ToolTipRole:
+                return opacity_tip();
+            case Qt::AccessibleTextRole:
+                return opacity_text();
+            }
+            break;
+        case PercentColumn:
+            switch (role) {
+            case Qt::DisplayRole:
+                return opacity_text();
+            case Qt::TextAlignmentRole:
+                return int(Qt::AlignRight | Qt::AlignVCenter);
+            case Qt::ToolTipRole:
+                return opacity_tip();
+            }
+            break;
+        }
+        return {};
+    }
+    const size_t row = size_t(part_at(index));
     const Part &part = parts_[row];
     auto part_name = [&] { return name(int(row)); };
     const int pct = percent(alpha_[row]);
@@ -219,6 +598,8 @@ QVariant PartsModel::data(const QModelIndex &index, int role) const
         switch (role) {
         case AlphaRole:
             return double(alpha_[row]);
+        case MixedAlphaRole:
+            return false;
         case Qt::ToolTipRole:
             return opacity_tip();
         case Qt::AccessibleTextRole:
@@ -241,15 +622,19 @@ QVariant PartsModel::data(const QModelIndex &index, int role) const
 
 bool PartsModel::setData(const QModelIndex &index, const QVariant &value, int role)
 {
-    if (!index.isValid() || index.row() >= part_count())
+    if (!index.isValid() || item_of(index) >= item_count())
         return false;
+    const int node = node_at(index), part = part_at(index);
     bool changed = false;
-    if (index.column() == PartColumn && role == Qt::CheckStateRole)
-        changed = set_visible(index.row(), value.toInt() == Qt::Checked);
-    else if (index.column() == OpacityColumn && role == AlphaRole)
-        changed = set_alpha(index.row(), float(value.toDouble()));
-    else
+    if (index.column() == PartColumn && role == Qt::CheckStateRole) {
+        const bool visible = value.toInt() == Qt::Checked;
+        changed = node >= 0 ? set_node_visible(node, visible) : set_visible(part, visible);
+    } else if (index.column() == OpacityColumn && role == AlphaRole) {
+        const float alpha = float(value.toDouble());
+        changed = node >= 0 ? set_node_alpha(node, alpha) : set_alpha(part, alpha);
+    } else {
         return false;
+    }
     if (changed)
         emit edited();
     return true;
@@ -259,8 +644,10 @@ Qt::ItemFlags PartsModel::flags(const QModelIndex &index) const
 {
     if (!index.isValid())
         return Qt::NoItemFlags;
+    Qt::ItemFlags flags = Qt::ItemIsEnabled | Qt::ItemIsSelectable;
     // ItemNeverHasChildren spares the tree view a hasChildren() per row
-    Qt::ItemFlags flags = Qt::ItemIsEnabled | Qt::ItemIsSelectable | Qt::ItemNeverHasChildren;
+    if (part_at(index) >= 0)
+        flags |= Qt::ItemNeverHasChildren;
     if (index.column() == PartColumn)
         flags |= Qt::ItemIsUserCheckable;
     return flags;
@@ -414,7 +801,8 @@ private:
     QPersistentModelIndex dragging_; // the row whose slider the mouse holds
 };
 
-// Case-insensitive substring match on the part name, straight from the model's strings.
+// Case-insensitive substring match on the names, worked out by the model in
+// one pass (PartsModel::set_filter: ancestors and subtrees of matches too).
 class PartsFilter : public QSortFilterProxyModel {
 public:
     PartsFilter(PartsModel *parts, QObject *parent) : QSortFilterProxyModel(parent), parts_(parts)
@@ -429,13 +817,14 @@ public:
         if (text == text_)
             return;
         text_ = text;
+        parts_->set_filter(text);
         invalidateFilter();
     }
 
 protected:
     bool filterAcceptsRow(int row, const QModelIndex &parent) const override
     {
-        return parent.isValid() || text_.isEmpty() || parts_->name(row).contains(text_, Qt::CaseInsensitive);
+        return parts_->filter_shows(row, parent);
     }
 
 private:
@@ -447,7 +836,9 @@ private:
 
 // ------------------------------------------------------------------ PartsView
 
-// The list: QTreeView without a tree, with the opacity keys and Space for the checkbox.
+// The list (a tree when the model has one), with the opacity keys and Space for
+// the checkbox; Shift+Right / Shift+Left expand and collapse, since the plain
+// arrows and +/- step the opacity.
 class PartsView : public QTreeView {
 public:
     explicit PartsView(PartsPanel *panel) : QTreeView(panel), panel_(panel) {}
@@ -478,8 +869,24 @@ protected:
         case Qt::Key_Space:
             handled = plain && panel_->toggle_current_visible();
             break;
+        case Qt::Key_Asterisk: // QTreeView's "expand everything under it": not an opacity key
+            break;
         default:
             break;
+        }
+        if (!handled && modifiers == Qt::ShiftModifier &&
+            (event->key() == Qt::Key_Right || event->key() == Qt::Key_Left) && currentIndex().isValid()) {
+            // as QTreeView's plain Left/Right: expand, collapse, or up to the parent
+            const QModelIndex current = currentIndex().siblingAtColumn(0);
+            const bool expand = event->key() == Qt::Key_Right;
+            if (expand && model()->hasChildren(current))
+                setExpanded(current, true);
+            else if (!expand && isExpanded(current))
+                setExpanded(current, false);
+            else if (!expand && current.parent().isValid())
+                selectionModel()->setCurrentIndex(current.parent(),
+                                                  QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
+            handled = true;
         }
         if (handled)
             event->accept();
@@ -516,7 +923,10 @@ PartsPanel::PartsPanel(QWidget *parent) : QWidget(parent)
     filter_->setPlaceholderText("filter parts by name");
     filter_->setClearButtonEnabled(true);
     filter_->setToolTip("show only the parts whose name contains this text (case-insensitive)");
-    connect(filter_, &QLineEdit::textChanged, this, [filter_model](const QString &text) { filter_model->set_text(text); });
+    connect(filter_, &QLineEdit::textChanged, this, [this, filter_model](const QString &text) {
+        filter_model->set_text(text);
+        filter_changed();
+    });
     layout->addWidget(filter_);
 
     auto *view = new PartsView(this);
@@ -532,7 +942,9 @@ PartsPanel::PartsPanel(QWidget *parent) : QWidget(parent)
     view_->setSelectionBehavior(QAbstractItemView::SelectRows);
     view_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     view_->setToolTip("checkbox (or Space): show or hide the part; slider: its opacity (" + opacity_help() +
-                      "); Ctrl/Shift-click: select several; double-click a name: frame it");
+                      "); an assembly's check box and slider: every part under it (Shift+Right / Shift+Left "
+                      "or its arrow: expand, collapse); Ctrl/Shift-click: select several; double-click a "
+                      "part's name: frame it");
     QHeaderView *header = view_->header();
     header->setStretchLastSection(false);
     header->setSectionResizeMode(PartsModel::PartColumn, QHeaderView::Stretch);
@@ -542,8 +954,10 @@ PartsPanel::PartsPanel(QWidget *parent) : QWidget(parent)
     header->setSectionResizeMode(PartsModel::PercentColumn, QHeaderView::Fixed);
     header->resizeSection(PartsModel::PercentColumn, view_->fontMetrics().horizontalAdvance("100%") + 16);
     connect(view_, &QAbstractItemView::doubleClicked, this, [this](const QModelIndex &index) {
-        if (index.column() == PartsModel::PartColumn)
-            emit frame_selected_requested({proxy_->mapToSource(index).row()});
+        // an assembly's row expands or collapses instead (QTreeView's own double-click)
+        const int part = model_->part_at(proxy_->mapToSource(index));
+        if (index.column() == PartsModel::PartColumn && part >= 0)
+            emit frame_selected_requested({part});
     });
     connect(view_->selectionModel(), &QItemSelectionModel::selectionChanged, this, [this] {
         update_buttons();
@@ -600,8 +1014,25 @@ void PartsPanel::set_model(const oit_model *model, const std::vector<float> &alp
     const bool had_selection = view_->selectionModel()->hasSelection();
     model_->set_model(model, alpha, visible);
     const int count = model_->part_count();
-    const QString note = QStringLiteral("%1 parts; checkbox: visible, slider: opacity (--component-alpha).").arg(count);
-    note_->setText(note);
+    const bool tree = model_->node_count() > 0;
+    view_->setRootIsDecorated(tree);
+    view_->setItemsExpandable(tree);
+    // an assembly's percent can be a range ("20-100%")
+    view_->header()->resizeSection(PartsModel::PercentColumn,
+                                   view_->fontMetrics().horizontalAdvance(tree ? "100-100%" : "100%") + 16);
+    if (tree) {
+        // the top assemblies open: their subassemblies in sight, the rest on demand (a filter's matches: all)
+        if (filter_->text().isEmpty())
+            view_->expandToDepth(0);
+        else
+            view_->expandAll();
+        note_->setText(QStringLiteral("%1 parts in %2 assemblies; checkbox: visible, slider: opacity "
+                                      "(--component-alpha); an assembly's: every part under it.")
+                           .arg(count)
+                           .arg(model_->node_count()));
+    } else {
+        note_->setText(QStringLiteral("%1 parts; checkbox: visible, slider: opacity (--component-alpha).").arg(count));
+    }
     update_buttons();
     if (had_selection)
         emit selection_changed({});
@@ -621,9 +1052,21 @@ std::vector<int> PartsPanel::selected_parts() const
     std::vector<int> parts;
     const QModelIndexList rows = view_->selectionModel()->selectedRows(PartsModel::PartColumn);
     parts.reserve(size_t(rows.size()));
-    for (const QModelIndex &index : rows)
-        parts.push_back(proxy_->mapToSource(index).row());
+    bool nodes = false;
+    for (const QModelIndex &index : rows) {
+        const QModelIndex source = proxy_->mapToSource(index);
+        const int part = model_->part_at(source);
+        if (part >= 0) {
+            parts.push_back(part);
+        } else {
+            // an assembly stands for every part under it, shown by the filter or not
+            model_->parts_under(model_->node_at(source), parts);
+            nodes = true;
+        }
+    }
     std::sort(parts.begin(), parts.end());
+    if (nodes) // a part and its assembly both selected
+        parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
     return parts;
 }
 
@@ -631,9 +1074,16 @@ void PartsPanel::select_part(int index)
 {
     if (index < 0 || index >= model_->part_count())
         return;
-    if (!filter_->text().isEmpty() && !model_->name(index).contains(filter_->text(), Qt::CaseInsensitive))
+    if (!model_->filter_shows_part(index))
         filter_->clear();
-    const QModelIndex row = proxy_->mapFromSource(model_->index(index, PartsModel::PartColumn));
+    const QModelIndex row = proxy_->mapFromSource(model_->part_index(index));
+    // its assemblies open, top first (a new current row opens them too, through the view's
+    // autoScroll and QTreeView::scrollTo, but only while the view is not in a drag or an edit)
+    std::vector<QModelIndex> ancestors;
+    for (QModelIndex parent = row.parent(); parent.isValid(); parent = parent.parent())
+        ancestors.push_back(parent);
+    for (auto it = ancestors.rbegin(); it != ancestors.rend(); ++it)
+        view_->expand(*it);
     view_->selectionModel()->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
     view_->scrollTo(row);
     static_cast<PartsView *>(view_)->scroll_when_shown = !view_->isVisible();
@@ -650,9 +1100,12 @@ bool PartsPanel::step_current_alpha(int delta_percent)
     const QModelIndex current = view_->currentIndex();
     if (!current.isValid())
         return false;
-    const int part = proxy_->mapToSource(current).row();
-    const int percent = std::clamp(PartsModel::percent(model_->alpha()[size_t(part)]) + delta_percent, 0, 100);
-    if (model_->set_alpha(part, float(percent) / 100.0f))
+    const QModelIndex source = proxy_->mapToSource(current);
+    const int part = model_->part_at(source), node = model_->node_at(source);
+    // an assembly: every part under it to its (mean) percent plus the step
+    const float alpha = part >= 0 ? model_->alpha()[size_t(part)] : model_->node_alpha(node);
+    const float stepped = float(std::clamp(PartsModel::percent(alpha) + delta_percent, 0, 100)) / 100.0f;
+    if (part >= 0 ? model_->set_alpha(part, stepped) : model_->set_node_alpha(node, stepped))
         emit parts_changed();
     return true;
 }
@@ -662,8 +1115,13 @@ bool PartsPanel::toggle_current_visible()
     const QModelIndex current = view_->currentIndex();
     if (!current.isValid())
         return false;
-    const int part = proxy_->mapToSource(current).row();
-    if (model_->set_visible(part, !model_->visible()[size_t(part)]))
+    const QModelIndex source = proxy_->mapToSource(current);
+    const int part = model_->part_at(source), node = model_->node_at(source);
+    // an assembly: all shown when some part under it is hidden, else all hidden
+    const bool changed =
+        part >= 0 ? model_->set_visible(part, !model_->visible()[size_t(part)])
+                  : model_->set_node_visible(node, model_->node_visible_count(node) < model_->node_part_count(node));
+    if (changed)
         emit parts_changed();
     return true;
 }
@@ -682,4 +1140,24 @@ void PartsPanel::update_buttons()
     show_all_->setEnabled(any);
     isolate_->setEnabled(selected);
     frame_->setEnabled(selected);
+}
+
+void PartsPanel::filter_changed()
+{
+    if (model_->node_count() == 0)
+        return;
+    if (!filter_->text().isEmpty()) {
+        // the matches in sight: every row the filter keeps, opened
+        view_->expandAll();
+        return;
+    }
+    // back to the top assemblies open, and the current row still in sight
+    view_->collapseAll();
+    view_->expandToDepth(0);
+    const QModelIndex current = view_->currentIndex();
+    if (current.isValid()) {
+        for (QModelIndex parent = current.parent(); parent.isValid(); parent = parent.parent())
+            view_->expand(parent);
+        view_->scrollTo(current);
+    }
 }

@@ -32,71 +32,15 @@
 
 #include "oit.h"
 #include "parts_panel.h"
+#include "parts_test_model.h"
 #include "pick.h"
 
 namespace {
 
-// A model built from plain arrays by oit_model_finish; freed on destruction.
-struct Model {
-    oit_model m{};
-    Model() = default;
-    Model(const Model &) = delete;
-    Model &operator=(const Model &) = delete;
-    ~Model() { oit_model_free(&m); }
-};
-
-struct Part {
-    std::string name;
-    float colour[3];
-    std::vector<float> positions;   // 3 per vertex
-    std::vector<uint32_t> triangles; // 3 per triangle, indices into this part's vertices
-};
-
-// false (and the message) if oit_model_finish refuses it
-bool build(Model &out, const std::vector<Part> &parts, QString *message)
-{
-    size_t vertices = 0, triangles = 0;
-    for (const Part &p : parts) {
-        vertices += p.positions.size() / 3;
-        triangles += p.triangles.size() / 3;
-    }
-    oit_model &m = out.m;
-    m.vertex_count = uint32_t(vertices);
-    m.triangle_count = uint32_t(triangles);
-    m.component_count = uint32_t(parts.size());
-    m.positions = static_cast<float *>(malloc(vertices * 3 * sizeof(float)));
-    m.indices = static_cast<uint32_t *>(malloc(std::max<size_t>(triangles, 1) * 3 * sizeof(uint32_t)));
-    m.components = static_cast<oit_component *>(calloc(std::max<size_t>(parts.size(), 1), sizeof(oit_component)));
-    size_t v = 0, t = 0;
-    for (size_t c = 0; c < parts.size(); ++c) {
-        const Part &p = parts[c];
-        oit_component &comp = m.components[c];
-        snprintf(comp.name, sizeof comp.name, "%s", p.name.c_str());
-        std::copy(p.colour, p.colour + 3, comp.colour);
-        comp.opacity = 1.0f;
-        comp.first_triangle = uint32_t(t);
-        comp.triangle_count = uint32_t(p.triangles.size() / 3);
-        std::copy(p.positions.begin(), p.positions.end(), m.positions + v * 3);
-        for (size_t k = 0; k < p.triangles.size(); ++k)
-            m.indices[t * 3 + k] = uint32_t(v) + p.triangles[k];
-        v += p.positions.size() / 3;
-        t += p.triangles.size() / 3;
-    }
-    oit_error err{};
-    if (oit_model_finish(&m, true, &err) != OIT_OK) {
-        *message = QString::fromUtf8(err.message);
-        return false;
-    }
-    return true;
-}
-
-// An axis-aligned square facing +z (counter-clockwise seen from +z): two triangles.
-Part square(const std::string &name, float cx, float cy, float z, float half)
-{
-    Part p{name, {0.2f, 0.5f, 0.8f}, {}, {0, 1, 2, 0, 2, 3}};
-    p.positions = {cx - half, cy - half, z, cx + half, cy - half, z, cx + half, cy + half, z, cx - half, cy + half, z};
-    return p;
-}
+using parts_test::build;
+using parts_test::Model;
+using parts_test::Part;
+using parts_test::square;
 
 QString part_name(int i) { return QString::asprintf("part_%05d", i); }
 
@@ -740,7 +684,7 @@ private slots:
     void pick_edge_on()
     {
         // one square in the plane x = 0: the centre column's rays lie in it
-        Part wall{"wall", {1, 0, 0}, {0, -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1}, {0, 1, 2, 0, 2, 3}};
+        Part wall{"wall", {1, 0, 0}, {0, -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1}, {0, 1, 2, 0, 2, 3}, OIT_NO_NODE};
         Model model;
         QString message;
         QVERIFY2(build(model, {wall}, &message), qPrintable(message));
@@ -769,7 +713,7 @@ private slots:
     void component_of_triangle_bounds()
     {
         // an empty part between two others
-        Part empty{"empty", {0, 0, 0}, {}, {}};
+        Part empty{"empty", {0, 0, 0}, {}, {}, OIT_NO_NODE};
         Model model;
         QString message;
         QVERIFY2(build(model, {square("A", 0, 0, 0, 1), empty, square("B", 3, 0, 0, 1), square("C", 6, 0, 0, 1)},

@@ -1,5 +1,6 @@
 // test_workbench_views.cpp: the workbench's Qt Test cases on picking, views, undo, the error
-// and split views, comparisons, tooltips, 100,000 parts and dropped files (workbench_test.h).
+// and split views, comparisons, tooltips, 100,000 parts, an assembly's parts tree and dropped
+// files (workbench_test.h).
 #include "workbench_test.h"
 
 void WorkbenchTest::clicking_a_part_selects_it()
@@ -414,6 +415,83 @@ void WorkbenchTest::hundred_thousand_parts()
     // a part past the GPU's per-part limit is picked and selected as any other
     window->parts_panel()->select_part(99999);
     QCOMPARE(window->parts_panel()->selected_parts(), std::vector<int>{99999});
+    window->load_model(MainWindow::default_model_path());
+    QVERIFY(loaded.wait(60000));
+    window->show_tab("algorithm");
+}
+
+// A glTF with an assembly tree (tests/assembly_gltf.py): an assembly's slider
+// is one undo step over every part under it, and a click on a part in the view
+// opens its assemblies in the Parts tab.
+void WorkbenchTest::parts_tree_of_an_assembly()
+{
+    const QString path = work + "/assembly.gltf";
+    QProcess python;
+    python.start("python3", {MainWindow::source_root() + "/tests/assembly_gltf.py", path});
+    QVERIFY(python.waitForFinished(30000));
+    QCOMPARE(python.exitCode(), 0);
+    const QJsonArray expected = QJsonDocument::fromJson(python.readAllStandardOutput()).array(); // [name, path]
+    QSignalSpy loaded(window, &MainWindow::model_loaded);
+    window->load_model(path);
+    QVERIFY(loaded.wait(60000));
+    QCOMPARE(int(window->model()->component_count), expected.size());
+    window->show_tab("parts");
+    PartsPanel *panel = window->parts_panel();
+    auto *tree = qobject_cast<QTreeView *>(panel->view());
+    QAbstractItemModel *rows = tree->model();
+    QCOMPARE(rows->rowCount(), 1); // gearbox
+    const QModelIndex gearbox = rows->index(0, 0);
+    QModelIndex output;
+    for (int r = 0; r < rows->rowCount(gearbox); ++r)
+        if (rows->index(r, 0, gearbox).data().toString() == "output_shaft")
+            output = rows->index(r, 0, gearbox);
+    QVERIFY(output.isValid());
+
+    // output_shaft's slider: every part under it, one undo step
+    window->reset_settings_history();
+    QVERIFY(rows->setData(output.siblingAtColumn(PartsModel::OpacityColumn), 0.25, PartsModel::AlphaRole));
+    int under = 0;
+    for (int c = 0; c < expected.size(); ++c) {
+        const bool in = expected[c].toArray()[1].toString().startsWith("gearbox/output_shaft/");
+        QCOMPARE(settings().part_alpha[size_t(c)], in ? 0.25f : 1.0f);
+        under += in;
+    }
+    QVERIFY(under >= 2);
+    const QImage faded = frame();
+    QVERIFY(window->undo_settings());
+    QVERIFY(!window->undo_settings()); // one step, not one per part
+    for (int c = 0; c < expected.size(); ++c) {
+        QCOMPARE(settings().part_alpha[size_t(c)], 1.0f);
+        QCOMPARE(panel->alpha()[size_t(c)], 1.0f);
+    }
+    QVERIFY(compare(faded, frame(), 0).max > 0);
+
+    // a click on a part two assemblies down, in a closed tree, reveals it
+    tree->collapseAll();
+    std::vector<float> storage;
+    oit_frame_settings f = window->view()->current_frame(storage);
+    QPoint target(-1, -1);
+    int part = -1;
+    for (int y = 4; y < view_size.height() && part < 0; y += 8)
+        for (int x = 4; x < view_size.width() && part < 0; x += 8) {
+            const PickResult hit = pick(*window->model(), f.modelview, f.projection, f.width, f.height, x + 0.5,
+                                        y + 0.5, settings().part_alpha, settings().part_visible);
+            if (hit.component >= 0 && expected[hit.component].toArray()[1].toString().count('/') >= 2) {
+                part = hit.component;
+                target = QPoint(x, y);
+            }
+        }
+    QVERIFY2(part >= 0, "a part under a subassembly is in view");
+    QTest::mouseClick(window->view(), Qt::LeftButton, Qt::NoModifier, target);
+    QCOMPARE(panel->selected_parts(), std::vector<int>{part});
+    const QModelIndex current = tree->currentIndex().siblingAtColumn(0);
+    QCOMPARE(current.data().toString(), expected[part].toArray()[0].toString());
+    for (QModelIndex parent = current.parent(); parent.isValid(); parent = parent.parent())
+        QVERIFY(tree->isExpanded(parent));
+    QVERIFY(tree->viewport()->rect().contains(tree->visualRect(current).center()));
+    QVERIFY2(window->status_text().startsWith("picked part " + expected[part].toArray()[1].toString() + " ("),
+             qPrintable(window->status_text()));
+
     window->load_model(MainWindow::default_model_path());
     QVERIFY(loaded.wait(60000));
     window->show_tab("algorithm");

@@ -28,6 +28,9 @@
 #include <QTabWidget>
 #include <QStandardPaths>
 #include <QtTest/QtTest>
+#include <QTreeView>
+#include <QJsonArray>
+#include <QJsonDocument>
 
 #include <QElapsedTimer>
 
@@ -221,6 +224,7 @@ private slots:
     void comparisons_are_settings();
     void every_control_has_a_tooltip();
     void hundred_thousand_parts();
+    void parts_tree_of_an_assembly();
     void dropping_files();
 };
 
