@@ -90,15 +90,20 @@ if mode == "reference":
               "(memory difference per pixel between two sizes)")
 else:
     SIZE, SMALL = "128x128", "64x64"
-    # every allocation an algorithm makes, modulation targets included
-    variants = [("blend",), ("dp",), ("ddp",), ("ll",), ("ib",), ("wboit",),
+    # every GPU algorithm the build has (`oit algorithms --json`, so a new one is checked
+    # without a line here), and the variants that allocate more or other targets
+    listed = json.loads(subprocess.run([oit, "algorithms", "--json"], capture_output=True, text=True,
+                                       check=True).stdout)
+    gpu_algorithms = [(a["name"],) for a in listed if a["uses_gl"]]
+    check(len(gpu_algorithms) >= 10, f"oit algorithms --json lists {len(gpu_algorithms)} GPU algorithms")
+    variants = gpu_algorithms + [
                 ("ll", "--sort", "array"), ("dp", "--modulation", "distance"),
                 ("dp", "--modulation", "dist-curv"), ("ddp", "--modulation", "distance"),
                 ("ll", "--modulation", "distance"), ("ib", "--modulation", "fields"),
-                ("ll", "--frames", "3"), ("ib", "--frames", "3"), ("kbuffer",), ("hybrid",),
+                ("ll", "--frames", "3"), ("ib", "--frames", "3"),
                 ("kbuffer", "--layers", "3"), ("hybrid", "--layers", "64"),
-                ("mboit",), ("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3"),
-                ("mlab",), ("mlab", "--layers", "4"), ("mlab", "--frames", "3")]
+                ("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3"),
+                ("mlab", "--layers", "4"), ("mlab", "--frames", "3")]
     figures = {}
     for algorithm, *args in variants:
         d = render(algorithm, SIZE, *args)
@@ -113,9 +118,7 @@ else:
 
     # per pixel: two image sizes, the pool (ll, ib) fixed and big enough for both
     pool = ("--fragment-pool", str(2 * fragments))
-    for algorithm, *variant in (("blend",), ("dp",), ("ddp",), ("ll",), ("ib",), ("wboit",), ("kbuffer",),
-                                ("hybrid",), ("mlab",), ("mboit",), ("mboit", "--moments", "power6"),
-                                ("mboit", "--moments", "trig3")):
+    for algorithm, *variant in gpu_algorithms + [("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3")]:
         args = pool if algorithm in ("ll", "ib") else tuple(variant)
         big, small = render(algorithm, SIZE, *args), render(algorithm, SMALL, *args)
         if algorithm in ("ll", "ib"):

@@ -26,7 +26,10 @@ python3 -c "import json,sys; d=json.load(open('$work/ll.json')); assert d['frame
 check_json "$work/dp.json" $common layers
 python3 -c "import json; d=json.load(open('$work/dp.json')); assert d['layers']==8, d; assert [s['name'] for s in d['stages']][:2]==['peel_0','peel_1'], d" \
     || fail "dp on onion must peel 8 layers, one stage per peel"
-for algorithm in blend ddp wboit reference; do
+# every algorithm the build lists (`oit algorithms --json`: a new one is checked without a line here)
+every_algorithm=$("$oit" algorithms --json | python3 -c "import json, sys; print(' '.join(a['name'] for a in json.load(sys.stdin)))") \
+    || fail "oit algorithms --json"
+for algorithm in $every_algorithm; do
     "$oit" render --model "$scenes/onion.obj" --algorithm $algorithm --size 64x64 --json >"$work/$algorithm.json" || fail "$algorithm render"
     check_json "$work/$algorithm.json" $common
 done

@@ -390,7 +390,7 @@ static int command_info(int argc, char **argv)
                m.origin[0], m.origin[1], m.origin[2], m.radius, m.longest_edge);
         for (uint32_t c = 0; c < m.component_count; ++c) {
             const oit_component *p = &m.components[c];
-            char path[OIT_NAME_SIZE * 8];
+            char path[OIT_NAME_SIZE * 40]; /* 32 levels of names and the part (model_assimp.c) */
             oit_model_component_path(&m, c, path, sizeof path);
             printf("%s{\"name\": ", c ? ", " : "");
             json_string(stdout, p->name);

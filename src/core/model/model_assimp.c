@@ -421,13 +421,7 @@ static bool unique_sibling_names(oit_model *model)
             memcpy(base, out, sizeof base);
             const uint32_t owner = set.slots[slot] - 1;
             for (uint32_t suffix = set.next_suffix[owner];; ++suffix) {
-                char tail[16];
-                int tail_length = snprintf(tail, sizeof tail, "#%u", suffix);
-                size_t keep = strlen(base);
-                if (keep + (size_t)tail_length >= OIT_NAME_SIZE)
-                    keep = OIT_NAME_SIZE - 1 - (size_t)tail_length;
-                memcpy(out, base, keep);
-                memcpy(out + keep, tail, (size_t)tail_length + 1);
+                oit_name_suffixed(out, base, suffix);
                 slot = sibling_slot(&set, parent, out);
                 if (!set.slots[slot]) {
                     set.next_suffix[owner] = suffix + 1;

@@ -182,6 +182,17 @@ static uint64_t name_slot(const name_set *set, const oit_model *model, const cha
     return slot;
 }
 
+void oit_name_suffixed(char *out, const char *base, uint32_t suffix)
+{
+    char tail[16];
+    int tail_length = snprintf(tail, sizeof tail, "#%u", suffix);
+    size_t keep = strlen(base);
+    if (keep + (size_t)tail_length >= OIT_NAME_SIZE)
+        keep = OIT_NAME_SIZE - 1 - (size_t)tail_length;
+    memmove(out, base, keep);
+    memcpy(out + keep, tail, (size_t)tail_length + 1);
+}
+
 /* name = mesh name, else node name, else "component N"; "#2", "#3"... make it
  * unique. The ids Assimp invents for unnamed glTF meshes and nodes
  * ("meshes[3]", "nodes[7]") count as no name; when several nodes instance
@@ -206,13 +217,7 @@ void oit_component_name(oit_model *model, name_set *set, uint32_t index, const c
     if (set->slots[slot]) {
         uint32_t owner = set->slots[slot] - 1;
         for (uint32_t suffix = set->next_suffix[owner];; ++suffix) {
-            char tail[16];
-            int tail_length = snprintf(tail, sizeof tail, "#%u", suffix);
-            size_t keep = strlen(base);
-            if (keep + (size_t)tail_length >= OIT_NAME_SIZE)
-                keep = OIT_NAME_SIZE - 1 - (size_t)tail_length;
-            memcpy(out, base, keep);
-            memcpy(out + keep, tail, (size_t)tail_length + 1);
+            oit_name_suffixed(out, base, suffix);
             slot = name_slot(set, model, out);
             if (!set->slots[slot]) {
                 set->next_suffix[owner] = suffix + 1;

@@ -80,6 +80,9 @@ bool oit_name_set_init(name_set *set, uint64_t count);
 void oit_name_set_free(name_set *set);
 /* Names component index: mesh name, else node name, else "component N", made
  * unique with "#2", "#3"... */
+/* out (OIT_NAME_SIZE bytes) = base + "#suffix", base cut short to fit: the
+ * one spelling of a repeated name, for parts and assembly nodes alike. */
+void oit_name_suffixed(char *out, const char *base, uint32_t suffix);
 void oit_component_name(oit_model *model, name_set *set, uint32_t index, const char *mesh_name,
                         const char *node_name, bool instanced);
 
