@@ -360,11 +360,7 @@ bool PartsModel::set_all(const std::vector<float> &alpha, const std::vector<char
         visible_[i] = v;
         dirty[i] = changed = true;
     }
-    if (!changed)
-        return false;
-    update_nodes();
-    emit_parts_changed(dirty);
-    return true;
+    return commit_parts(dirty, changed);
 }
 
 bool PartsModel::set_node_alpha(int node, float alpha)
@@ -379,11 +375,7 @@ bool PartsModel::set_node_alpha(int node, float alpha)
             alpha_[size_t(part)] = alpha;
             dirty[size_t(part)] = changed = true;
         }
-    if (!changed)
-        return false;
-    update_nodes();
-    emit_parts_changed(dirty);
-    return true;
+    return commit_parts(dirty, changed);
 }
 
 bool PartsModel::set_node_visible(int node, bool visible)
@@ -397,11 +389,7 @@ bool PartsModel::set_node_visible(int node, bool visible)
             visible_[size_t(part)] = visible;
             dirty[size_t(part)] = changed = true;
         }
-    if (!changed)
-        return false;
-    update_nodes();
-    emit_parts_changed(dirty);
-    return true;
+    return commit_parts(dirty, changed);
 }
 
 void PartsModel::emit_part_changed(int part)
@@ -412,6 +400,15 @@ void PartsModel::emit_part_changed(int part)
         emit dataChanged(item_index(item, 0), item_index(item, ColumnCount - 1));
         item = item_parent_[item];
     }
+}
+
+bool PartsModel::commit_parts(const std::vector<char> &dirty, bool changed)
+{
+    if (!changed)
+        return false;
+    update_nodes();
+    emit_parts_changed(dirty);
+    return true;
 }
 
 void PartsModel::emit_parts_changed(const std::vector<char> &dirty)

@@ -130,6 +130,8 @@ private:
     void update_nodes(); // the nodes' counts and opacities from the parts'
     // dataChanged for these parts' rows (dirty: per part) and their ancestors', one per span of siblings
     void emit_parts_changed(const std::vector<char> &dirty);
+    // after a change to parts' values: the nodes updated and the rows signalled, if any changed
+    bool commit_parts(const std::vector<char> &dirty, bool changed);
     void emit_part_changed(int part);
     QIcon swatch(const float colour[3]) const;
 
