@@ -1,5 +1,6 @@
 // step_gen OUTDIR: writes a small gearbox assembly with OpenCASCADE's own API
 // as STEP (AP214, millimetres), STEP (AP214, inches) and IGES, and
+// DIR/external/gearbox.step (the parts in files of their own beside it), and
 // OUTDIR/expected.json saying what was written (parts, paths, colours, bounds
 // in millimetres, unit), which tests/step_import.py checks the import against.
 //
@@ -148,6 +149,21 @@ bool write_step(const Handle(TDocStd_Document) &doc, const std::string &path, co
     return writer.Transfer(doc, STEPControl_AsIs) && writer.Write(path.c_str()) == IFSelect_RetDone;
 }
 
+// An assembly whose parts are in files of their own (external references):
+// DIR/external/gearbox.step refers to the parts' files beside it.
+bool write_step_external(const Handle(TDocStd_Document) &doc, const std::string &dir)
+{
+    std::error_code ignored;
+    std::filesystem::create_directories(dir, ignored);
+    STEPControl_Controller::Init();
+    Interface_Static::SetCVal("write.step.schema", "AP214IS");
+    Interface_Static::SetCVal("write.step.unit", "MM");
+    STEPCAFControl_Writer writer;
+    writer.SetColorMode(true);
+    writer.SetNameMode(true);
+    return writer.Transfer(doc, STEPControl_AsIs, "") && writer.Write((dir + "/gearbox.step").c_str()) == IFSelect_RetDone;
+}
+
 bool write_iges(const Handle(TDocStd_Document) &doc, const std::string &path)
 {
     IGESControl_Controller::Init();
@@ -178,6 +194,10 @@ int main(int argc, char **argv)
     } files[] = {{"gearbox.step", "millimetre", 1.0, write_step(doc, dir + "/gearbox.step", "MM")},
                  {"gearbox_inch.stp", "inch", 25.4, write_step(doc, dir + "/gearbox_inch.stp", "INCH")},
                  {"gearbox.igs", "millimetre", 1.0, write_iges(doc, dir + "/gearbox.igs")}};
+    if (!write_step_external(doc, dir + "/external")) {
+        fprintf(stderr, "step_gen: cannot write %s/external/gearbox.step\n", argv[1]);
+        return 1;
+    }
     for (const file &f : files)
         if (!f.ok) {
             fprintf(stderr, "step_gen: cannot write %s/%s\n", argv[1], f.name);

@@ -41,6 +41,7 @@
 #include <Message_Messenger.hxx>
 #include <Poly_Triangulation.hxx>
 #include <Quantity_ColorRGBA.hxx>
+#include <STEPCAFControl_ExternFile.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
@@ -444,16 +445,23 @@ extern "C" occt_format oit_occt_format(const char *path, const char *name)
         return OCCT_FORMAT_STEP;
     if (extension && (strcasecmp(extension, ".iges") == 0 || strcasecmp(extension, ".igs") == 0))
         return OCCT_FORMAT_IGES;
+    /* IFC is written in STEP's file format too: Assimp reads it */
+    if (extension && (strcasecmp(extension, ".ifc") == 0 || strcasecmp(extension, ".ifczip") == 0))
+        return OCCT_FORMAT_NONE;
     FILE *file = fopen(path, "rb");
     if (!file)
         return OCCT_FORMAT_NONE;
-    char head[64] = {0};
+    char head[4096];
     size_t got = fread(head, 1, sizeof head - 1, file);
     fclose(file);
+    head[got] = '\0';
     const char *p = head;
-    while (p < head + got && (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n'))
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n')
         ++p;
-    return strncmp(p, "ISO-10303-21", 12) == 0 ? OCCT_FORMAT_STEP : OCCT_FORMAT_NONE;
+    if (strncmp(p, "ISO-10303-21", 12) != 0)
+        return OCCT_FORMAT_NONE;
+    const char *schema = strstr(head, "FILE_SCHEMA");
+    return schema && strstr(schema, "IFC") ? OCCT_FORMAT_NONE : OCCT_FORMAT_STEP;
 }
 
 extern "C" oit_status oit_model_read_occt(const char *path, const char *name, occt_format format,
@@ -498,7 +506,16 @@ extern "C" oit_status oit_model_read_occt(const char *path, const char *name, oc
                                                                                                     : "syntax errors");
         if (!transferred)
             return oit_fail(err, OIT_E_INPUT, "%s: cannot import: OpenCASCADE read the %s file but could not "
-                            "transfer its shapes", name, kind);
+                            "transfer its shapes (a corrupt file?)", name, kind);
+        /* an assembly whose parts are files of their own: OCCT leaves a part
+         * it cannot read out, and the model would be silently incomplete */
+        if (format == OCCT_FORMAT_STEP)
+            for (NCollection_DataMap<TCollection_AsciiString, Handle(STEPCAFControl_ExternFile)>::Iterator
+                     file(step.ExternFiles());
+                 file.More(); file.Next())
+                if (file.Value().IsNull() || file.Value()->GetLoadStatus() != IFSelect_RetDone)
+                    return oit_fail(err, OIT_E_INPUT, "%s: cannot import: it refers to the file '%.200s', which "
+                                    "cannot be read (missing or broken)", name, file.Key().ToCString());
         walker w;
         w.shapes = XCAFDoc_DocumentTool::ShapeTool(document->Main());
         w.colours = XCAFDoc_DocumentTool::ColorTool(document->Main());
@@ -508,7 +525,8 @@ extern "C" oit_status oit_model_read_occt(const char *path, const char *name, oc
         for (int i = 1; i <= roots.Length(); ++i)
             BRepBndLib::Add(XCAFDoc_ShapeTool::GetShape(roots.Value(i)), box);
         if (box.IsVoid())
-            return oit_fail(err, OIT_E_INPUT, "%s: no triangles (the %s file holds no shapes)", name, kind);
+            return oit_fail(err, OIT_E_INPUT, "%s: no triangles (the %s file holds no shapes OpenCASCADE could "
+                            "read: a corrupt file, or an assembly whose part files are missing?)", name, kind);
         const double diagonal = std::sqrt(box.SquareExtent());
         w.linear = options.linear_deflection_mm > 0 ? options.linear_deflection_mm
                                                     : diagonal * level_relative_deflection[options.tessellation];
