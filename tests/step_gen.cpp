@@ -1,6 +1,7 @@
 // step_gen OUTDIR: writes a small gearbox assembly with OpenCASCADE's own API
-// as STEP (AP214, millimetres), STEP (AP214, inches) and IGES, and
-// DIR/external/gearbox.step (the parts in files of their own beside it), and
+// as STEP (AP214, millimetres), STEP (AP214, inches) and IGES; the same with
+// the cover and bolts lifted 1 mm off the housing (gearbox_apart.step); as an
+// assembly whose parts are files of their own (external/gearbox.step); and
 // OUTDIR/expected.json saying what was written (parts, paths, colours, bounds
 // in millimetres, unit), which tests/step_import.py checks the import against.
 //
@@ -68,7 +69,7 @@ gp_Trsf translation(double x, double y, double z)
     return t;
 }
 
-Handle(TDocStd_Document) build()
+Handle(TDocStd_Document) build(double cover_lift)
 {
     Handle(XCAFApp_Application) app = XCAFApp_Application::GetApplication();
     Handle(TDocStd_Document) doc;
@@ -86,7 +87,7 @@ Handle(TDocStd_Document) build()
     TDF_Label top = shapes->AddSubShape(housing, housing_box.TopFace());
     colours->SetColor(top, rgba(0.9, 0.2, 0.1), XCAFDoc_ColorSurf);
 
-    TDF_Label cover = named(shapes->AddShape(BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 40), gp_Pnt(100, 60, 45)).Shape(), false),
+    TDF_Label cover = named(shapes->AddShape(BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 40 + cover_lift), gp_Pnt(100, 60, 45 + cover_lift)).Shape(), false),
                             "cover");
     colours->SetColor(cover, rgba(0.2, 0.4, 0.9, 0.5f), XCAFDoc_ColorSurf);
 
@@ -117,7 +118,7 @@ Handle(TDocStd_Document) build()
     for (int b = 0; b < 4; ++b) {
         char name[16];
         snprintf(name, sizeof name, "bolt_%d", b + 1);
-        named(shapes->AddComponent(gearbox, bolt, TopLoc_Location(translation(corners[b][0], corners[b][1], 45))),
+        named(shapes->AddComponent(gearbox, bolt, TopLoc_Location(translation(corners[b][0], corners[b][1], 45 + cover_lift))),
               name);
     }
     shapes->UpdateAssemblies();
@@ -186,7 +187,12 @@ int main(int argc, char **argv)
     const std::string dir = argv[1];
     std::error_code ignored; /* (a failure shows as the write's) */
     std::filesystem::create_directories(dir, ignored);
-    Handle(TDocStd_Document) doc = build();
+    Handle(TDocStd_Document) doc = build(0.0);
+    /* the cover and its bolts 1 mm up, off the housing: one coplanar plane more */
+    if (!write_step(build(1.0), dir + "/gearbox_apart.step", "MM")) {
+        fprintf(stderr, "step_gen: cannot write %s/gearbox_apart.step\n", argv[1]);
+        return 1;
+    }
     struct file {
         const char *name, *unit;
         double to_mm;

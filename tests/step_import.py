@@ -5,8 +5,9 @@ file in inches), the parts with their assembly paths (the bolt part placed four
 times appears four times), colours and opacities, the file's unit; --tessellation
 changes the triangle count; and every exact algorithm (`oit algorithms --json`)
 renders the millimetre STEP like the reference (2/255 on all but 0.1% of the
-pixels, as tests/cad_exact.sh: the housing's top face and the cover's bottom
-face are coincident in the B-rep and must tie exactly), on both back ends."""
+pixels, as tests/cad_exact.sh), on both back ends. The housing's top face and
+the cover's bottom face are coincident in the B-rep and must share a coplanar
+plane (tie exactly): lifting the cover and its bolts 1 mm (gearbox_apart.step) adds a plane."""
 import json
 import os
 import subprocess
@@ -81,6 +82,14 @@ check(counts["coarse"] < counts["normal"] < counts["fine"], "--tessellation: tri
 check(info(step, "--tessellation", "0.05")["tessellation"]["linear_deflection_mm"] == 0.05,
       "--tessellation 0.05: not the linear deflection used")
 print("triangles by --tessellation: %s" % counts)
+
+# mating faces are coplanar: the housing's top and the cover's bottom share one of
+# the model's coplanar planes (they tie exactly), so lifting the cover (with its bolts) 1 mm off
+# the housing makes one plane more
+planes = info(step)["planes"]
+planes_apart = info(os.path.join(directory, "gearbox_apart.step"))["planes"]
+check(planes_apart == planes + 1, "mating faces: %d planes, %d with the cover lifted 1 mm (expected one more)"
+      % (planes, planes_apart))
 
 # every exact algorithm against the reference, both back ends, two views
 algorithms = json.loads(subprocess.run([oit, "algorithms", "--json"], capture_output=True, text=True,
