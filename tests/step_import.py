@@ -3,13 +3,15 @@
 into DIR load as DIR/expected.json says: bounds (millimetres, also from the
 file in inches), the parts with their assembly paths (the bolt part placed four
 times appears four times), colours and opacities, the file's unit; --tessellation
-changes the triangle count; and every exact algorithm (`oit algorithms --json`)
+changes the triangle count; an assembly whose parts are files of their own
+loads whole, and without one of them fails naming it; and every exact algorithm (`oit algorithms --json`)
 renders the millimetre STEP like the reference (2/255 on all but 0.1% of the
 pixels, as tests/cad_exact.sh), on both back ends. The housing's top face and
 the cover's bottom face are coincident in the B-rep and must share a coplanar
 plane (tie exactly): lifting the cover and its bolts 1 mm (gearbox_apart.step) adds a plane."""
 import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -73,6 +75,18 @@ for entry in expected["files"]:
               "%s: %s colour %s, expected %s" % (name, want["path"], part["colour"], want["colour"]))
         check(abs(part["opacity"] - want["opacity"]) < 0.005,
               "%s: %s opacity %s, expected %s" % (name, want["path"], part["opacity"], want["opacity"]))
+
+# an assembly whose parts are files of their own, given by a relative path: all
+# of it; without one part file, one line naming that file and exit 2
+external = os.path.relpath(os.path.join(directory, "external", "gearbox.step"))
+check(len(info(external)["parts"]) == len(expected["parts"]), "external/gearbox.step: parts missing")
+incomplete = os.path.join(work, "incomplete")
+shutil.rmtree(incomplete, ignore_errors=True)
+shutil.copytree(os.path.join(directory, "external"), incomplete)
+os.remove(os.path.join(incomplete, "bolt.stp"))
+run = subprocess.run([oit, "info", "--model", os.path.join(incomplete, "gearbox.step")], capture_output=True, text=True)
+check(run.returncode == 2 and run.stderr.count("\n") == 1 and "refers to the file 'bolt.stp'" in run.stderr,
+      "without bolt.stp: exit %d, %r" % (run.returncode, run.stderr))
 
 # the tessellation option reaches the worker: coarse < normal < fine triangles, and
 # a deflection in millimetres is used as given

@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <map>
@@ -474,11 +475,27 @@ extern "C" oit_status oit_model_read_occt(const char *path, const char *name, oc
     if ((int)options.tessellation < 0 || options.tessellation >= OIT_TESSELLATION_LEVEL_COUNT)
         options.tessellation = OIT_TESSELLATION_NORMAL;
     const char *kind = format == OCCT_FORMAT_STEP ? "STEP" : "IGES";
+    /* OCCT finds an assembly's part files beside the file only when given an
+     * absolute path ("dir/a.step" looks for "dir/dir/part.stp"... and fails) */
+    char *absolute = realpath(path, nullptr);
+    std::string full = absolute ? absolute : path;
+    free(absolute);
+    path = full.c_str();
     try {
         silence_messages();
         Handle(XCAFApp_Application) application = XCAFApp_Application::GetApplication();
         Handle(TDocStd_Document) document;
         application->NewDocument("MDTV-XCAF", document);
+        /* the application keeps its documents: close this one on every way out */
+        struct closer {
+            Handle(XCAFApp_Application) application;
+            Handle(TDocStd_Document) document;
+            ~closer()
+            {
+                if (application->CanClose(document) == CDM_CCS_OK)
+                    application->Close(document);
+            }
+        } close_document{application, document};
         /* the document in millimetres: OCCT scales the file's unit to it */
         XCAFDoc_DocumentTool::SetLengthUnit(document, 1.0, UnitsMethods_LengthUnit_Millimeter);
         Interface_Static::SetCVal("xstep.cascade.unit", "MM");
