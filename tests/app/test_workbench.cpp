@@ -268,6 +268,12 @@ void WorkbenchTest::bad_model_keeps_the_previous_one()
              qPrintable(window->last_error()));
     QCOMPARE(window->model(), before);
     QCOMPARE(compare(frame(), image, 0).max, 0);
+    // a STEP assembly whose part files are missing (OpenCASCADE): one line, the model kept
+    window->load_model(MainWindow::source_root() + "/tests/data/malformed/step_missing_part_files.step");
+    QVERIFY(failed.wait(60000));
+    QVERIFY2(window->last_error().contains("step_missing_part_files.step: cannot import: it refers to the file"),
+             qPrintable(window->last_error()));
+    QCOMPARE(window->model(), before);
 }
 
 void WorkbenchTest::import_warnings_are_shown()
@@ -287,6 +293,44 @@ void WorkbenchTest::import_warnings_are_shown()
     window->load_model(path);
     QVERIFY(loaded.wait(60000));
     QVERIFY(window->model_warnings().isEmpty());
+}
+
+// A STEP model loads with the preset's tessellation (--tessellation), which the
+// copied command and a saved preset carry.
+void WorkbenchTest::step_models_load_with_their_tessellation()
+{
+    QString path = window->model_path();
+    QString step = MainWindow::source_root() + "/tests/data/kicad/R_0603_1608Metric.step";
+    QSignalSpy loaded(window, &MainWindow::model_loaded);
+    window->load_model(step);
+    QVERIFY(loaded.wait(60000));
+    QCOMPARE(window->model()->component_count, 3u); // body, end caps, pads: one part per colour
+    const uint32_t normal = window->model()->triangle_count;
+    QVERIFY(!window->render_command_for_view("v.png").contains("--tessellation"));
+    QString preset = work + "/fine.json", error;
+    QFile file(preset);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("{\n  \"tessellation\": \"fine\"\n}\n");
+    file.close();
+    QVERIFY2(window->load_preset(preset, error), qPrintable(error));
+    QCOMPARE(settings().import.tessellation, OIT_TESSELLATION_FINE);
+    window->load_model(step);
+    QVERIFY(loaded.wait(60000));
+    QVERIFY2(window->model()->triangle_count > normal, "fine makes more triangles than normal");
+    QVERIFY(window->render_command_for_view("v.png").contains(" --tessellation fine"));
+    QString saved = work + "/saved.json";
+    QVERIFY2(window->save_preset(saved, error), qPrintable(error));
+    QFile saved_file(saved);
+    QVERIFY(saved_file.open(QIODevice::ReadOnly));
+    QVERIFY(saved_file.readAll().contains("\"tessellation\": \"fine\""));
+    QVERIFY(file.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    file.write("{\n  \"tessellation\": -1\n}\n");
+    file.close();
+    QVERIFY(!window->load_preset(preset, error));
+    QVERIFY2(error.startsWith(preset + ":2:") && error.contains("tessellation"), qPrintable(error));
+    settings().import = oit_import_options{};
+    window->load_model(path);
+    QVERIFY(loaded.wait(60000));
 }
 
 void WorkbenchTest::presets_round_trip_and_name_errors()
