@@ -31,7 +31,8 @@ for command in info render; do
         "$oit" "$command" --model "$data/iges_garbage.igs" "${extra[@]}"
     expect_exit 2 "step_huge_entity_number.step: cannot import: OpenCASCADE read the STEP file but could not transfer" -- \
         "$oit" "$command" --model "$data/step_huge_entity_number.step" "${extra[@]}"
-    expect_exit 2 "huge_knots.step: no triangles \(the STEP file holds no shapes" -- \
+    # (OpenCASCADE gives up on the curve in 0.4 s; under AddressSanitizer the 2 s limit may come first)
+    expect_exit 2 "huge_knots.step: (no triangles \(the STEP file holds no shapes|the importer timed out)" -- \
         "$oit" "$command" --model "$work/huge_knots.step" "${extra[@]}"
     expect_exit 2 "step_missing_part_files.step: cannot import: it refers to the file '[a-z]+\.stp', which cannot be read" -- \
         "$oit" "$command" --model "$data/step_missing_part_files.step" "${extra[@]}"
