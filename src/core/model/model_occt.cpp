@@ -106,6 +106,7 @@ struct walker {
     std::vector<component> components;
     std::vector<float> positions, normals;
     std::vector<uint32_t> indices;
+    unsigned long untessellated_faces = 0; /* of the parts (each once, not per instance) */
 };
 
 std::string label_name(const TDF_Label &label)
@@ -207,8 +208,10 @@ part_mesh &mesh_part(walker &w, const TDF_Label &part)
         const TopoDS_Face &face = TopoDS::Face(faces.Current());
         TopLoc_Location location;
         Handle(Poly_Triangulation) tris = BRep_Tool::Triangulation(face, location);
-        if (tris.IsNull() || tris->NbTriangles() == 0)
+        if (tris.IsNull() || tris->NbTriangles() == 0) {
+            ++w.untessellated_faces; /* said in a warning: the model is not silently incomplete */
             continue;
+        }
         face_mesh fm;
         colour c{{-1, -1, -1, -1}};
         const int index = face_index.FindIndex(face);
@@ -564,6 +567,9 @@ extern "C" oit_status oit_model_read_occt(const char *path, const char *name, oc
         out->unit_to_mm = to_mm;
         if (unit.empty())
             oit_import_warn(warnings, "the file names no length unit: read as millimetres");
+        if (w.untessellated_faces)
+            oit_import_warn(warnings, "%lu faces could not be tessellated and are left out",
+                            w.untessellated_faces);
         out->tessellation_linear_mm = w.linear;
         out->tessellation_angular_rad = w.angular;
         out->tessellation_ms = ms;
