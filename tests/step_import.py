@@ -3,7 +3,7 @@
 into DIR load as DIR/expected.json says: bounds (millimetres, also from the
 file in inches), the parts with their assembly paths (the bolt part placed four
 times appears four times), colours and opacities, the file's unit; --tessellation
-changes the triangle count; an assembly whose parts are files of their own
+changes the triangle count (also in a bench scene line); an assembly whose parts are files of their own
 loads whole, and without one of them fails naming it; and every exact algorithm (`oit algorithms --json`)
 renders the millimetre STEP like the reference (2/255 on all but 0.1% of the
 pixels, as tests/cad_exact.sh), on both back ends. The housing's top face and
@@ -96,6 +96,18 @@ check(counts["coarse"] < counts["normal"] < counts["fine"], "--tessellation: tri
 check(info(step, "--tessellation", "0.05")["tessellation"]["linear_deflection_mm"] == 0.05,
       "--tessellation 0.05: not the linear deflection used")
 print("triangles by --tessellation: %s" % counts)
+# and from a bench scene line
+scene_list = os.path.join(work, "scenes.txt")
+with open(scene_list, "w") as f:
+    f.write("coarse %s --tessellation coarse\nfine %s --tessellation fine\n" % (os.path.abspath(step), os.path.abspath(step)))
+bench = subprocess.run([oit, "bench", "--scene-list", scene_list, "--algorithms", "ll", "--sizes", "32x32", "--frames", "1"],
+                       capture_output=True, text=True)
+rows = {line.split(",")[0]: line.split(",") for line in bench.stdout.splitlines()[1:]}
+header = bench.stdout.splitlines()[0].split(",") if bench.stdout else []
+column = header.index("triangles") if "triangles" in header else None
+check(bench.returncode == 0 and column is not None and
+      [int(rows[n][column]) for n in ("coarse", "fine")] == [counts["coarse"], counts["fine"]],
+      "bench scene lines with --tessellation: exit %d, %s" % (bench.returncode, bench.stdout[-300:] + bench.stderr[-300:]))
 
 # mating faces are coplanar: the housing's top and the cover's bottom share one of
 # the model's coplanar planes (they tie exactly), so lifting the cover (with its bolts) 1 mm off
