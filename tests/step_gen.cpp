@@ -1,5 +1,5 @@
 // step_gen OUTDIR: writes a small gearbox assembly with OpenCASCADE's own API
-// as STEP (AP214, millimetres), STEP (AP214, inches) and IGES; the same with
+// as STEP (AP214 in millimetres and in inches, AP242, AP203) and IGES; the same with
 // the cover and bolts lifted 1 mm off the housing (gearbox_apart.step); as an
 // assembly whose parts are files of their own (external/gearbox.step); and
 // OUTDIR/expected.json saying what was written (parts, paths, colours, bounds
@@ -139,10 +139,11 @@ const std::vector<part_record> parts = {
     {"gearbox/bolt_4", {0.9f, 0.85f, 0.2f, 1}},
 };
 
-bool write_step(const Handle(TDocStd_Document) &doc, const std::string &path, const char *unit)
+bool write_step(const Handle(TDocStd_Document) &doc, const std::string &path, const char *unit,
+                const char *schema = "AP214IS")
 {
     STEPControl_Controller::Init();
-    Interface_Static::SetCVal("write.step.schema", "AP214IS");
+    Interface_Static::SetCVal("write.step.schema", schema);
     Interface_Static::SetCVal("write.step.unit", unit);
     STEPCAFControl_Writer writer;
     writer.SetColorMode(true);
@@ -193,13 +194,22 @@ int main(int argc, char **argv)
         fprintf(stderr, "step_gen: cannot write %s/gearbox_apart.step\n", argv[1]);
         return 1;
     }
+    // tree: the file keeps the assembly tree and names (IGES: OCCT writes it
+    // flattened); colours: each part's, or only present on some part (IGES;
+    // OCCT writes AP203 with colours too, through SHAPE_APPEARANCE_LAYER_MIM)
     struct file {
         const char *name, *unit;
         double to_mm;
+        const char *tree, *colours;
         bool ok;
-    } files[] = {{"gearbox.step", "millimetre", 1.0, write_step(doc, dir + "/gearbox.step", "MM")},
-                 {"gearbox_inch.stp", "inch", 25.4, write_step(doc, dir + "/gearbox_inch.stp", "INCH")},
-                 {"gearbox.igs", "millimetre", 1.0, write_iges(doc, dir + "/gearbox.igs")}};
+    } files[] = {
+        {"gearbox.step", "millimetre", 1.0, "true", "\"parts\"", write_step(doc, dir + "/gearbox.step", "MM")},
+        {"gearbox_inch.stp", "inch", 25.4, "true", "\"parts\"", write_step(doc, dir + "/gearbox_inch.stp", "INCH")},
+        {"gearbox_ap242.step", "millimetre", 1.0, "true", "\"parts\"",
+         write_step(doc, dir + "/gearbox_ap242.step", "MM", "AP242DIS")},
+        {"gearbox_ap203.step", "millimetre", 1.0, "true", "\"parts\"",
+         write_step(doc, dir + "/gearbox_ap203.step", "MM", "AP203")},
+        {"gearbox.igs", "millimetre", 1.0, "false", "\"some part\"", write_iges(doc, dir + "/gearbox.igs")}};
     if (!write_step_external(doc, dir + "/external")) {
         fprintf(stderr, "step_gen: cannot write %s/external/gearbox.step\n", argv[1]);
         return 1;
@@ -214,8 +224,8 @@ int main(int argc, char **argv)
         return 1;
     fprintf(out, "{\"bounds_min\": [-10, 0, 0], \"bounds_max\": [110, 60, 55], \"nodes\": 2,\n \"files\": [");
     for (size_t f = 0; f < sizeof files / sizeof files[0]; ++f)
-        fprintf(out, "%s{\"name\": \"%s\", \"unit\": \"%s\", \"unit_to_mm\": %g}", f ? ", " : "", files[f].name,
-                files[f].unit, files[f].to_mm);
+        fprintf(out, "%s\n  {\"name\": \"%s\", \"unit\": \"%s\", \"unit_to_mm\": %g, \"tree\": %s, \"colours\": %s}",
+                f ? "," : "", files[f].name, files[f].unit, files[f].to_mm, files[f].tree, files[f].colours);
     fprintf(out, "],\n \"parts\": [");
     for (size_t p = 0; p < parts.size(); ++p)
         fprintf(out, "%s\n  {\"path\": \"%s\", \"colour\": [%g, %g, %g], \"opacity\": %g}", p ? "," : "",
