@@ -9,9 +9,10 @@
  * faces' triangles are placed once per instance. A part whose faces have
  * different colours (KiCad puts a package's body and pins in one solid) gives
  * one component per colour, "NAME (colour K)" in the order the colours first
- * appear. Colours: the face's, else its solid's, else the nearest instance's,
- * else the part's, else the default; surface colour first, generic next; the
- * alpha, when the file has one, is the opacity. */
+ * appear. Colours: the face's, else that of the shell, solid or compound
+ * holding it, else the nearest instance's, else the part's, else the default;
+ * surface colour first, generic next; the alpha, when the file has one, is the
+ * opacity. Names are UTF-8 (OCCT's conversion of the file's). */
 #include "model_internal.h"
 
 #include <algorithm>
@@ -95,8 +96,8 @@ struct walker {
     std::map<std::string, part_mesh> meshes; /* by the part label's entry */
     /* what becomes the model */
     std::vector<oit_model_node> nodes;
-    std::vector<std::set<std::string>> sibling_names; /* per node, then one for the top */
-    std::set<std::string> top_names, component_names;
+    std::vector<std::set<std::string>> sibling_names; /* per node: its children's names */
+    std::set<std::string> top_names, component_names;  /* the top's; every component's */
     struct component {
         std::string name;
         uint32_t node;
