@@ -114,6 +114,7 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
                                    s.import.linear_deflection_mm = 0.0;
                                    emit tessellation_changed();
                                });
+    tessellation->setObjectName("tessellation");
     tessellation->setToolTip("How STEP and IGES surfaces become triangles: the linear deflection 1/1000 (normal), "
                              "1/250 (coarse) or 1/4000 (fine) of the model's diagonal; the model is loaded again");
     on_sync([&s, tessellation] {

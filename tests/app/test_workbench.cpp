@@ -295,8 +295,9 @@ void WorkbenchTest::import_warnings_are_shown()
     QVERIFY(window->model_warnings().isEmpty());
 }
 
-// A STEP model loads with the preset's tessellation (--tessellation), which the
-// copied command and a saved preset carry.
+// A STEP model is tessellated again when the Algorithm tab's tessellation
+// changes; a preset's tessellation applies to the next load; the copied command
+// and a saved preset carry it.
 void WorkbenchTest::step_models_load_with_their_tessellation()
 {
     QString path = window->model_path();
@@ -307,22 +308,29 @@ void WorkbenchTest::step_models_load_with_their_tessellation()
     QCOMPARE(window->model()->component_count, 3u); // body, end caps, pads: one part per colour
     const uint32_t normal = window->model()->triangle_count;
     QVERIFY(!window->render_command_for_view("v.png").contains("--tessellation"));
-    QString preset = work + "/fine.json", error;
-    QFile file(preset);
-    QVERIFY(file.open(QIODevice::WriteOnly));
-    file.write("{\n  \"tessellation\": \"fine\"\n}\n");
-    file.close();
-    QVERIFY2(window->load_preset(preset, error), qPrintable(error));
-    QCOMPARE(settings().import.tessellation, OIT_TESSELLATION_FINE);
-    window->load_model(step);
+    auto *combo = window->findChild<QComboBox *>("tessellation");
+    QVERIFY(combo);
+    combo->setCurrentIndex(OIT_TESSELLATION_FINE); // loads the model again
     QVERIFY(loaded.wait(60000));
+    QCOMPARE(settings().import.tessellation, OIT_TESSELLATION_FINE);
     QVERIFY2(window->model()->triangle_count > normal, "fine makes more triangles than normal");
     QVERIFY(window->render_command_for_view("v.png").contains(" --tessellation fine"));
-    QString saved = work + "/saved.json";
+    QString saved = work + "/saved.json", error;
     QVERIFY2(window->save_preset(saved, error), qPrintable(error));
     QFile saved_file(saved);
     QVERIFY(saved_file.open(QIODevice::ReadOnly));
     QVERIFY(saved_file.readAll().contains("\"tessellation\": \"fine\""));
+    QString preset = work + "/coarse.json";
+    QFile file(preset);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("{\n  \"tessellation\": \"coarse\"\n}\n");
+    file.close();
+    QVERIFY2(window->load_preset(preset, error), qPrintable(error));
+    QCOMPARE(settings().import.tessellation, OIT_TESSELLATION_COARSE);
+    QCOMPARE(combo->currentIndex(), int(OIT_TESSELLATION_COARSE));
+    window->load_model(step);
+    QVERIFY(loaded.wait(60000));
+    QVERIFY2(window->model()->triangle_count < normal, "coarse makes fewer triangles than normal");
     QVERIFY(file.open(QIODevice::WriteOnly | QIODevice::Truncate));
     file.write("{\n  \"tessellation\": -1\n}\n");
     file.close();
