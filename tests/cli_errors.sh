@@ -16,6 +16,11 @@ head -c 4096 /dev/urandom >"$work/garbage.obj"
 expect_exit 2 "garbage.obj" -- "$oit" render --model "$work/garbage.obj" --out "$work/x.png"
 head -c 4096 /dev/urandom >"$work/garbage.bin"
 expect_exit 2 "garbage.bin" -- "$oit" info --model "$work/garbage.bin"
+# --tessellation (STEP, IGES): a level or millimetres > 0, on render and info
+expect_exit 2 "--tessellation must be coarse, normal, fine or a linear deflection in millimetres greater than 0, got '0'" -- \
+    "$oit" render --model "$work/garbage.bin" --tessellation 0 --out "$work/x.png"
+expect_exit 2 "--tessellation must be .* got 'medium'" -- "$oit" info --model "$work/garbage.bin" --tessellation medium
+expect_exit 2 "--tessellation must be .* got 'nan'" -- "$oit" info --model "$work/garbage.bin" --tessellation nan
 mkdir -p "$work/adirectory.obj"
 expect_exit 2 "director" -- "$oit" render --model "$work/adirectory.obj" --out "$work/x.png"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\np 3\n' >"$work/notriangles.obj"

@@ -4,6 +4,7 @@
 # - Assimp's headers only in model_assimp.c (the importer) and model_obj.cpp (its
 #   number reader, assimp/fast_atof.h): the finishing (model_finish.c,
 #   model_planes.c) and the import's own checks (model_import.c) include none;
+# - OpenCASCADE's headers (*.hxx) only in model_occt.cpp (the STEP and IGES reader);
 # - the finishing includes nothing of the import (model_obj.h);
 # - the reference (alg_reference.c, reference_raster.c, reference_internal.h)
 #   includes of the core only oit.h, capabilities.h, oit_shared.h (definitions) and
@@ -26,6 +27,8 @@ for file in "$core"/model/* "$core"/*.c "$core"/*.cpp "$core"/*.h; do
             model_assimp.c:* | model_obj.cpp:assimp/fast_atof.h) ;;
             *) complain "$name: includes <$header> (Assimp belongs to model_assimp.c)" ;;
             esac ;;
+        *.hxx)
+            [ "$name" = model_occt.cpp ] || complain "$name: includes <$header> (OpenCASCADE belongs to model_occt.cpp)" ;;
         model_obj.h)
             case $name in model_finish.c | model_planes.c) complain "$name: includes $header (the finishing reads no file)" ;; esac ;;
         reference_internal.h)
@@ -47,4 +50,4 @@ for file in "$core"/model/* "$core"/alg_reference.c "$core"/reference_raster.c "
     [ "$lines" -le 1000 ] || complain "$(basename "$file"): $lines lines (at most 1,000)"
 done
 [ "$status" -eq 0 ] || fail "src/core's layers"
-echo "src/core: Assimp in model_assimp.c (and model_obj.cpp's number reader) only, the finishing and the reference apart, $(ls "$core"/model | wc -l) model files and the reference's 3 under 1,000 lines"
+echo "src/core: Assimp in model_assimp.c (and model_obj.cpp's number reader) only, OpenCASCADE in model_occt.cpp only, the finishing and the reference apart, $(ls "$core"/model | wc -l) model files and the reference's 3 under 1,000 lines"

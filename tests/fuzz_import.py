@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""fuzz_import.py OIT WORK [--count N] [--seed S] [--keep DIR]: a seeded mutation
-fuzzer over small OBJ, PLY, STL, glTF (text, with its .bin beside), GLB,
-COLLADA, FBX, 3DS and IFC files.
+"""fuzz_import.py OIT WORK [--count N] [--seed S] [--keep DIR] [--seed-file PATH...]:
+a seeded mutation fuzzer over small OBJ, PLY, STL, glTF (text, with its .bin
+beside), GLB, COLLADA, FBX, 3DS and IFC files, and the files given with
+--seed-file (the suite gives a STEP and an IGES file, read by OpenCASCADE).
 
 Every mutant goes through `oit info --model MUTANT`, which imports it in a
 contained worker process (src/core/model/model_contained.c). Each run must end in
@@ -135,6 +136,7 @@ def main() -> int:
     parser.add_argument("--seed", type=int, default=20261201)
     parser.add_argument("--keep")
     parser.add_argument("--timeout", type=float, default=60.0)
+    parser.add_argument("--seed-file", action="append", default=[])
     args = parser.parse_args()
 
     seeds = []
@@ -145,6 +147,9 @@ def main() -> int:
                 seeds.append((os.path.splitext(path)[1].lower(), f.read()))
     seeds.append((".obj", OWN_OBJ))
     seeds.append((".ifc", OWN_IFC))
+    for path in args.seed_file:
+        with open(path, "rb") as f:
+            seeds.append((os.path.splitext(path)[1].lower(), f.read()))
     if len(seeds) < 4:
         print(f"fuzz_import: too few seed files under {ASSIMP_MODELS} (Debian: assimp-testmodels)", file=sys.stderr)
         return 1

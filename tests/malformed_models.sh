@@ -8,6 +8,10 @@ source "$(dirname "$0")/lib.sh"
 oit=$1 data=$2 work=$3
 rm -rf "$work"; mkdir -p "$work"
 export OIT_IMPORT_CPU_SECONDS=2
+# knot multiplicities no 120 kB file could hold (made here from a KiCad model, tests/data/kicad)
+sed -z "s/#34 = B_SPLINE_CURVE_WITH_KNOTS('',1,(#35,#36),.UNSPECIFIED.,.F.,.F.,(2,\n2)/#34 = B_SPLINE_CURVE_WITH_KNOTS('',1,(#35,#36),.UNSPECIFIED.,.F.,.F.,(2000000000,\n2000000000)/" \
+    "$data/../kicad/SOT-23.step" >"$work/huge_knots.step"
+cmp -s "$data/../kicad/SOT-23.step" "$work/huge_knots.step" && fail "huge_knots.step: the edit did not apply"
 for command in info render; do
     extra=()
     [ "$command" = render ] && extra=(--size 16x16 --out "$work/never.png")
@@ -19,6 +23,22 @@ for command in info render; do
         "$oit" "$command" --model "$data/ply_truncated_header.ply" "${extra[@]}"
     expect_exit 2 "ply_huge_count.ply: PLY header declares 4000000000 elements" -- \
         "$oit" "$command" --model "$data/ply_huge_count.ply" "${extra[@]}"
+    # STEP and IGES (OpenCASCADE): cut short, corrupt, an entity numbered near 2^31,
+    # B-spline knot multiplicities of 2e9 in a 120 kB file, parts in files that are missing
+    expect_exit 2 "step_truncated.step: cannot import: not a readable STEP file" -- \
+        "$oit" "$command" --model "$data/step_truncated.step" "${extra[@]}"
+    expect_exit 2 "iges_garbage.igs: cannot import: OpenCASCADE read the IGES file but could not transfer" -- \
+        "$oit" "$command" --model "$data/iges_garbage.igs" "${extra[@]}"
+    expect_exit 2 "step_huge_entity_number.step: cannot import: OpenCASCADE read the STEP file but could not transfer" -- \
+        "$oit" "$command" --model "$data/step_huge_entity_number.step" "${extra[@]}"
+    # (OpenCASCADE gives up on the curve in 0.4 s; under AddressSanitizer the 2 s limit may come first)
+    expect_exit 2 "huge_knots.step: (no triangles \(the STEP file holds no shapes|the importer timed out)" -- \
+        "$oit" "$command" --model "$work/huge_knots.step" "${extra[@]}"
+    expect_exit 2 "step_missing_part_files.step: cannot import: it refers to the file '[a-z]+\.stp', which cannot be read" -- \
+        "$oit" "$command" --model "$data/step_missing_part_files.step" "${extra[@]}"
+    # the worker's limits cover OpenCASCADE too: a tessellation far too fine for the CPU limit
+    OIT_IMPORT_CPU_SECONDS=1 expect_exit 2 "SOT-23.step: the importer timed out \(more than 1 s of CPU time" -- \
+        "$oit" "$command" --model "$data/../kicad/SOT-23.step" --tessellation 0.0000001 "${extra[@]}"
 done
 [ ! -e "$work/never.png" ] || fail "an image was written for a model that did not load"
 # the same files in the calling process: the importer really does crash and

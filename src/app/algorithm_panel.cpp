@@ -104,4 +104,23 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
         background->setText(colour_text(s.background));
     });
     form->addRow("background (--background)", background);
+    // items in oit_tessellation_level's order, then a deflection in millimetres a preset gave
+    auto *tessellation = combo({"normal", "coarse", "fine", "the preset's (millimetres)"},
+                               [&s] { return s.import.linear_deflection_mm > 0 ? 3 : int(s.import.tessellation); },
+                               [this, &s](int i) {
+                                   if (i >= OIT_TESSELLATION_LEVEL_COUNT)
+                                       return; // (a number comes from a preset only)
+                                   s.import.tessellation = oit_tessellation_level(i);
+                                   s.import.linear_deflection_mm = 0.0;
+                                   emit tessellation_changed();
+                               });
+    tessellation->setObjectName("tessellation");
+    tessellation->setToolTip("How STEP and IGES surfaces become triangles: the linear deflection 1/1000 (normal), "
+                             "1/250 (coarse) or 1/4000 (fine) of the model's diagonal; the model is loaded again");
+    on_sync([&s, tessellation] {
+        tessellation->setItemText(3, s.import.linear_deflection_mm > 0
+                                         ? QString("%1 mm (the preset's)").arg(s.import.linear_deflection_mm)
+                                         : QString("the preset's (millimetres)"));
+    });
+    form->addRow("tessellation (--tessellation, STEP/IGES)", tessellation);
 }

@@ -9,4 +9,8 @@ class AlgorithmPanel : public SettingsPanel {
     Q_OBJECT
 public:
     explicit AlgorithmPanel(SettingsModel &settings, QWidget *parent = nullptr);
+
+signals:
+    // --tessellation changed: a STEP or IGES model must be loaded again
+    void tessellation_changed();
 };

@@ -162,6 +162,12 @@ QTabWidget *MainWindow::build_tabs()
         connect(panel, &SettingsPanel::edited, this, &MainWindow::render_now);
         connect(panel, &SettingsPanel::changed, this, &MainWindow::settings_changed);
     }
+    // a STEP or IGES model is tessellated again (the other formats have their triangles)
+    connect(algorithm_panel_, &AlgorithmPanel::tessellation_changed, this, [this] {
+        static const QStringList brep = {"step", "stp", "iges", "igs"};
+        if (!model_path_.isEmpty() && brep.contains(QFileInfo(model_path_).suffix().toLower()))
+            load_model(model_path_);
+    });
     connect(parts_panel_, &PartsPanel::parts_changed, this, [this] {
         settings_->render_settings().part_alpha = parts_panel_->alpha();
         settings_->render_settings().part_visible = parts_panel_->visible();
@@ -537,7 +543,7 @@ void MainWindow::load_model(const QString &path)
     progress_label_->show();
     status_label_->setText("loading " + loading_path_ + "…");
     log_message("load", "reading " + loading_path_);
-    loader_->start(loading_path_);
+    loader_->start(loading_path_, settings_->render_settings().import);
 }
 
 void MainWindow::load_failed(const QString &message)

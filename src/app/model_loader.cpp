@@ -39,18 +39,19 @@ bool ModelLoader::running() const
     return watcher_->isRunning();
 }
 
-bool ModelLoader::start(const QString &path)
+bool ModelLoader::start(const QString &path, const oit_import_options &import)
 {
     if (watcher_->isRunning())
         return false;
     unclaimed_ = true;
-    watcher_->setFuture(QtConcurrent::run([path] {
+    watcher_->setFuture(QtConcurrent::run([path, import] {
         auto *result = new Result;
         result->path = path;
         oit_error err{};
         QByteArray bytes = QFile::encodeName(path);
         // in a contained worker process: a parser crash or hang is an error, not our crash
-        result->ok = oit_model_load_contained(bytes.constData(), nullptr, &result->model, &err) == OIT_OK;
+        result->ok =
+            oit_model_load_contained_with(bytes.constData(), nullptr, &import, &result->model, &err) == OIT_OK;
         result->error = QString::fromUtf8(err.message);
         return result;
     }));

@@ -26,7 +26,8 @@ public:
     ~ModelLoader() override;
 
     // Start reading path off the GUI thread; false (nothing starts) while a load runs.
-    bool start(const QString &path);
+    // import: how STEP and IGES files are tessellated.
+    bool start(const QString &path, const oit_import_options &import = oit_import_options{});
     bool running() const;
 
 signals:

@@ -133,6 +133,12 @@ bool parse_split_mode(const std::string &text, SplitMode &mode)
     return false;
 }
 
+std::string tessellation_name(const oit_import_options &import)
+{
+    return import.linear_deflection_mm > 0 ? exact_number(import.linear_deflection_mm)
+                                           : oit_tessellation_level_word(import.tessellation);
+}
+
 std::string view_name(const oit_modulation &m)
 {
     std::string word = oit_setting_word(OIT_SETTING_VIEW, m.view);
@@ -251,6 +257,8 @@ std::string render_command(const std::string &oit_program, const std::string &mo
     }
     if (s.contrast != 0.0f && s.contrast != 1.0f)
         c << " --contrast " << number(s.contrast);
+    if (s.import.tessellation != OIT_TESSELLATION_NORMAL || s.import.linear_deflection_mm > 0)
+        c << " --tessellation " << tessellation_name(s.import);
     if (s.error_view) {
         // the same frame with the CPU reference: the figures, and the map beside the image
         std::string map = out_path.empty() ? "error.png" : out_path;
@@ -437,6 +445,10 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     add(d, "split", Value(rapidjson::StringRef(split_mode_name(s.split))), a);
     add(d, "split-algorithm", string_value(s.split_algorithm, a), a);
     add(d, "wipe", Value(double(s.wipe)), a);
+    if (s.import.linear_deflection_mm > 0)
+        add(d, "tessellation", Value(s.import.linear_deflection_mm), a);
+    else
+        add(d, "tessellation", Value(rapidjson::StringRef(oit_tessellation_level_word(s.import.tessellation))), a);
     if (model && s.part_alpha.size() == model->component_count) {
         Value alphas(rapidjson::kObjectType), hidden(rapidjson::kArrayType);
         for (uint32_t i = 0; i < model->component_count; ++i) {
@@ -479,7 +491,7 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         "neighbours", "curvature-neighbours", "curvature-effect", "epsilon-max", "distance", "focus-region",
         "fields", "diffusion-iterations", "blur-iterations", "lambda-alpha", "lambda-beta", "lambda-gamma",
         "halo-colour", "last-layer-opaque", "focus-point", "focus-plane", "focus-box", "contrast",
-        "component-alpha", "hide", "camera",
+        "component-alpha", "hide", "camera", "tessellation",
         // the workbench's comparisons (the first is `oit render`'s flag too)
         "error-vs-reference", "split", "split-algorithm", "wipe"};
     for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
@@ -612,6 +624,14 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
     }
     if (!r.number(d, "wipe", 0.0, 1.0, s.wipe))
         return false;
+    if (d.HasMember("tessellation")) {
+        const Value &t = d["tessellation"];
+        std::string text = t.IsString() ? t.GetString() : t.IsNumber() ? exact_number(t.GetDouble()) : "";
+        oit_error err{};
+        if (text.empty() || oit_import_options_parse_tessellation(text.c_str(), &s.import, &err) != OIT_OK)
+            return r.fail("tessellation", "must be coarse, normal, fine or a linear deflection in millimetres "
+                                          "greater than 0");
+    }
     if (model) {
         s.reset_parts(*model);
         auto find_part = [&](const char *name) -> int {

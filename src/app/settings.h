@@ -35,6 +35,9 @@ struct RenderSettings {
     SplitMode split = SplitMode::Off;
     std::string split_algorithm = "blend"; // side B; side A is `algorithm`
     float wipe = 0.5f;                 // the wipe line, 0..1 of the view's width
+    // how STEP and IGES files are tessellated (--tessellation; applies when a
+    // model is loaded)
+    oit_import_options import{};
 
     RenderSettings();
     void reset_parts(const oit_model &model);
@@ -45,6 +48,9 @@ struct RenderSettings {
 // points into storage, which must outlive the frame.
 oit_frame_settings make_frame(const RenderSettings &settings, const oit_model &model, const Camera &camera,
                               int width, int height, std::vector<float> &storage);
+
+// --tessellation's value: "normal", "coarse", "fine" or the millimetres.
+std::string tessellation_name(const oit_import_options &import);
 
 // --view value ("heatmap", "peel-limit:4", ...) and back.
 std::string view_name(const oit_modulation &modulation);

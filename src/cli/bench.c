@@ -461,6 +461,7 @@ int command_bench(int argc, char **argv)
                 continue;
             /* a model that does not load fails its rows; the other scenes go on */
             oit_error load_err = {{0}};
+            s.import = scene->options.import; /* its --tessellation */
             oit_status load = session_set_model(&s, scene->options.model_path, &load_err);
             if (use_bundle)
                 bundle_scene_begin(bundle, scene);

@@ -118,7 +118,10 @@ static void print_render_help(FILE *out)
             "  --alpha A              uniform opacity in [0, 1] (default 0.5), times each material's opacity\n"
             "  --shading MODE         flat | headlight (default headlight: two-sided diffuse from the eye)\n"
             "  --background R,G,B     each in [0, 1] (default 1,1,1)\n"
-            "  --backend NAME         egl | osmesa (default egl)\n",
+            "  --backend NAME         egl | osmesa (default egl)\n"
+            "  --tessellation T       STEP and IGES: coarse | normal | fine (linear deflection 1/250,\n"
+            "                         1/1000, 1/4000 of the model's diagonal; default normal) or a\n"
+            "                         linear deflection in millimetres\n",
             names);
     fprintf(out, "  --max-memory MB        budget for growing buffers such as the fragment pool (default\n"
                  "                         1024); read by %s\n",
@@ -198,7 +201,7 @@ static int command_render(int argc, char **argv)
         return report(status, &err);
 
     session s;
-    status = session_open(&s, o.model_path, o.backend, o.config.debug, &err);
+    status = session_open_import(&s, o.model_path, o.backend, o.config.debug, &o.import, &err);
     render_result result;
     memset(&result, 0, sizeof result);
     if (status == OIT_OK)
@@ -350,13 +353,19 @@ static int command_info(int argc, char **argv)
 {
     const char *model_path = NULL;
     bool json = false;
+    oit_import_options import = {OIT_TESSELLATION_NORMAL, 0.0};
+    oit_error err = {{0}};
     for (int i = 0; i < argc; ++i) {
         if (strcmp(argv[i], "--model") == 0 && i + 1 < argc)
             model_path = argv[++i];
         else if (strcmp(argv[i], "--json") == 0)
             json = true;
-        else if (strcmp(argv[i], "--help") == 0) {
-            fputs("usage: oit info --model PATH [--json]\n", stdout);
+        else if (strcmp(argv[i], "--tessellation") == 0 && i + 1 < argc) {
+            oit_status parsed = oit_import_options_parse_tessellation(argv[++i], &import, &err);
+            if (parsed != OIT_OK)
+                return report(parsed, &err);
+        } else if (strcmp(argv[i], "--help") == 0) {
+            fputs("usage: oit info --model PATH [--json] [--tessellation coarse|normal|fine|MM]\n", stdout);
             return EXIT_OK;
         } else
             return usage_error("info: unknown option or missing value '%s'", argv[i]);
@@ -364,11 +373,10 @@ static int command_info(int argc, char **argv)
     if (!model_path)
         return usage_error("info needs --model PATH%s", "");
     oit_model m;
-    oit_error err = {{0}};
     /* a FIFO, /dev/zero or a directory is refused before the importer sees it */
     oit_status status = oit_check_regular_file(model_path, "model", &err);
     if (status == OIT_OK)
-        status = oit_model_load_contained(model_path, NULL, &m, &err);
+        status = oit_model_load_contained_with(model_path, NULL, &import, &m, &err);
     if (status != OIT_OK)
         return report(status, &err);
     print_model_warnings(&m);
@@ -386,8 +394,19 @@ static int command_info(int argc, char **argv)
                m.vertex_count, m.welded_count, m.triangle_count, m.plane_count, m.component_count);
         printf(", \"bounds_min\": [%.9g, %.9g, %.9g], \"bounds_max\": [%.9g, %.9g, %.9g]", lo[0], lo[1], lo[2],
                hi[0], hi[1], hi[2]);
-        printf(", \"centre\": [%.9g, %.9g, %.9g], \"radius\": %g, \"longest_edge\": %.9g, \"parts\": [",
+        printf(", \"centre\": [%.9g, %.9g, %.9g], \"radius\": %g, \"longest_edge\": %.9g",
                m.origin[0], m.origin[1], m.origin[2], m.radius, m.longest_edge);
+        if (m.unit_name[0]) {
+            printf(", \"unit\": ");
+            json_string(stdout, m.unit_name);
+            printf(", \"unit_to_mm\": %.9g", m.unit_to_mm);
+        }
+        if (m.tessellation_linear_mm > 0)
+            printf(", \"tessellation\": {\"linear_deflection_mm\": %.6g, \"angular_deflection_deg\": %.4g, "
+                   "\"triangles\": %u, \"ms\": %.1f}",
+                   m.tessellation_linear_mm, m.tessellation_angular_rad * (180.0 / 3.14159265358979324), m.triangle_count,
+                   m.tessellation_ms);
+        printf(", \"nodes\": %u, \"parts\": [", m.node_count);
         for (uint32_t c = 0; c < m.component_count; ++c) {
             const oit_component *p = &m.components[c];
             char path[OIT_NAME_SIZE * 40]; /* 32 levels of names and the part (model_assimp.c) */
@@ -412,6 +431,14 @@ static int command_info(int argc, char **argv)
         printf("sphere      centre (%.9g, %.9g, %.9g), radius %g\n", m.origin[0], m.origin[1], m.origin[2],
                m.radius);
         printf("longest edge %g\n", m.longest_edge);
+        if (m.unit_name[0])
+            printf("unit        %s (%.9g mm; positions in mm)\n", m.unit_name, m.unit_to_mm);
+        if (m.tessellation_linear_mm > 0)
+            printf("tessellation linear deflection %.6g mm, angular %.4g degrees: %u triangles in %.1f ms\n",
+                   m.tessellation_linear_mm, m.tessellation_angular_rad * (180.0 / 3.14159265358979324), m.triangle_count,
+                   m.tessellation_ms);
+        if (m.node_count)
+            printf("assembly    %u nodes\n", m.node_count);
         for (uint32_t c = 0; c < m.component_count; ++c) {
             const oit_component *p = &m.components[c];
             printf("  %-32s colour (%.3f, %.3f, %.3f) opacity %.3f, %u triangles\n", p->name, p->colour[0],

@@ -184,6 +184,9 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     if (strcmp(flag, "--model") == 0) {
         NEED_VALUE();
         o->model_path = value;
+    } else if (strcmp(flag, "--tessellation") == 0) {
+        NEED_VALUE();
+        CHECK(oit_import_options_parse_tessellation(value, &o->import, err));
     } else if (strcmp(flag, "--out") == 0) {
         NEED_VALUE();
         o->out_path = value;
@@ -336,7 +339,15 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
 oit_status session_open(session *s, const char *model_path, oit_backend backend, bool debug,
                         oit_error *err)
 {
+    return session_open_import(s, model_path, backend, debug, NULL, err);
+}
+
+oit_status session_open_import(session *s, const char *model_path, oit_backend backend, bool debug,
+                               const oit_import_options *import, oit_error *err)
+{
     memset(s, 0, sizeof *s);
+    if (import)
+        s->import = *import;
     s->backend = backend;
     s->debug = debug;
     return session_set_model(s, model_path, err);
@@ -375,7 +386,7 @@ oit_status session_set_model(session *s, const char *model_path, oit_error *err)
     /* a FIFO, /dev/zero or a directory is refused before the importer sees it */
     oit_status status = oit_check_regular_file(model_path, "model", err);
     if (status == OIT_OK)
-        status = oit_model_load_contained(model_path, NULL, &s->model, err);
+        status = oit_model_load_contained_with(model_path, NULL, &s->import, &s->model, err);
     if (status != OIT_OK)
         return status;
     print_model_warnings(&s->model);

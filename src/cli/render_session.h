@@ -53,6 +53,7 @@ typedef struct render_options {
     oit_algorithm_config config;
     int frames;
     bool json;
+    oit_import_options import; /* --tessellation (STEP, IGES) */
 } render_options;
 
 void render_options_defaults(render_options *o);
@@ -74,10 +75,14 @@ typedef struct session {
     bool gpu_scene_uploaded;
     oit_scene cpu_scene;
     char shader_dir[4096];
+    oit_import_options import; /* how session_set_model imports */
 } session;
 
 oit_status session_open(session *s, const char *model_path, oit_backend backend, bool debug,
                         oit_error *err);
+/* The same with import options (NULL: the defaults). */
+oit_status session_open_import(session *s, const char *model_path, oit_backend backend, bool debug,
+                               const oit_import_options *import, oit_error *err);
 /* Replaces the model, keeping the GL context (bench: one context per process,
  * each model uploaded once). */
 oit_status session_set_model(session *s, const char *model_path, oit_error *err);

@@ -140,7 +140,34 @@ typedef struct oit_model {
                               (welded) vertex with it, itself included. A fragment of a
                               triangle sharing a vertex with t lies within 2 x reach[t] of
                               any fragment of t: ib's neighbour search stops there */
+    /* B-rep files (STEP, IGES; model_occt.cpp): the file's length unit ("inch",
+     * "millimetre") and millimetres per unit; the positions are in millimetres.
+     * "" and 0 for formats that declare no unit. */
+    char unit_name[24];
+    double unit_to_mm;
+    /* Their tessellation: linear deflection (mm) and angular deflection
+     * (radians) used, and the milliseconds it took; 0 when not tessellated. */
+    double tessellation_linear_mm, tessellation_angular_rad, tessellation_ms;
 } oit_model;
+
+/* How B-rep files (STEP, IGES) are tessellated. Zeroed: normal detail. */
+typedef enum oit_tessellation_level {
+    OIT_TESSELLATION_NORMAL = 0,
+    OIT_TESSELLATION_COARSE,
+    OIT_TESSELLATION_FINE,
+    OIT_TESSELLATION_LEVEL_COUNT
+} oit_tessellation_level;
+typedef struct oit_import_options {
+    oit_tessellation_level tessellation; /* linear deflection a fraction of the model's
+                                            bounding-box diagonal (docs/cli.md) */
+    double linear_deflection_mm;         /* > 0: this linear deflection instead */
+} oit_import_options;
+/* "coarse", "normal", "fine" or a linear deflection in millimetres (a number
+ * > 0 and finite) into options; anything else is OIT_E_INPUT naming it. */
+oit_status oit_import_options_parse_tessellation(const char *text, oit_import_options *options,
+                                                 oit_error *err);
+/* The words of the levels, indexed by oit_tessellation_level. */
+const char *oit_tessellation_level_word(oit_tessellation_level level);
 
 #define OIT_MODEL_WARNING_LIMIT 16
 /* Coplanar tolerance, in ulps of the model's largest file coordinate (the
@@ -150,9 +177,12 @@ typedef struct oit_model {
  * (docs/algorithms.md, "Ties and precision"). */
 #define OIT_COPLANAR_ULPS 2
 
-/* Import any format Assimp reads. Bad files give OIT_E_INPUT and a message
- * naming the file and the problem. */
+/* Import any format Assimp reads, and STEP and IGES through OpenCASCADE. Bad
+ * files give OIT_E_INPUT and a message naming the file and the problem. */
 oit_status oit_model_load(const char *path, oit_model *out, oit_error *err);
+/* The same with import options (NULL: the defaults). */
+oit_status oit_model_load_with(const char *path, const oit_import_options *options, oit_model *out,
+                               oit_error *err);
 /* Validate indices and coordinates, move the positions to be relative to
  * the model's centre (origin), compute missing normals, welded ids, bounds,
  * bounding sphere and coplanar planes. Called by oit_model_load; usable for
@@ -199,6 +229,10 @@ void oit_import_limits_for_file(long long file_bytes, oit_import_limits *limits)
 /* limits NULL: oit_import_limits_for_file of the file's size. */
 oit_status oit_model_load_contained(const char *path, const oit_import_limits *limits, oit_model *out,
                                     oit_error *err);
+/* The same with import options (NULL: the defaults); they reach the worker. */
+oit_status oit_model_load_contained_with(const char *path, const oit_import_limits *limits,
+                                         const oit_import_options *options, oit_model *out,
+                                         oit_error *err);
 bool oit_import_worker_requested(int argc, char **argv);
 int oit_import_worker_main(int argc, char **argv);
 

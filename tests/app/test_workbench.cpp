@@ -268,6 +268,12 @@ void WorkbenchTest::bad_model_keeps_the_previous_one()
              qPrintable(window->last_error()));
     QCOMPARE(window->model(), before);
     QCOMPARE(compare(frame(), image, 0).max, 0);
+    // a STEP assembly whose part files are missing (OpenCASCADE): one line, the model kept
+    window->load_model(MainWindow::source_root() + "/tests/data/malformed/step_missing_part_files.step");
+    QVERIFY(failed.wait(60000));
+    QVERIFY2(window->last_error().contains("step_missing_part_files.step: cannot import: it refers to the file"),
+             qPrintable(window->last_error()));
+    QCOMPARE(window->model(), before);
 }
 
 void WorkbenchTest::import_warnings_are_shown()
@@ -287,6 +293,52 @@ void WorkbenchTest::import_warnings_are_shown()
     window->load_model(path);
     QVERIFY(loaded.wait(60000));
     QVERIFY(window->model_warnings().isEmpty());
+}
+
+// A STEP model is tessellated again when the Algorithm tab's tessellation
+// changes; a preset's tessellation applies to the next load; the copied command
+// and a saved preset carry it.
+void WorkbenchTest::step_models_load_with_their_tessellation()
+{
+    QString path = window->model_path();
+    QString step = MainWindow::source_root() + "/tests/data/kicad/R_0603_1608Metric.step";
+    QSignalSpy loaded(window, &MainWindow::model_loaded);
+    window->load_model(step);
+    QVERIFY(loaded.wait(60000));
+    QCOMPARE(window->model()->component_count, 3u); // body, end caps, pads: one part per colour
+    const uint32_t normal = window->model()->triangle_count;
+    QVERIFY(!window->render_command_for_view("v.png").contains("--tessellation"));
+    auto *combo = window->findChild<QComboBox *>("tessellation");
+    QVERIFY(combo);
+    combo->setCurrentIndex(OIT_TESSELLATION_FINE); // loads the model again
+    QVERIFY(loaded.wait(60000));
+    QCOMPARE(settings().import.tessellation, OIT_TESSELLATION_FINE);
+    QVERIFY2(window->model()->triangle_count > normal, "fine makes more triangles than normal");
+    QVERIFY(window->render_command_for_view("v.png").contains(" --tessellation fine"));
+    QString saved = work + "/saved.json", error;
+    QVERIFY2(window->save_preset(saved, error), qPrintable(error));
+    QFile saved_file(saved);
+    QVERIFY(saved_file.open(QIODevice::ReadOnly));
+    QVERIFY(saved_file.readAll().contains("\"tessellation\": \"fine\""));
+    QString preset = work + "/coarse.json";
+    QFile file(preset);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("{\n  \"tessellation\": \"coarse\"\n}\n");
+    file.close();
+    QVERIFY2(window->load_preset(preset, error), qPrintable(error));
+    QCOMPARE(settings().import.tessellation, OIT_TESSELLATION_COARSE);
+    QCOMPARE(combo->currentIndex(), int(OIT_TESSELLATION_COARSE));
+    window->load_model(step);
+    QVERIFY(loaded.wait(60000));
+    QVERIFY2(window->model()->triangle_count < normal, "coarse makes fewer triangles than normal");
+    QVERIFY(file.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    file.write("{\n  \"tessellation\": -1\n}\n");
+    file.close();
+    QVERIFY(!window->load_preset(preset, error));
+    QVERIFY2(error.startsWith(preset + ":2:") && error.contains("tessellation"), qPrintable(error));
+    settings().import = oit_import_options{};
+    window->load_model(path);
+    QVERIFY(loaded.wait(60000));
 }
 
 void WorkbenchTest::presets_round_trip_and_name_errors()

@@ -208,6 +208,7 @@ private slots:
     void export_equals_oit_render();
     void bad_model_keeps_the_previous_one();
     void import_warnings_are_shown();
+    void step_models_load_with_their_tessellation();
     void presets_round_trip_and_name_errors();
     void settings_persist();
     void options_an_algorithm_cannot_express_are_left_out();

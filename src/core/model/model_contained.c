@@ -37,7 +37,7 @@
 extern char **environ;
 
 #define STREAM_MAGIC 0x4d54494fu /* "OITM" */
-#define STREAM_VERSION 2u
+#define STREAM_VERSION 3u
 
 static const char *base_name(const char *path)
 {
@@ -125,14 +125,16 @@ bool oit_import_worker_requested(int argc, char **argv)
 int oit_import_worker_main(int argc, char **argv)
 {
     /* argv: program, flag, path, cpu seconds, memory bytes, wall seconds, the
-     * parent's pid; the result goes to stdout */
-    if (argc != 7)
+     * parent's pid, the tessellation level and linear deflection (the import
+     * options); the result goes to stdout */
+    if (argc != 9)
         return 2;
     const char *path = argv[2];
     double cpu_seconds = atof(argv[3]);
     unsigned long long memory_bytes = strtoull(argv[4], NULL, 10);
     double wall_seconds = atof(argv[5]);
     pid_t parent = (pid_t)atol(argv[6]);
+    oit_import_options options = {(oit_tessellation_level)atoi(argv[7]), atof(argv[8])};
     /* the worker dies with its parent: killed meanwhile, it would wait for ever
      * on a file that never ends without using CPU time, the one limit it has */
     prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -162,7 +164,7 @@ int oit_import_worker_main(int argc, char **argv)
 #endif
     oit_model model;
     oit_error err = {{0}};
-    oit_status status = oit_model_load(path, &model, &err);
+    oit_status status = oit_model_load_with(path, &options, &model, &err);
     uint32_t header[3] = {STREAM_MAGIC, STREAM_VERSION, (uint32_t)status};
     bool ok = write_all(1, header, sizeof header);
     if (status != OIT_OK) {
@@ -298,9 +300,19 @@ static bool in_process_requested(void)
     return mode && strcmp(mode, "in-process") == 0;
 }
 
-oit_status oit_model_load_contained(const char *path, const oit_import_limits *limits_in, oit_model *out,
+oit_status oit_model_load_contained(const char *path, const oit_import_limits *limits, oit_model *out,
                                     oit_error *err)
 {
+    return oit_model_load_contained_with(path, limits, NULL, out, err);
+}
+
+oit_status oit_model_load_contained_with(const char *path, const oit_import_limits *limits_in,
+                                         const oit_import_options *options_in, oit_model *out,
+                                         oit_error *err)
+{
+    oit_import_options options = {OIT_TESSELLATION_NORMAL, 0.0};
+    if (options_in)
+        options = *options_in;
     memset(out, 0, sizeof *out);
     if (!path || !*path)
         return oit_fail(err, OIT_E_INPUT, "no model file given");
@@ -310,7 +322,7 @@ oit_status oit_model_load_contained(const char *path, const oit_import_limits *l
                         "OIT_IMPORT_CPU_SECONDS=%.40s: must be a number of seconds greater than 0 and at most %.0f",
                         getenv("OIT_IMPORT_CPU_SECONDS"), OIT_IMPORT_CPU_SECONDS_MAX);
     if (in_process_requested())
-        return oit_model_load(path, out, err);
+        return oit_model_load_with(path, &options, out, err);
     const char *name = base_name(path);
     /* what the worker would refuse first, refused here without a process */
     struct stat info;
@@ -334,12 +346,15 @@ oit_status oit_model_load_contained(const char *path, const oit_import_limits *l
     int pipe_fds[2];
     if (pipe2(pipe_fds, O_CLOEXEC) != 0)
         return oit_fail(err, OIT_E_RUNTIME, "%s: cannot start the import worker: pipe: %s", name, strerror(errno));
-    char cpu[32], memory[32], wall[32], parent[32];
+    char cpu[32], memory[32], wall[32], parent[32], level[16], deflection[32];
     snprintf(cpu, sizeof cpu, "%.17g", limits.cpu_seconds); /* (not %.0f: 0.4 s would be 0, no limit) */
     snprintf(memory, sizeof memory, "%llu", (unsigned long long)limits.memory_bytes);
     snprintf(wall, sizeof wall, "%.17g", limits.wall_seconds);
     snprintf(parent, sizeof parent, "%ld", (long)getpid());
-    char *const argv[] = {self, (char *)OIT_IMPORT_WORKER_FLAG, (char *)path, cpu, memory, wall, parent, NULL};
+    snprintf(level, sizeof level, "%d", (int)options.tessellation);
+    snprintf(deflection, sizeof deflection, "%.17g", options.linear_deflection_mm);
+    char *const argv[] = {self,   (char *)OIT_IMPORT_WORKER_FLAG, (char *)path, cpu, memory, wall, parent, level,
+                          deflection, NULL};
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], 1);

@@ -1,6 +1,7 @@
 /* model_import.c: oit_model_load, a model file made a finished model. It
  * checks the file (kind, PLY and OFF headers), reads it through the OBJ reader
- * (model_obj.cpp) or Assimp (model_assimp.c), names the parts, keeps the
+ * (model_obj.cpp), OpenCASCADE (STEP, IGES: model_occt.cpp) or Assimp
+ * (model_assimp.c), names the parts, keeps the
  * warnings, and calls the finishing (oit_model_finish, model_finish.c). No
  * Assimp header here: model_internal.h shows the layers. */
 #include <ctype.h>
@@ -462,7 +463,42 @@ done:
     return status;
 }
 
+static const char *const tessellation_words[OIT_TESSELLATION_LEVEL_COUNT] = {"normal", "coarse", "fine"};
+
+const char *oit_tessellation_level_word(oit_tessellation_level level)
+{
+    return (int)level >= 0 && level < OIT_TESSELLATION_LEVEL_COUNT ? tessellation_words[level] : "?";
+}
+
+oit_status oit_import_options_parse_tessellation(const char *text, oit_import_options *options,
+                                                 oit_error *err)
+{
+    for (int level = 0; level < OIT_TESSELLATION_LEVEL_COUNT; ++level)
+        if (text && strcmp(text, tessellation_words[level]) == 0) {
+            options->tessellation = (oit_tessellation_level)level;
+            options->linear_deflection_mm = 0.0;
+            return OIT_OK;
+        }
+    char *end = NULL;
+    errno = 0;
+    double value = text ? strtod(text, &end) : 0.0;
+    if (!text || end == text || *end != '\0' || errno == ERANGE || !isfinite(value) || !(value > 0.0))
+        return oit_fail(err, OIT_E_INPUT,
+                        "--tessellation must be coarse, normal, fine or a linear deflection in millimetres "
+                        "greater than 0, got '%.40s'",
+                        text ? text : "");
+    options->tessellation = OIT_TESSELLATION_NORMAL;
+    options->linear_deflection_mm = value;
+    return OIT_OK;
+}
+
 oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
+{
+    return oit_model_load_with(path, NULL, out, err);
+}
+
+oit_status oit_model_load_with(const char *path, const oit_import_options *options, oit_model *out,
+                               oit_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!path || !*path)
@@ -477,9 +513,13 @@ oit_status oit_model_load(const char *path, oit_model *out, oit_error *err)
         return oit_fail(err, OIT_E_RUNTIME, "%s: out of memory", name);
     bool any_normals = false;
     const char *extension = strrchr(name, '.');
+    occt_format brep = oit_occt_format(path, name);
     if (extension && strcasecmp(extension, ".obj") == 0)
         status = read_obj(path, name, file_size, warnings, out, &any_normals, err);
-    else
+    else if (brep != OCCT_FORMAT_NONE) {
+        status = oit_model_read_occt(path, name, brep, options, warnings, out, err);
+        any_normals = true;
+    } else
         status = oit_model_read_assimp(path, name, file_size, warnings, out, &any_normals, err);
     if (status == OIT_OK)
         check_line_end(path, warnings);

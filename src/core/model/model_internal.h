@@ -2,8 +2,9 @@
  * The layers, each calling only the ones below it:
  *   oit_model_load (model_import.c): the file's checks, the warnings, the
  *     parts' names; it reads the file through
- *   the OBJ reader (model_obj.cpp) or Assimp (model_assimp.c, the only file
- *     that includes Assimp's importer), then calls
+ *   the OBJ reader (model_obj.cpp), OpenCASCADE for STEP and IGES
+ *     (model_occt.cpp, the only file that includes OCCT's headers) or Assimp
+ *     (model_assimp.c, the only file that includes Assimp's importer), then calls
  *   oit_model_finish (model_finish.c): validation, centring, normals, the
  *     exact vertex join, welding, bounds, reach; and the coplanar planes
  *     (model_planes.c).
@@ -18,6 +19,10 @@
 #include <sys/stat.h>
 
 #include "oit.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* Every count in the model must fit the GL's signed 32-bit indices and
  * gl_PrimitiveID, so anything above 2^31 is rejected. */
@@ -97,5 +102,23 @@ void oit_clamp_material(oit_component *comp);
 oit_status oit_model_read_assimp(const char *path, const char *name, long long file_size,
                                  import_warnings *warnings, oit_model *out, bool *any_normals,
                                  oit_error *err);
+
+/* ------------------------------------- the B-rep reader (model_occt.cpp) */
+
+/* The B-rep formats OpenCASCADE reads. */
+typedef enum occt_format { OCCT_FORMAT_NONE = 0, OCCT_FORMAT_STEP, OCCT_FORMAT_IGES } occt_format;
+/* By the name's extension (.step .stp .iges .igs, any case), else by a STEP
+ * file's first bytes ("ISO-10303-21;"). */
+occt_format oit_occt_format(const char *path, const char *name);
+/* Reads a STEP or IGES file into out (positions in millimetres, the assembly
+ * tree, names, colours, unit and tessellation figures), not yet finished;
+ * normals are given. On failure, the one line naming the file. */
+oit_status oit_model_read_occt(const char *path, const char *name, occt_format format,
+                               const oit_import_options *options, import_warnings *warnings,
+                               oit_model *out, oit_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
