@@ -441,7 +441,10 @@ static int command_info(int argc, char **argv)
             printf("assembly    %u nodes\n", m.node_count);
         for (uint32_t c = 0; c < m.component_count; ++c) {
             const oit_component *p = &m.components[c];
-            printf("  %-32s colour (%.3f, %.3f, %.3f) opacity %.3f, %u triangles\n", p->name, p->colour[0],
+            /* with a tree, the path (what --hide and --component-alpha accept besides the name) */
+            char path[OIT_NAME_SIZE * 40];
+            oit_model_component_path(&m, c, path, sizeof path);
+            printf("  %-32s colour (%.3f, %.3f, %.3f) opacity %.3f, %u triangles\n", path, p->colour[0],
                    p->colour[1], p->colour[2], p->opacity, p->triangle_count);
         }
     }
