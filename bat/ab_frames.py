@@ -18,7 +18,6 @@ a process is charged, so this is the measure to use on a shared machine.
 The scene list is bat/setup.py's (bat/run_comparison.sh writes it). A refactoring that
 leaves the passes alone should give ratios around 1 within their range; the range is the
 machine's noise, not a tolerance."""
-import argparse
 import json
 import os
 import resource
@@ -26,6 +25,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+from pages import two_builds_parser
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = "gearbox-general,engine-general,spheres-general,onion-general,spider-general,menger3-general"
@@ -71,11 +71,7 @@ def bench_cpu(oit, shaders, args, out):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--before", required=True)
-    parser.add_argument("--after", required=True)
-    parser.add_argument("--before-shaders")
-    parser.add_argument("--after-shaders")
+    parser = two_builds_parser(__doc__)
     parser.add_argument("--scene-list", default=os.path.join(ROOT, "build", "bench", "scenes.txt"))
     parser.add_argument("--scenes", default=SCENES)
     parser.add_argument("--algorithms", default=ALGORITHMS)

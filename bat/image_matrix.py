@@ -13,7 +13,6 @@ and `oit demo` at 96x96; compares the PNGs byte for byte and prints the
 count. Each build uses its own shader tree (beside its binary's source tree,
 or --before-shaders / --after-shaders). Exit 1 if any image differs or a render
 fails in one build and not the other. --quick: three scenes."""
-import argparse
 import concurrent.futures
 import filecmp
 import json
@@ -21,6 +20,7 @@ import os
 import subprocess
 import sys
 import tempfile
+from pages import two_builds_parser
 
 SCENES = ["cyclic", "onion", "spheres", "gearbox", "coplanar", "menger"]
 REAL = {"spider": "/usr/share/assimp/models/OBJ/spider.obj",
@@ -61,11 +61,7 @@ def shader_dir(oit, given):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--before", required=True)
-    parser.add_argument("--after", required=True)
-    parser.add_argument("--before-shaders")
-    parser.add_argument("--after-shaders")
+    parser = two_builds_parser(__doc__)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args()

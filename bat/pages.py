@@ -21,6 +21,17 @@ import tempfile
 SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast")
 
 
+def two_builds_parser(doc):
+    """The command line of a script comparing two builds (ab_frames.py, image_matrix.py): their
+    binaries (--before, --after) and, where not beside their source trees, their shader trees."""
+    parser = argparse.ArgumentParser(description=doc.split("\n")[0])
+    parser.add_argument("--before", required=True)
+    parser.add_argument("--after", required=True)
+    parser.add_argument("--before-shaders")
+    parser.add_argument("--after-shaders")
+    return parser
+
+
 def commit_of(path):
     """The commit of the checkout holding path (a script, or an oit built in
     it), with -dirty for uncommitted changes: the page's header names it."""
