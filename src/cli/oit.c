@@ -9,6 +9,7 @@
  *   oit bench      scenes x algorithms x sizes, timings and statistics as CSV/JSON (bench.c)
  *   oit measure    the source's measuring command line, one result line per run (measure.c)
  *   oit algorithms list the algorithms
+ *   oit pick       which part adds most to one pixel's colour (pick_command.c)
  *
  * Exit status: 0 success, 1 comparison outside bounds, 2 bad usage or input,
  * 3 GL or runtime failure. Every error is one line on stderr.
@@ -30,6 +31,7 @@
 #include "local_options.h"
 #include "measure.h"
 #include "modulation_options.h"
+#include "pick_command.h"
 #include "render_session.h"
 
 /* --------------------------------------------------------------- JSON */
@@ -683,6 +685,7 @@ static const char main_help[] =
     "  bench       scenes x algorithms x sizes: frame and stage times, memory, lists; CSV and JSON\n"
     "  measure     the source's measuring command line: TASK COUNTER NAME PATH m00..m33 p00..p33 [VIEWPORT]\n"
     "  algorithms  list the algorithms\n"
+    "  pick        which part adds most to one pixel's colour (or the next), by the reference's maths\n"
     "exit status: 0 success, 1 comparison outside bounds, 2 bad usage or input, 3 GL or runtime failure\n";
 
 /* ------------------------------------------------------------ signals */
@@ -784,7 +787,7 @@ int main(int argc, char **argv)
     } commands[] = {
         {"render", command_render},   {"compare", command_compare}, {"info", command_info},
         {"gen", command_gen},         {"demo", command_demo},       {"bench", command_bench},
-        {"measure", command_measure}, {"algorithms", command_algorithms},
+        {"measure", command_measure}, {"algorithms", command_algorithms}, {"pick", command_pick},
     };
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; ++k)
         if (strcmp(command, commands[k].name) == 0)

@@ -58,8 +58,8 @@
  * counting sort per pixel), the distances, sort and compose;
  * reference_raster.c the oracle's own maths, the vertex stage and the
  * rasterizer (clipping, snapping, coverage, interpolation, canonical depth,
- * shading); reference_internal.h is what the two share, and nothing else
- * includes it.
+ * shading); pick.c the same pipeline narrowed to one pixel (oit_pick_pixel);
+ * reference_internal.h is what they share, and nothing else includes it.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -131,7 +131,7 @@ static int compare_fragments(const void *pa, const void *pb)
     return (a->triangle > b->triangle) - (a->triangle < b->triangle);
 }
 
-static void sort_fragments(reference_fragment *list, size_t count)
+void oit_reference_sort_fragments(reference_fragment *list, size_t count)
 {
     if (count > INSERTION_SORT_LIMIT) {
         qsort(list, count, sizeof *list, compare_fragments);
@@ -183,7 +183,7 @@ static double distances(oit_algorithm *alg, const oit_frame_settings *frame,
                 continue;
             reference_fragment *list = alg->fragments + alg->pixel_offsets[pixel];
             if (count > 1)
-                sort_fragments(list, count);
+                oit_reference_sort_fragments(list, count);
             for (size_t i = 0; i < count; ++i) {
                 size_t target = count - 1;
                 if (m->distance == OIT_DISTANCE_ADJACENT)
@@ -220,7 +220,7 @@ static void sort_and_compose(oit_algorithm *alg, const oit_frame_settings *frame
             double transmittance = 1.0;
             reference_fragment *list = count ? alg->fragments + alg->pixel_offsets[pixel] : NULL;
             if (count > 1 && !distance_mode) /* distances() sorted them already */
-                sort_fragments(list, count);
+                oit_reference_sort_fragments(list, count);
             size_t first = 0, end = count; /* the fragments this view composites */
             if (view == OIT_VIEW_PEEL_LIMIT) {
                 end = count < view_parameter ? count : view_parameter;
@@ -380,7 +380,7 @@ static oit_status reference_resize(oit_algorithm *alg, int width, int height, oi
 }
 
 /* Indices and component ids are trusted by the rasterizer; check them once. */
-static oit_status check_model(const oit_model *model, oit_error *err)
+oit_status oit_reference_check_model(const oit_model *model, oit_error *err)
 {
     if (model->triangle_count == 0)
         return OIT_OK;
@@ -434,7 +434,7 @@ static oit_status reference_render(oit_algorithm *alg, const oit_scene *scene,
     status = oit_matrices_validate(frame->modelview, frame->projection, err);
     if (status != OIT_OK)
         return status;
-    status = check_model(model, err);
+    status = oit_reference_check_model(model, err);
     if (status != OIT_OK)
         return status;
 

@@ -66,22 +66,13 @@ oit_status oit_algorithm_resize(const oit_algorithm_ops *ops, oit_algorithm *alg
     return ops->resize(alg, width, height, err);
 }
 
-oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg, const oit_scene *scene,
-                                const oit_frame_settings *frame, oit_error *err)
+oit_status oit_frame_relative(const oit_model *model, const oit_frame_settings *frame,
+                              oit_frame_settings *relative, oit_error *err)
 {
-    if (!ops || !alg || !scene || !scene->model || !frame)
-        return oit_fail(err, OIT_E_INPUT, "render: no algorithm, scene or frame settings");
-    if (frame->width < 1 || frame->height < 1)
-        return oit_fail(err, OIT_E_INPUT, "%s: bad size %dx%d", ops->name, frame->width, frame->height);
-    oit_status status = oit_frame_check(ops, frame, err);
-    if (status == OIT_OK)
-        status = oit_matrices_validate(frame->modelview, frame->projection, err);
-    if (status != OIT_OK)
-        return status;
-    const double *origin = scene->model->origin;
-    oit_frame_settings relative = *frame;
-    oit_model_modelview(scene->model, frame->modelview, relative.modelview);
-    oit_local_modulation *local = &relative.local;
+    const double *origin = model->origin;
+    *relative = *frame;
+    oit_model_modelview(model, frame->modelview, relative->modelview);
+    oit_local_modulation *local = &relative->local;
     switch (local->focus_shape) {
     case OIT_FOCUS_POINT:
         for (int k = 0; k < 3; ++k)
@@ -98,15 +89,34 @@ oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg
         break;
     }
     for (int i = 0; i < 16; ++i) {
-        relative.modelview[i] = as_float(relative.modelview[i]);
-        relative.projection[i] = as_float(relative.projection[i]);
-        if (!isfinite(relative.modelview[i]) || !isfinite(relative.projection[i]))
+        relative->modelview[i] = as_float(relative->modelview[i]);
+        relative->projection[i] = as_float(relative->projection[i]);
+        if (!isfinite(relative->modelview[i]) || !isfinite(relative->projection[i]))
             return oit_fail(err, OIT_E_INPUT,
                             "the %s's element %d (row %d, column %d) is too large for single precision "
                             "once moved to the model's centre",
-                            isfinite(relative.modelview[i]) ? "projection" : "modelview", i, i % 4, i / 4);
+                            isfinite(relative->modelview[i]) ? "projection" : "modelview", i, i % 4, i / 4);
     }
     for (int k = 0; k < 6; ++k)
         local->focus[k] = as_float(local->focus[k]);
+    return OIT_OK;
+}
+
+oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg, const oit_scene *scene,
+                                const oit_frame_settings *frame, oit_error *err)
+{
+    if (!ops || !alg || !scene || !scene->model || !frame)
+        return oit_fail(err, OIT_E_INPUT, "render: no algorithm, scene or frame settings");
+    if (frame->width < 1 || frame->height < 1)
+        return oit_fail(err, OIT_E_INPUT, "%s: bad size %dx%d", ops->name, frame->width, frame->height);
+    oit_status status = oit_frame_check(ops, frame, err);
+    if (status == OIT_OK)
+        status = oit_matrices_validate(frame->modelview, frame->projection, err);
+    if (status != OIT_OK)
+        return status;
+    oit_frame_settings relative;
+    status = oit_frame_relative(scene->model, frame, &relative, err);
+    if (status != OIT_OK)
+        return status;
     return ops->render(alg, scene, &relative, err);
 }

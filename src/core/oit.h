@@ -804,6 +804,47 @@ oit_status oit_algorithm_resize(const oit_algorithm_ops *ops, oit_algorithm *alg
 oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg, const oit_scene *scene,
                                 const oit_frame_settings *frame, oit_error *err);
 
+/* The frame as oit_algorithm_render hands it to the algorithms: the
+ * modelview folded onto the model's relative positions, the focus shapes
+ * moved with them, matrices and focus rounded to float. OIT_E_INPUT where an
+ * element leaves float's range. */
+oit_status oit_frame_relative(const oit_model *model, const oit_frame_settings *frame,
+                              oit_frame_settings *relative, oit_error *err);
+
+/* ------------------------------------------------------------------- pick */
+
+/* What one pixel shows, part by part (pick.c; docs/algorithms.md, "Pick"):
+ * every fragment at the pixel centre, as the reference keeps them (its
+ * coverage rule, canonical depth and tie order), each with its opacity after
+ * the material, --alpha, the per-part opacity and the focus shapes; a
+ * fragment's weight is alpha * T, T the transmittance in front of it, so the
+ * weights are what each adds to the pixel's colour. The view and the
+ * non-local modulations (distance, curvature...) are not applied. */
+typedef struct oit_pick_part {
+    uint32_t component;  /* index into model->components */
+    double contribution; /* the sum of its fragments' weights at the pixel */
+    double depth;        /* canonical depth of its nearest fragment there, 0..1 from near to far */
+    double point[3];     /* that fragment's position, file coordinates (origin added back) */
+    uint32_t triangle;   /* that fragment's triangle */
+} oit_pick_part;
+
+typedef struct oit_pick {
+    /* every part with a fragment at the pixel, largest contribution first;
+     * equal ones (behind something opaque: 0) nearest first, then by index */
+    oit_pick_part *parts;
+    uint32_t part_count;
+    uint32_t fragment_count;
+    double background; /* the transmittance left for the background */
+} oit_pick;
+
+/* Picks pixel (x, y) of the frame, x from the left and y from the top row
+ * (as in the PNG), with the reference's maths (no GL). OIT_E_INPUT for a
+ * pixel outside the frame (naming it), bad matrices or model. *out is empty
+ * on failure; release it with oit_pick_release. */
+oit_status oit_pick_pixel(const oit_model *model, const oit_frame_settings *frame, int x, int y,
+                          oit_pick *out, oit_error *err);
+void oit_pick_release(oit_pick *pick);
+
 /* The registry, in the order `oit algorithms` lists them. */
 const oit_algorithm_ops *const *oit_algorithm_list(size_t *count);
 const oit_algorithm_ops *oit_algorithm_find(const char *name);

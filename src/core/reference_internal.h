@@ -1,8 +1,9 @@
-/* reference_internal.h: what the reference's two files share, and nothing
- * else does: alg_reference.c (the operations table, the fragment store, sort
- * and compose) and reference_raster.c (the oracle's own maths, the vertex
- * stage and the rasterizer). Internal to the oracle, which shares no
- * computation with what it checks (alg_reference.c, the header comment). */
+/* reference_internal.h: what the reference's files share, and nothing else
+ * does: alg_reference.c (the operations table, the fragment store, sort and
+ * compose), reference_raster.c (the oracle's own maths, the vertex stage and
+ * the rasterizer) and pick.c (one pixel's fragments, ranked by what they
+ * add to its colour). Internal to the oracle, which shares no computation
+ * with what it checks (alg_reference.c, the header comment). */
 #ifndef OIT_REFERENCE_INTERNAL_H
 #define OIT_REFERENCE_INTERNAL_H
 
@@ -19,6 +20,14 @@ typedef struct reference_fragment {
     float local;       /* the local modulation's factor (component opacity x focus) */
 } reference_fragment;
 
+/* Every fragment list sorted as the reference composites it: by depth as
+ * float, then triangle index. */
+void oit_reference_sort_fragments(reference_fragment *list, size_t count);
+
+/* OIT_E_INPUT if an index or component id is out of range (the rasterizer
+ * trusts them). */
+oit_status oit_reference_check_model(const oit_model *model, oit_error *err);
+
 /* A vertex after the vertex stage, in double. */
 typedef struct clip_vertex {
     double clip[4];   /* projection * modelview * position */
@@ -29,6 +38,10 @@ typedef struct clip_vertex {
 /* Everything the rasterizer needs for one frame. */
 typedef struct raster_context {
     int width, height;
+    /* the pixels rasterized, in GL's rows: the whole image unless a pick
+     * narrows it to one pixel; pixel_counts and pixel_offsets index them
+     * row by row from (region_x, region_y) */
+    int region_x, region_y, region_width, region_height;
     bool fill; /* false: count fragments per pixel; true: store shaded fragments */
     uint32_t *pixel_counts;
     const uint64_t *pixel_offsets;

@@ -202,6 +202,8 @@ oit_status oit_reference_raster_begin(raster_context *ctx, const oit_frame_setti
     *ctx = (raster_context){
         .width = width,
         .height = height,
+        .region_width = width,
+        .region_height = height,
         .pixel_counts = pixel_counts,
         .pixel_offsets = pixel_offsets,
         .frame = frame,
@@ -453,14 +455,14 @@ static void rasterize_clipped(raster_context *ctx, const clip_vertex *c0, const 
     int64_t x1 = floor_div(max_x - SUBPIXEL_HALF, SUBPIXEL_ONE);
     int64_t y0 = -floor_div(-(min_y - SUBPIXEL_HALF), SUBPIXEL_ONE);
     int64_t y1 = floor_div(max_y - SUBPIXEL_HALF, SUBPIXEL_ONE);
-    if (x0 < 0)
-        x0 = 0;
-    if (y0 < 0)
-        y0 = 0;
-    if (x1 > ctx->width - 1)
-        x1 = ctx->width - 1;
-    if (y1 > ctx->height - 1)
-        y1 = ctx->height - 1;
+    if (x0 < ctx->region_x)
+        x0 = ctx->region_x;
+    if (y0 < ctx->region_y)
+        y0 = ctx->region_y;
+    if (x1 > ctx->region_x + ctx->region_width - 1)
+        x1 = ctx->region_x + ctx->region_width - 1;
+    if (y1 > ctx->region_y + ctx->region_height - 1)
+        y1 = ctx->region_y + ctx->region_height - 1;
     if (x0 > x1 || y0 > y1)
         return;
 
@@ -482,10 +484,10 @@ static void rasterize_clipped(raster_context *ctx, const clip_vertex *c0, const 
     if (ctx->fill || ctx->per_fragment_alpha)
         interpolation_setup(v, area2, &plane);
 
-    const int width = ctx->width;
+    const int region_width = ctx->region_width;
     for (int64_t y = y0; y <= y1; ++y) {
         int64_t e0 = row_start[0], e1 = row_start[1], e2 = row_start[2];
-        size_t pixel = (size_t)y * (size_t)width + (size_t)x0;
+        size_t pixel = (size_t)(y - ctx->region_y) * (size_t)region_width + (size_t)(x0 - ctx->region_x);
         for (int64_t x = x0; x <= x1; ++x, ++pixel) {
             if ((e0 | e1 | e2) >= 0) {
                 const int64_t edge[3] = {e0 - bias[0], e1 - bias[1], e2 - bias[2]};
