@@ -410,7 +410,7 @@ void MainWindow::frame_parts(const std::vector<int> &parts)
     render_now();
 }
 
-void MainWindow::pick_at(const QPoint &pixel)
+void MainWindow::pick_at(const QPoint &pixel, bool next_contributor)
 {
     if (!model_)
         return;
@@ -419,9 +419,17 @@ void MainWindow::pick_at(const QPoint &pixel)
     const RenderSettings &s = settings_->render_settings();
     // side by side, both halves have the same camera: the pixel within its half
     bool right_half = s.split == SplitMode::SideBySide && pixel.x() >= frame.width;
-    int x = right_half ? pixel.x() - frame.width : pixel.x();
-    PickResult hit = pick(*model_, frame.modelview, frame.projection, frame.width, frame.height, x + 0.5,
-                          pixel.y() + 0.5, s.part_alpha, s.part_visible);
+    QPoint at(right_half ? pixel.x() - frame.width : pixel.x(), pixel.y());
+    // Alt+click: the contributor behind the last one picked there (the second at a new pixel)
+    int rank = !next_contributor ? 1 : at == last_pick_pixel_ ? last_pick_rank_ + 1 : 2;
+    std::string error;
+    ContributorPick hit = pick_contributor(*model_, frame, at.x(), at.y(), rank, error);
+    last_pick_pixel_ = at;
+    last_pick_rank_ = hit.rank;
+    if (!error.empty()) {
+        status_label_->setText(QString::fromStdString("pick: " + error));
+        return;
+    }
     if (hit.component < 0) {
         status_label_->setText("nothing under the pointer");
         return;
@@ -430,10 +438,13 @@ void MainWindow::pick_at(const QPoint &pixel)
     // its path through the assembly tree (its name when the file has none): names repeat across assemblies
     char path[1024];
     oit_model_component_path(model_.get(), uint32_t(hit.component), path, sizeof path);
-    status_label_->setText(QString("picked part %1 (%2), triangle %3")
+    status_label_->setText(QString("picked part %1 (%2): %3% of the pixel, contributor %4 of %5%6")
                                .arg(QString::fromUtf8(path))
                                .arg(hit.component)
-                               .arg(hit.triangle));
+                               .arg(100.0 * hit.contribution, 0, 'f', 1)
+                               .arg(hit.rank)
+                               .arg(hit.parts)
+                               .arg(hit.parts > 1 ? " (Alt+click: the next)" : ""));
 }
 
 // ----------------------------------------------- status, progress, messages

@@ -101,8 +101,10 @@ public:
     PartsPanel *parts_panel() const { return parts_panel_; }
     // Turn the camera's target to these parts' bounds and fit them in the view.
     void frame_parts(const std::vector<int> &parts);
-    // Select the part under a view pixel (a click in the view).
-    void pick_at(const QPoint &pixel);
+    // Select the part that adds most to a view pixel's colour (a click in the
+    // view); next_contributor (Alt+click): the one after it, stepping further
+    // back on each Alt+click at the same pixel.
+    void pick_at(const QPoint &pixel, bool next_contributor = false);
     QSlider *alpha_slider() const;
     ComparePanel *compare_panel() const { return compare_panel_; }
     // View ▸ Error against reference, Split view, Side by side (and the Compare tab)
@@ -164,6 +166,8 @@ private:
     RenderView *view_ = nullptr;
     ModelLoader *loader_ = nullptr;
     ModelPointer model_;
+    QPoint last_pick_pixel_{-1, -1}; // where the last click picked, and the rank it showed
+    int last_pick_rank_ = 0;
     QString model_path_;
     QString loading_path_;
     QString last_error_;

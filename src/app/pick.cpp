@@ -140,3 +140,27 @@ int component_of_triangle(const oit_model &model, uint32_t triangle)
         return -1;
     return int(low);
 }
+
+ContributorPick pick_contributor(const oit_model &model, const oit_frame_settings &frame, int x, int y, int rank,
+                                 std::string &error)
+{
+    ContributorPick result;
+    oit_pick picked;
+    oit_error err = {{0}};
+    if (oit_pick_pixel(&model, &frame, x, y, &picked, &err) != OIT_OK) {
+        error = err.message;
+        return result;
+    }
+    result.parts = int(picked.part_count);
+    result.rank = rank >= 1 && rank <= result.parts ? rank : 1;
+    if (result.parts > 0) {
+        const oit_pick_part &part = picked.parts[result.rank - 1];
+        result.component = int(part.component);
+        result.contribution = part.contribution;
+        result.depth = part.depth;
+        for (int k = 0; k < 3; ++k)
+            result.point[k] = part.point[k];
+    }
+    oit_pick_release(&picked);
+    return result;
+}

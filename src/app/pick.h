@@ -1,8 +1,11 @@
-// pick.h: which part is under a pixel: a ray through the pixel centre against
-// every triangle of the parts that are shown (CPU, double precision, no Qt).
+// pick.h: which part is under a pixel (CPU, no Qt). The click picks by
+// pick_contributor: the part that adds most to the pixel's colour, through
+// the core's oit_pick_pixel (what `oit pick` prints). pick() is the nearest
+// shown surface: a ray through the pixel centre against every triangle.
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "oit.h"
@@ -28,3 +31,19 @@ PickResult pick(const oit_model &model, const double modelview[16], const double
 // The component that owns the triangle (components' triangles are contiguous and
 // in order), or -1 if the model has no such triangle.
 int component_of_triangle(const oit_model &model, uint32_t triangle);
+
+// The rank-th contributor to pixel (x, y) of the frame (y down from the top
+// row; 1: the part adding most to its colour), by oit_pick_pixel with the
+// frame's opacities, so `oit pick --rank` with the same options names it.
+// A rank past the last part wraps to 1. component -1: the background, or an
+// error (error then holds its line).
+struct ContributorPick {
+    int component = -1;
+    int rank = 0;  // the rank given, after wrapping
+    int parts = 0; // parts with fragments at the pixel
+    double contribution = 0.0;
+    double depth = 0.0;
+    double point[3] = {0.0, 0.0, 0.0}; // file coordinates
+};
+ContributorPick pick_contributor(const oit_model &model, const oit_frame_settings &frame, int x, int y, int rank,
+                                 std::string &error);

@@ -519,7 +519,8 @@ void RenderView::mouseReleaseEvent(QMouseEvent *event)
     buttons_ = event->buttons();
     if (click) {
         qreal ratio = devicePixelRatioF();
-        emit clicked(QPoint(int(event->pos().x() * ratio), int(event->pos().y() * ratio)));
+        emit clicked(QPoint(int(event->pos().x() * ratio), int(event->pos().y() * ratio)),
+                     event->modifiers() & Qt::AltModifier);
     }
 }
 

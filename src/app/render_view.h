@@ -112,7 +112,8 @@ signals:
     void frame_cancelled(const QString &why);
     void frame_progress(const QString &stage, int stages_done, double elapsed_ms);
     void options_left_out(const QStringList &messages); // empty: everything applied
-    void clicked(const QPoint &pixel); // a click without a drag (pixel coordinates)
+    // a click without a drag (pixel coordinates); next_contributor: with Alt held
+    void clicked(const QPoint &pixel, bool next_contributor);
     void wipe_moved(float wipe);       // the user dragged the wipe line
 
 protected:

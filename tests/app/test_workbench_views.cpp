@@ -9,9 +9,8 @@ void WorkbenchTest::clicking_a_part_selects_it()
     QPoint centre(view_size.width() / 2, view_size.height() / 2);
     std::vector<float> storage;
     oit_frame_settings f = window->view()->current_frame(storage);
-    PickResult expected = pick(*window->model(), f.modelview, f.projection, f.width, f.height, centre.x() + 0.5,
-                               centre.y() + 0.5, settings().part_alpha,
-                               settings().part_visible);
+    std::string error;
+    ContributorPick expected = pick_contributor(*window->model(), f, centre.x(), centre.y(), 1, error);
     QVERIFY2(expected.component >= 0, "the gearbox covers the centre of the view");
     QTest::mouseClick(window->view(), Qt::LeftButton, Qt::NoModifier, centre);
     QCOMPARE(window->parts_panel()->selected_parts(), std::vector<int>{expected.component});
@@ -29,6 +28,62 @@ void WorkbenchTest::clicking_a_part_selects_it()
     frame();
     QTest::mouseClick(window->view(), Qt::LeftButton, Qt::NoModifier, QPoint(1, 1));
     QCOMPARE(window->status_text(), QString("nothing under the pointer"));
+}
+
+// The click picks what `oit pick` names for the copied command at that pixel:
+// through the housing at 5% the part behind it, Alt+click the next one, and the
+// housing itself when it is opaque (issue 27).
+void WorkbenchTest::a_click_picks_what_oit_pick_names()
+{
+    QString oit = qEnvironmentVariable("OIT_CLI");
+    if (oit.isEmpty())
+        QSKIP("OIT_CLI is not set");
+    const oit_model *model = window->model();
+    int housing = -1;
+    for (uint32_t i = 0; i < model->component_count; ++i)
+        if (QString(model->components[i].name) == "housing")
+            housing = int(i);
+    QVERIFY2(housing >= 0, "the gearbox has a housing");
+    QPoint centre(view_size.width() / 2, view_size.height() / 2);
+    // `oit pick` with the view's copied command: the same camera, opacities and size
+    auto oit_pick = [&](int rank) {
+        QString command = window->render_command_for_view(work + "/pick-unused.png");
+        int at = command.indexOf(" render ");
+        if (at >= 0)
+            command.replace(at, 8, " pick ");
+        command += QString(" --json --pixel %1,%2 --rank %3").arg(centre.x()).arg(centre.y()).arg(rank);
+        QProcess process;
+        process.start("bash", {"-c", command});
+        process.waitForFinished(60000);
+        if (process.exitCode() != 0)
+            qWarning().noquote() << command << process.readAllStandardError();
+        return QJsonDocument::fromJson(process.readAllStandardOutput()).object();
+    };
+    auto picked = [&]() {
+        std::vector<int> selected = window->parts_panel()->selected_parts();
+        return selected.size() == 1 ? selected[0] : -1;
+    };
+    settings().alpha = 1.0f;
+    window->set_part_alpha(housing, 0.05f);
+    window->settings_changed();
+    frame();
+    QJsonObject first = oit_pick(1), second = oit_pick(2);
+    QVERIFY2(!first.isEmpty() && !second.isEmpty(), "oit pick answers");
+    QVERIFY2(first["index"].toInt() != housing, "through the housing at 5% a part behind it is picked");
+    QTest::mouseClick(window->view(), Qt::LeftButton, Qt::NoModifier, centre);
+    QCOMPARE(picked(), first["index"].toInt());
+    QVERIFY2(window->status_text().contains("contributor 1 of"), qPrintable(window->status_text()));
+    QTest::mouseClick(window->view(), Qt::LeftButton, Qt::AltModifier, centre);
+    QCOMPARE(picked(), second["index"].toInt());
+    QVERIFY2(window->status_text().contains("contributor 2 of"), qPrintable(window->status_text()));
+    // the housing opaque: the housing, as `oit pick` says
+    window->set_part_alpha(housing, 1.0f);
+    window->settings_changed();
+    frame();
+    first = oit_pick(1);
+    QCOMPARE(first["index"].toInt(), housing);
+    QTest::mouseClick(window->view(), Qt::LeftButton, Qt::NoModifier, centre);
+    QCOMPARE(picked(), housing);
 }
 
 void WorkbenchTest::frame_selection_and_standard_views()

@@ -31,6 +31,7 @@
 #include <QTreeView>
 #include <QJsonArray>
 #include <QJsonDocument>
+#include <QJsonObject>
 
 #include <QElapsedTimer>
 
@@ -218,6 +219,7 @@ private slots:
     void a_slow_reference_is_superseded_without_freezing();
     void startup_does_not_replay_a_slow_state_blindly();
     void clicking_a_part_selects_it();
+    void a_click_picks_what_oit_pick_names();
     void frame_selection_and_standard_views();
     void undo_and_redo_settings();
     void error_view_maps_the_difference_against_the_reference();
