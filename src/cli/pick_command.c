@@ -5,8 +5,11 @@
  * come from the render options, parsed by parse_render_option as `oit render`
  * parses them, so a pick names what that render shows.
  */
+#define _POSIX_C_SOURCE 200809L
+
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include "json_output.h"
 #include "local_options.h"
@@ -20,7 +23,7 @@ static void print_pick_help(FILE *out)
           "  --pixel X,Y            the pixel, X from the left and Y from the top row (as in the PNG)\n"
           "  --rank N               the part adding the N-th most to the pixel's colour (default 1);\n"
           "                         past the last part: none\n"
-          "  --json                 print {\"part\", \"path\", \"index\", \"contribution\", \"depth\", \"point\"}\n"
+          "  --json                 print {\"part\", \"path\", \"index\", \"contribution\", \"depth\", \"point\", ...}\n"
           "The camera and opacity options are oit render's: --size, --modelview, --projection, --orbit,\n"
           "--alpha, --component-alpha, --hide, --focus-*, --tessellation (oit render --help). A part's\n"
           "contribution is the sum over its fragments at the pixel centre of alpha * T (T: the\n"
@@ -30,7 +33,15 @@ static void print_pick_help(FILE *out)
           out);
 }
 
-static void print_pick(const oit_model *model, const oit_pick *pick, long rank, bool json)
+static double wall_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* pick_ms: the wall time of oit_pick_pixel (the model's load excluded) */
+static void print_pick(const oit_model *model, const oit_pick *pick, long rank, bool json, double pick_ms)
 {
     const oit_pick_part *part = rank <= (long)pick->part_count ? &pick->parts[rank - 1] : NULL;
     char path[1024] = "";
@@ -47,8 +58,8 @@ static void print_pick(const oit_model *model, const oit_pick *pick, long rank, 
         return;
     }
     if (!part) {
-        printf("{\"part\": null, \"rank\": %ld, \"parts\": %u, \"background\": %.9g}\n", rank, pick->part_count,
-               pick->background);
+        printf("{\"part\": null, \"rank\": %ld, \"parts\": %u, \"background\": %.9g, \"pick_ms\": %.3f}\n", rank,
+               pick->part_count, pick->background, pick_ms);
         return;
     }
     fputs("{\"part\": ", stdout);
@@ -56,9 +67,9 @@ static void print_pick(const oit_model *model, const oit_pick *pick, long rank, 
     fputs(", \"path\": ", stdout);
     json_string(stdout, path);
     printf(", \"index\": %u, \"contribution\": %.9g, \"depth\": %.9g, \"point\": [%.17g, %.17g, %.17g], "
-           "\"triangle\": %u, \"rank\": %ld, \"parts\": %u, \"background\": %.9g}\n",
+           "\"triangle\": %u, \"rank\": %ld, \"parts\": %u, \"background\": %.9g, \"pick_ms\": %.3f}\n",
            part->component, part->contribution, part->depth, part->point[0], part->point[1], part->point[2],
-           part->triangle, rank, pick->part_count, pick->background);
+           part->triangle, rank, pick->part_count, pick->background, pick_ms);
 }
 
 int command_pick(int argc, char **argv)
@@ -119,10 +130,11 @@ int command_pick(int argc, char **argv)
     oit_pick pick = {0};
     if (status == OIT_OK)
         status = render_frame_settings(&s, &o, &frame, &err);
+    double start = wall_ms();
     if (status == OIT_OK)
         status = oit_pick_pixel(&s.model, &frame, (int)pixel[0], (int)pixel[1], &pick, &err);
     if (status == OIT_OK)
-        print_pick(&s.model, &pick, rank, o.json);
+        print_pick(&s.model, &pick, rank, o.json, wall_ms() - start);
     oit_pick_release(&pick);
     session_close(&s);
     return report(status, &err);

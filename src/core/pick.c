@@ -83,6 +83,41 @@ static oit_status rank_parts(const raster_context *ctx, const oit_model *model, 
     return OIT_OK;
 }
 
+/* Margin of the candidate test, in pixels: far more than the 1/512 pixel
+ * snapping can move a vertex. */
+#define CANDIDATE_MARGIN_PIXELS 2.0
+
+/* The triangles that may cover pixel (x, gl_y), ascending: all but those whose
+ * three vertices lie in front of the eye (w > 0) and beyond the pixel on one
+ * side, which cannot cover it (the projected triangle, clipped or not, lies in
+ * its vertices' hull). Rasterizing only these is the pick's speed: on 491,520
+ * triangles the vertex stage and this test instead of two full passes. */
+static uint32_t candidate_triangles(const oit_model *model, const clip_vertex *vertices, int width, int height,
+                                    int x, int gl_y, uint32_t *out)
+{
+    const double centre_x = ((double)x + 0.5) * 2.0 / width - 1.0;
+    const double centre_y = ((double)gl_y + 0.5) * 2.0 / height - 1.0;
+    const double margin_x = CANDIDATE_MARGIN_PIXELS * 2.0 / width;
+    const double margin_y = CANDIDATE_MARGIN_PIXELS * 2.0 / height;
+    uint32_t count = 0;
+    for (uint32_t t = 0; t < model->triangle_count; ++t) {
+        const uint32_t *index = &model->indices[3 * (size_t)t];
+        unsigned left = 0, right = 0, below = 0, above = 0, in_front = 0;
+        for (int k = 0; k < 3; ++k) {
+            const double *c = vertices[index[k]].clip;
+            in_front += c[3] > 0.0;
+            left += c[0] < (centre_x - margin_x) * c[3];
+            right += c[0] > (centre_x + margin_x) * c[3];
+            below += c[1] < (centre_y - margin_y) * c[3];
+            above += c[1] > (centre_y + margin_y) * c[3];
+        }
+        if (in_front == 3 && (left == 3 || right == 3 || below == 3 || above == 3))
+            continue;
+        out[count++] = t;
+    }
+    return count;
+}
+
 oit_status oit_pick_pixel(const oit_model *model, const oit_frame_settings *frame, int x, int y,
                           oit_pick *out, oit_error *err)
 {
@@ -107,12 +142,17 @@ oit_status oit_pick_pixel(const oit_model *model, const oit_frame_settings *fram
         return status;
 
     clip_vertex *vertices = malloc((size_t)model->vertex_count * sizeof *vertices);
-    if (!vertices)
+    uint32_t *candidates = malloc((size_t)model->triangle_count * sizeof *candidates);
+    if (!vertices || !candidates) {
+        free(vertices);
+        free(candidates);
         return oit_fail(err, OIT_E_RUNTIME, "pick: out of memory for %u vertices", model->vertex_count);
+    }
     oit_reference_vertex_stage(model, &relative, vertices);
 
     /* the one pixel, in GL's rows (bottom up) */
     const int gl_y = frame->height - 1 - y;
+    uint32_t candidate_count = candidate_triangles(model, vertices, frame->width, frame->height, x, gl_y, candidates);
     uint32_t count = 0;
     uint64_t offsets[2] = {0, 0};
     raster_context ctx;
@@ -122,7 +162,7 @@ oit_status oit_pick_pixel(const oit_model *model, const oit_frame_settings *fram
         ctx.region_x = x;
         ctx.region_y = gl_y;
         ctx.region_width = ctx.region_height = 1;
-        oit_reference_rasterize(&ctx, model, vertices); /* count */
+        oit_reference_rasterize_some(&ctx, model, vertices, candidates, candidate_count); /* count */
         offsets[1] = count;
         if (count > 0) {
             fragments = malloc((size_t)count * sizeof *fragments);
@@ -135,12 +175,13 @@ oit_status oit_pick_pixel(const oit_model *model, const oit_frame_settings *fram
         count = 0;
         ctx.fill = true;
         ctx.fragments = fragments;
-        oit_reference_rasterize(&ctx, model, vertices); /* store */
+        oit_reference_rasterize_some(&ctx, model, vertices, candidates, candidate_count); /* store */
         count = count < counted ? count : counted;
         oit_reference_sort_fragments(fragments, count);
         status = rank_parts(&ctx, model, x, gl_y, fragments, count, out, err);
     }
     free(fragments);
+    free(candidates);
     free(vertices);
     if (status != OIT_OK)
         oit_pick_release(out);

@@ -94,5 +94,9 @@ oit_status oit_reference_raster_begin(raster_context *ctx, const oit_frame_setti
 /* Every triangle of the model: counts its fragments per pixel, or (ctx->fill)
  * stores them shaded at their pixel's offset. */
 void oit_reference_rasterize(raster_context *ctx, const oit_model *model, const clip_vertex *vertices);
+/* The same for these triangles only, in the order given (ascending, for the
+ * reference's tie order): a pick's candidates. */
+void oit_reference_rasterize_some(raster_context *ctx, const oit_model *model, const clip_vertex *vertices,
+                                  const uint32_t *triangles, uint32_t count);
 
 #endif

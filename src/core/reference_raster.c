@@ -589,36 +589,49 @@ static void rasterize_triangle(raster_context *ctx, const clip_vertex *a, const 
         rasterize_clipped(ctx, &polygon[0], &polygon[i], &polygon[i + 1]);
 }
 
+/* One triangle: its flat inputs, then clipping and coverage. */
+static void rasterize_model_triangle(raster_context *ctx, const oit_model *model, const clip_vertex *vertices,
+                                     uint32_t t)
+{
+    const uint32_t *index = &model->indices[3 * (size_t)t];
+    ctx->triangle = t;
+    /* flat inputs come from the provoking (last) vertex, as in GL */
+    ctx->component = model->vertex_component[index[2]];
+    const oit_component *component = &model->components[ctx->component];
+    float alpha = ctx->frame->alpha * component->opacity;
+    alpha = alpha < 0.0f ? 0.0f : (alpha > 1.0f ? 1.0f : alpha);
+    ctx->material_alpha = alpha;
+    /* the per-component opacity here; the focus factor comes per fragment */
+    const oit_local_modulation *local = &ctx->frame->local;
+    ctx->part_alpha = alpha;
+    if (local->component_alpha && ctx->component < local->component_count)
+        ctx->part_alpha *= local->component_alpha[ctx->component];
+    ctx->alpha = (float)ctx->part_alpha;
+    ctx->colour = component->colour;
+    if (!(ctx->alpha > 0.0f))
+        return; /* hidden parts and opacity 0: never stored */
+    ctx->use_plane = ctx->fill && model->triangle_plane && model->planes;
+    if (ctx->use_plane) {
+        /* a plane q with q . (p, 1) = 0 in model space is q M^-1 in eye space
+         * (eye = M p): row vector times the inverse modelview */
+        const float *plane = model->planes + (size_t)model->triangle_plane[t] * 4;
+        const double *inverse = ctx->plane_to_eye;
+        for (int col = 0; col < 4; ++col)
+            ctx->eye_plane[col] = plane[0] * inverse[col * 4] + plane[1] * inverse[col * 4 + 1] +
+                                  plane[2] * inverse[col * 4 + 2] + plane[3] * inverse[col * 4 + 3];
+    }
+    rasterize_triangle(ctx, &vertices[index[0]], &vertices[index[1]], &vertices[index[2]]);
+}
+
 void oit_reference_rasterize(raster_context *ctx, const oit_model *model, const clip_vertex *vertices)
 {
-    for (uint32_t t = 0; t < model->triangle_count; ++t) {
-        const uint32_t *index = &model->indices[3 * (size_t)t];
-        ctx->triangle = t;
-        /* flat inputs come from the provoking (last) vertex, as in GL */
-        ctx->component = model->vertex_component[index[2]];
-        const oit_component *component = &model->components[ctx->component];
-        float alpha = ctx->frame->alpha * component->opacity;
-        alpha = alpha < 0.0f ? 0.0f : (alpha > 1.0f ? 1.0f : alpha);
-        ctx->material_alpha = alpha;
-        /* the per-component opacity here; the focus factor comes per fragment */
-        const oit_local_modulation *local = &ctx->frame->local;
-        ctx->part_alpha = alpha;
-        if (local->component_alpha && ctx->component < local->component_count)
-            ctx->part_alpha *= local->component_alpha[ctx->component];
-        ctx->alpha = (float)ctx->part_alpha;
-        ctx->colour = component->colour;
-        if (!(ctx->alpha > 0.0f))
-            continue; /* hidden parts and opacity 0: never stored */
-        ctx->use_plane = ctx->fill && model->triangle_plane && model->planes;
-        if (ctx->use_plane) {
-            /* a plane q with q . (p, 1) = 0 in model space is q M^-1 in eye space
-             * (eye = M p): row vector times the inverse modelview */
-            const float *plane = model->planes + (size_t)model->triangle_plane[t] * 4;
-            const double *inverse = ctx->plane_to_eye;
-            for (int col = 0; col < 4; ++col)
-                ctx->eye_plane[col] = plane[0] * inverse[col * 4] + plane[1] * inverse[col * 4 + 1] +
-                                      plane[2] * inverse[col * 4 + 2] + plane[3] * inverse[col * 4 + 3];
-        }
-        rasterize_triangle(ctx, &vertices[index[0]], &vertices[index[1]], &vertices[index[2]]);
-    }
+    for (uint32_t t = 0; t < model->triangle_count; ++t)
+        rasterize_model_triangle(ctx, model, vertices, t);
+}
+
+void oit_reference_rasterize_some(raster_context *ctx, const oit_model *model, const clip_vertex *vertices,
+                                  const uint32_t *triangles, uint32_t count)
+{
+    for (uint32_t i = 0; i < count; ++i)
+        rasterize_model_triangle(ctx, model, vertices, triangles[i]);
 }
