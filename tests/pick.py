@@ -13,7 +13,10 @@ shell front, core front, core back, shell back in that order.
 - --hide core: one part; a corner pixel: "part": null;
 - with flat shading, the reference render's centre pixel equals the colour
   the pick's contributions mix (sum c_part * colour_part + T * background):
-  the pick sees the fragments the reference composites;
+  the pick sees the fragments the reference composites; at the shell's
+  silhouette the first covered pixel is the shell's and the one before it
+  the background's; a plane of sub-pixel triangles is picked whole at six
+  pixels (no covering triangle left out);
 - --pixel outside the image: exit 2, one line on stderr, nothing on stdout.
 """
 import json
@@ -54,6 +57,24 @@ def write_scene(work):
     with open(obj, "w") as f:
         f.write("\n".join(["mtllib shell_core.mtl"] + box("shell", 2.0, 1) + box("core", 0.5, 9)) + "\n")
     return obj
+
+
+def write_grid(work, cells):
+    """A square in z = 0 of cells x cells quads, two triangles each: one part, "grid"."""
+    path = os.path.join(work, "grid.obj")
+    lines = ["g grid"]
+    for j in range(cells + 1):
+        for i in range(cells + 1):
+            lines.append(f"v {-1 + 2 * i / cells} {-1 + 2 * j / cells} 0")
+    for j in range(cells):
+        for i in range(cells):
+            a = 1 + j * (cells + 1) + i
+            b, c, d = a + 1, a + cells + 2, a + cells + 1
+            lines.append(f"f {a} {b} {c}")
+            lines.append(f"f {a} {c} {d}")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
 
 
 def f32(x):
@@ -125,6 +146,29 @@ def main():
                           first["background"] * 1.0)) for k in range(3)]
     expect(all(abs(a - b) <= 1 for a, b in zip(seen, mixed)),
            f"the reference's pixel {seen} is the pick's mix {mixed} (within 1/255)")
+
+    # the silhouette: the first covered pixel of the centre row is the shell's, with the
+    # reference's colour, and the one before it the background's (a pick that skipped
+    # triangles near the pixel, e.g. a wrong candidate test, misses the edge)
+    edge = next(px for px in range(width) if rows[y][4 * px:4 * px + 3] != bytes([255, 255, 255]))
+    expect(0 < edge < x, f"the shell's left edge on row {y} is at x = {edge}")
+    outside = pick(oit, model, *faint[2:], "--pixel", f"{edge - 1},{y}")
+    expect(outside["part"] is None, f"pixel {edge - 1},{y} left of the edge: \"part\": null")
+    inside = pick(oit, model, *faint[2:], "--pixel", f"{edge},{y}")
+    seen = [rows[y][4 * edge + k] for k in range(3)]
+    mixed = [round(255 * (inside["contribution"] * COLOURS["shell"][k] + inside["background"])) for k in range(3)]
+    expect(inside["part"] == "shell" and inside["parts"] == 1 and all(abs(a - b) <= 1 for a, b in zip(seen, mixed)),
+           f"pixel {edge},{y} on the edge: the shell, the reference's {seen} its mix {mixed}")
+
+    # a plane of triangles under a pixel wide: every pixel has vertices within a pixel of
+    # its centre, so a pick that left out a triangle covering it (a candidate test
+    # that is too eager) finds nothing or too little there
+    grid = write_grid(work, 96)
+    for px in ("32,24", "30,22", "34,26", "31,25", "33,23", "20,30"):
+        answer = pick(oit, grid, "--pixel", px, "--alpha", "0.5")
+        if not (answer["part"] == "grid" and answer["parts"] == 1 and answer["contribution"] == f32(0.5)):
+            sys.exit(f"FAIL: the fine grid at {px}: {answer}")
+    print("ok: the fine grid (96x96 cells) is picked whole at 6 pixels")
 
     # shell opaque: the shell, and the core behind it with nothing
     opaque = ["--pixel", PIXEL, "--alpha", "1"]
