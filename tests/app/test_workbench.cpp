@@ -402,6 +402,97 @@ void WorkbenchTest::settings_persist()
     QVERIFY(QTest::qWaitForWindowExposed(window));
 }
 
+// Saved views are named, renamed and deleted, come back when their model is
+// loaded again (another model has its own), and are in the saved state.
+void WorkbenchTest::saved_views_are_named_and_kept_with_the_model()
+{
+    auto *panel = window->findChild<CameraPanel *>();
+    QVERIFY(panel);
+    panel->set_saved_views({});
+    auto names = [panel] {
+        QStringList out;
+        for (const SavedView &view : panel->saved_views())
+            out << QString::fromStdString(view.name);
+        return out;
+    };
+    camera().trackball(glm::vec2(80, 60), glm::vec2(110, 40), view_size.width(), view_size.height());
+    const Camera turned = camera();
+    panel->save_view();
+    panel->save_view();
+    QCOMPARE(names(), QStringList({"view 1", "view 2"}));
+    QVERIFY(panel->rename_view(0, "  inside  "));
+    QVERIFY(!panel->rename_view(0, " ")); // an empty name is refused
+    QVERIFY(panel->delete_view(1));
+    panel->save_view("top");
+    QCOMPARE(names(), QStringList({"inside", "top"}));
+    // the list's own edit renames too
+    auto *list = panel->findChild<QListWidget *>("saved_views");
+    QVERIFY(list && list->count() == 2 && (list->item(1)->flags() & Qt::ItemIsEditable));
+    list->item(1)->setText("from above");
+    QCOMPARE(names(), QStringList({"inside", "from above"}));
+
+    // another model has none; the gearbox's come back with it
+    const QString gearbox = window->model_path();
+    QString other = work + "/one-triangle.obj";
+    QFile file(other);
+    QVERIFY(file.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    file.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    file.close();
+    QSignalSpy loaded(window, &MainWindow::model_loaded);
+    window->load_model(other);
+    QVERIFY(loaded.wait(60000));
+    QCOMPARE(names(), QStringList());
+    window->load_model(gearbox);
+    QVERIFY(loaded.wait(60000));
+    QCOMPARE(names(), QStringList({"inside", "from above"}));
+    window->view()->reset_camera();
+    QVERIFY(panel->go_to_view(0));
+    QCOMPARE(camera().eye, turned.eye);
+    QCOMPARE(camera().orientation, turned.orientation);
+
+    // kept in the saved state (written when they change), camera and all
+    QString path = window->settings_file().path();
+    QFile saved_file(path);
+    QVERIFY(saved_file.open(QIODevice::ReadOnly));
+    SavedStateText saved;
+    std::string error;
+    QVERIFY2(saved_state_from_json(path.toStdString(), saved_file.readAll().toStdString(), saved, error), error.c_str());
+    const std::vector<SavedView> &views = saved.views[gearbox.toStdString()];
+    QCOMPARE(int(views.size()), 2);
+    QCOMPARE(QString::fromStdString(views[0].name), QString("inside"));
+    QCOMPARE(views[0].camera.eye, turned.eye);
+    QCOMPARE(views[0].camera.target, turned.target);
+    QVERIFY(saved.views[other.toStdString()].empty());
+    panel->set_saved_views({});
+}
+
+// After an export (long enough to show its progress) the status bar's
+// progress, busy bar and Cancel are gone at once; the next save dialog opens
+// in the export's folder.
+void WorkbenchTest::export_clears_its_progress_and_remembers_its_folder()
+{
+    window->set_algorithm("dp"); // about a second at 800x600 on llvmpipe: past the progress's 300 ms
+    frame();
+    auto *cancel = window->findChild<QPushButton *>("cancel_frame");
+    auto *bar = window->findChild<QProgressBar *>();
+    QVERIFY(cancel && bar);
+    bool progress_seen = false;
+    QTimer watch;
+    connect(&watch, &QTimer::timeout, [&] { progress_seen = progress_seen || (cancel->isVisible() && bar->isVisible()); });
+    watch.start(20);
+    QString folder = work + "/exports";
+    QDir().mkpath(folder);
+    QString error;
+    QVERIFY2(window->export_png(folder + "/big.png", 800, 600, error), qPrintable(error));
+    watch.stop();
+    QVERIFY2(progress_seen, "the export's progress was never shown (too fast to prove anything)");
+    QVERIFY(!cancel->isVisible());
+    QVERIFY(!bar->isVisible());
+    QVERIFY(!window->view()->rendering());
+    QCOMPARE(QImage(folder + "/big.png").size(), QSize(800, 600));
+    QCOMPARE(window->export_folder(), folder);
+}
+
 void WorkbenchTest::options_an_algorithm_cannot_express_are_left_out()
 {
     window->set_algorithm("dp");
