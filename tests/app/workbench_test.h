@@ -29,6 +29,7 @@
 #include <QTabBar>
 #include <QTabWidget>
 #include <QStandardPaths>
+#include <QImageReader>
 #include <QtTest/QtTest>
 #include <QTreeView>
 #include <QJsonArray>
@@ -216,6 +217,7 @@ private slots:
     void settings_persist();
     void saved_views_are_named_and_kept_with_the_model();
     void export_clears_its_progress_and_remembers_its_folder();
+    void a_uhd_export_keeps_the_window_answering();
     void options_an_algorithm_cannot_express_are_left_out();
     void controls_an_algorithm_cannot_express_are_disabled();
     void messages_and_the_copied_command_stay_readable();
