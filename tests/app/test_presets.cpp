@@ -1,7 +1,8 @@
 // test_presets.cpp: a preset restores the whole state (issue 27, item 5). Every
 // field of RenderSettings and the camera set away from its default survives
 // save -> reset -> load; a preset with fewer keys gives the defaults, not what
-// was there before; older presets still load. No window and no GL.
+// was there before; older presets still load; the saved state keeps saved
+// views and the export's choices. No window and no GL.
 #include <QtTest/QtTest>
 
 #include <cstring>
@@ -255,6 +256,46 @@ private slots:
                  error.c_str());
         QVERIFY(!preset_from_json("bad.json", "{\"halo-colour\": \"red\"}", loaded, camera, has_camera, nullptr, error));
         QVERIFY2(error.find("halo-colour") != std::string::npos, error.c_str());
+    }
+
+    // The saved state keeps each model's views and the export's folder and
+    // size; bad ones are named.
+    void saved_state_keeps_views_and_export_choices()
+    {
+        SavedStateText state;
+        RenderSettings unused;
+        Camera c;
+        every_field_changed(unused, c);
+        state.views["/models/a.obj"] = {{"inside", c}, {"top", Camera()}};
+        state.export_folder = "/home/someone/Pictures/renders";
+        state.export_width = 3840;
+        state.export_height = 2160;
+        const std::string text = saved_state_to_json(state);
+        SavedStateText read;
+        std::string error;
+        QVERIFY2(saved_state_from_json("settings.json", text, read, error), error.c_str());
+        QCOMPARE(int(read.views.size()), 1);
+        const std::vector<SavedView> &views = read.views["/models/a.obj"];
+        QCOMPARE(int(views.size()), 2);
+        QCOMPARE(QString::fromStdString(views[0].name), QString("inside"));
+        QCOMPARE(camera_differences(views[0].camera, c), QStringList());
+        QCOMPARE(QString::fromStdString(views[1].name), QString("top"));
+        QCOMPARE(QString::fromStdString(read.export_folder), QString("/home/someone/Pictures/renders"));
+        QCOMPARE(read.export_width, 3840);
+        QCOMPARE(read.export_height, 2160);
+        QCOMPARE(saved_state_to_json(read), text);
+
+        const char *bad[][2] = {
+            {"{\"views\": []}", "views"},
+            {"{\"views\": {\"a.obj\": [{\"camera\": {}}]}}", "name"},
+            {"{\"views\": {\"a.obj\": [{\"name\": \"x\", \"camera\": {\"fov\": 500}}]}}", "fov"},
+            {"{\"export-size\": [0, 10]}", "export-size"},
+            {"{\"export-folder\": 3}", "export-folder"},
+        };
+        for (const auto &b : bad) {
+            QVERIFY2(!saved_state_from_json("settings.json", b[0], read, error), b[0]);
+            QVERIFY2(error.find(b[1]) != std::string::npos, error.c_str());
+        }
     }
 };
 
