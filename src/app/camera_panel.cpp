@@ -6,6 +6,9 @@
 #include <QHBoxLayout>
 #include <QListWidget>
 #include <QPushButton>
+#include <QShortcut>
+
+#include <algorithm>
 
 CameraPanel::CameraPanel(SettingsModel &model, QWidget *parent) : SettingsPanel(model, parent)
 {
@@ -32,33 +35,108 @@ CameraPanel::CameraPanel(SettingsModel &model, QWidget *parent) : SettingsPanel(
     reset->setToolTip("frame the whole model again from the default three-quarter view");
     connect(reset, &QPushButton::clicked, this, &CameraPanel::reset_camera_requested);
     form->addRow(reset);
-    saved_views_ = new QListWidget;
+    list_ = new QListWidget;
+    list_->setObjectName("saved_views");
+    list_->setToolTip("double-click goes to a view; F2 or a slow second click renames it; Delete removes it");
     auto *save = new QPushButton("Save view");
-    save->setToolTip("keep the camera's pose in the list below");
+    save->setToolTip("keep the camera's pose in the list below, with the model");
     auto *restore = new QPushButton("Go to view");
     restore->setToolTip("return to the pose selected in the list");
-    connect(save, &QPushButton::clicked, this, [this, &c] {
-        saved_cameras_.push_back(c);
-        saved_views_->addItem(QString("view %1").arg(saved_cameras_.size()));
+    auto *remove = new QPushButton("Delete");
+    remove->setObjectName("delete_view");
+    remove->setToolTip("forget the view selected in the list");
+    connect(save, &QPushButton::clicked, this, [this] { save_view(); });
+    connect(restore, &QPushButton::clicked, this, [this] { go_to_view(list_->currentRow()); });
+    connect(list_, &QListWidget::itemDoubleClicked, this, [this] { go_to_view(list_->currentRow()); });
+    connect(remove, &QPushButton::clicked, this, [this] { delete_view(list_->currentRow()); });
+    auto *delete_key = new QShortcut(QKeySequence::Delete, list_, nullptr, nullptr, Qt::WidgetShortcut);
+    connect(delete_key, &QShortcut::activated, this, [this] { delete_view(list_->currentRow()); });
+    connect(list_, &QListWidget::itemChanged, this, [this](QListWidgetItem *item) {
+        if (filling_)
+            return;
+        int row = list_->row(item);
+        if (!rename_view(row, item->text()))
+            refill(); // an empty name: the old one comes back
     });
-    auto go = [this, &c] {
-        int row = saved_views_->currentRow();
-        if (row >= 0 && size_t(row) < saved_cameras_.size()) {
-            c = saved_cameras_[size_t(row)];
-            emit changed();
-        }
-    };
-    connect(restore, &QPushButton::clicked, this, go);
-    connect(saved_views_, &QListWidget::itemDoubleClicked, this, go);
     auto *row = new QHBoxLayout;
     row->addWidget(save);
     row->addWidget(restore);
+    row->addWidget(remove);
     form->addRow("saved views", row);
-    form->addRow(saved_views_);
+    form->addRow(list_);
 }
 
-void CameraPanel::clear_saved_views()
+void CameraPanel::refill()
 {
-    saved_cameras_.clear();
-    saved_views_->clear();
+    filling_ = true;
+    int current = list_->currentRow();
+    list_->clear();
+    for (const SavedView &view : saved_) {
+        auto *item = new QListWidgetItem(QString::fromStdString(view.name), list_);
+        item->setFlags(item->flags() | Qt::ItemIsEditable);
+    }
+    list_->setCurrentRow(std::min(current, list_->count() - 1));
+    filling_ = false;
+}
+
+void CameraPanel::set_saved_views(const std::vector<SavedView> &views)
+{
+    saved_ = views;
+    refill();
+}
+
+void CameraPanel::save_view(const QString &name)
+{
+    std::string chosen = name.trimmed().toStdString();
+    for (int n = 1; chosen.empty(); ++n) {
+        std::string candidate = "view " + std::to_string(n);
+        bool taken = false;
+        for (const SavedView &view : saved_)
+            taken = taken || view.name == candidate;
+        if (!taken)
+            chosen = candidate;
+    }
+    saved_.push_back({chosen, camera()});
+    refill();
+    list_->setCurrentRow(list_->count() - 1);
+    emit saved_views_changed();
+}
+
+bool CameraPanel::rename_view(int row, const QString &name)
+{
+    if (row < 0 || size_t(row) >= saved_.size() || name.trimmed().isEmpty())
+        return false;
+    if (saved_[size_t(row)].name == name.trimmed().toStdString())
+        return true;
+    saved_[size_t(row)].name = name.trimmed().toStdString();
+    refill();
+    emit saved_views_changed();
+    return true;
+}
+
+bool CameraPanel::delete_view(int row)
+{
+    if (row < 0 || size_t(row) >= saved_.size())
+        return false;
+    saved_.erase(saved_.begin() + row);
+    refill();
+    emit saved_views_changed();
+    return true;
+}
+
+bool CameraPanel::go_to_view(int row)
+{
+    if (row < 0 || size_t(row) >= saved_.size())
+        return false;
+    // the pose, mode, projection and fov; the model's centre and radius stay
+    const Camera &saved = saved_[size_t(row)].camera;
+    Camera &c = camera();
+    c.set_mode(saved.mode());
+    c.orthographic = saved.orthographic;
+    c.fov_degrees = saved.fov_degrees;
+    c.eye = saved.eye;
+    c.orientation = saved.orientation;
+    c.target = saved.target;
+    emit changed();
+    return true;
 }

@@ -176,6 +176,12 @@ QTabWidget *MainWindow::build_tabs()
     connect(parts_panel_, &PartsPanel::frame_selected_requested, this,
             [this](std::vector<int> parts) { frame_parts(parts); });
     connect(camera_panel_, &CameraPanel::reset_camera_requested, view_, &RenderView::reset_camera);
+    connect(camera_panel_, &CameraPanel::saved_views_changed, this, [this] {
+        if (model_path_.isEmpty())
+            return;
+        saved_.views[model_path_.toStdString()] = camera_panel_->saved_views();
+        save_state(false); // kept at once: a crash or a kill does not lose them
+    });
     connect(compare_panel_, &ComparePanel::changed, this, [this] { settings_changed(); });
     connect(compare_panel_, &ComparePanel::wipe_changed, view_, QOverload<>::of(&QWidget::update));
     connect(view_, &RenderView::wipe_moved, compare_panel_, [this] { compare_panel_->sync(); });
@@ -213,6 +219,9 @@ void MainWindow::restore_saved_settings()
     QByteArray layout = QByteArray::fromBase64(QByteArray::fromStdString(saved_.window));
     if ((!geometry.isEmpty() && !restoreGeometry(geometry)) || (!layout.isEmpty() && !restoreState(layout)))
         log_message("warning", "the saved window layout was not restored (Qt did not take it)");
+    export_folder_ = QString::fromStdString(saved_.export_folder);
+    if (saved_.export_width > 0 && saved_.export_height > 0)
+        export_size_ = QSize(saved_.export_width, saved_.export_height);
     pending_preset_ = saved_.settings;
     pending_preset_name_ = "saved settings";
     if (!pending_preset_.empty()) {
@@ -234,6 +243,9 @@ void MainWindow::save_state(bool closing)
         saved_.recent.push_back(path.toStdString());
     if (!model_path_.isEmpty())
         saved_.last_model = model_path_.toStdString();
+    saved_.export_folder = export_folder_.toStdString();
+    saved_.export_width = export_size_.isValid() ? export_size_.width() : 0;
+    saved_.export_height = export_size_.isValid() ? export_size_.height() : 0;
     if (closing) {
         saved_.geometry = saveGeometry().toBase64().toStdString();
         saved_.window = saveState().toBase64().toStdString();
@@ -599,7 +611,9 @@ void MainWindow::load_finished(ModelPointer model, const QString &path)
         }
         pending_preset_.clear();
     }
-    camera_panel_->clear_saved_views();
+    // the views saved with this model (by its file name) come back
+    auto views = saved_.views.find(model_path_.toStdString());
+    camera_panel_->set_saved_views(views != saved_.views.end() ? views->second : std::vector<SavedView>());
     setWindowTitle(QString("%1 — oit-workbench").arg(QFileInfo(model_path_).fileName()));
     add_recent(model_path_);
     // one write of the settings file: each is synced to disk on this thread,

@@ -84,7 +84,14 @@ public:
     // Apply a preset file now (and its parts again when the next model arrives).
     bool load_preset(const QString &path, QString &error);
     bool save_preset(const QString &path, QString &error);
+    // Renders off the view, then encodes the PNG off the GUI thread (a local
+    // event loop waits, so the window keeps answering); clears the progress.
     bool export_png(const QString &path, int width, int height, QString &error);
+    // Where Export PNG's save dialog opens: the last export's folder, else the
+    // user's Pictures folder (never the source tree).
+    QString export_folder() const;
+    // The size Export PNG last used when chosen (invalid: the view's size).
+    QSize export_size() const { return export_size_; }
     // The `oit render` command for the current view (what "Copy as command" copies).
     QString render_command_for_view(const QString &out_path) const;
     QString oit_program() const;
@@ -201,4 +208,7 @@ private:
     QString last_save_error_; // said once
     std::vector<std::function<void()>> sync_actions_; // the menus' checks follow the settings
     QPointer<QMessageBox> error_box_;
+    QString export_folder_; // the last export's, kept in the saved state
+    QSize export_size_;     // the last chosen export size; invalid: the view's
+    bool exporting_ = false; // one export at a time (its waits run the event loop)
 };

@@ -14,6 +14,7 @@
 #include <QClipboard>
 #include <QDialog>
 #include <QDialogButtonBox>
+#include <QDir>
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -26,6 +27,10 @@
 #include <QPlainTextEdit>
 #include <QRadioButton>
 #include <QSpinBox>
+#include <QStandardPaths>
+#include <QtConcurrent/QtConcurrentRun>
+#include <QFutureWatcher>
+#include <QEventLoop>
 #include <QUndoStack>
 #include <QVBoxLayout>
 
@@ -327,28 +332,59 @@ bool MainWindow::save_preset(const QString &path, QString &error)
 }
 bool MainWindow::export_png(const QString &path, int width, int height, QString &error)
 {
+    if (exporting_) {
+        error = "an export is already running";
+        return false;
+    }
     // checked before the frame: the core's writer would write into a FIFO (and
     // wait for a reader, on the GUI thread) or a device rather than replace it
     if (!check_output_path(path, nullptr, error))
         return false;
+    exporting_ = true;
     oit_image image{};
     oit_frame_settings frame;
     std::string message;
-    if (!view_->render_offscreen(width, height, image, frame, message)) {
+    bool rendered = view_->render_offscreen(width, height, image, frame, message);
+    if (!rendered) {
+        exporting_ = false;
         error = QString::fromStdString(message);
         return false;
     }
-    oit_error err{};
-    QByteArray bytes = QFile::encodeName(path);
+    // The core's writer (the bytes `oit render` writes, atomically) on a pool
+    // thread: 0.6-0.7 s at 3840x2160 that the GUI thread would otherwise freeze
     QString refused;
-    bool ok = check_output_path(path, nullptr, refused) && // again: the frame took a while
-              oit_png_write(bytes.constData(), &image, &err) == OIT_OK;
+    bool ok = check_output_path(path, nullptr, refused); // again: the frame took a while
+    if (ok) {
+        QByteArray name = QFile::encodeName(path);
+        QFutureWatcher<QString> watcher;
+        QEventLoop loop;
+        connect(&watcher, &QFutureWatcher<QString>::finished, &loop, &QEventLoop::quit);
+        watcher.setFuture(QtConcurrent::run([name, &image]() -> QString {
+            oit_error err{};
+            return oit_png_write(name.constData(), &image, &err) == OIT_OK ? QString() : QString::fromUtf8(err.message);
+        }));
+        if (!watcher.isFinished())
+            loop.exec();
+        refused = watcher.result();
+        ok = refused.isEmpty();
+    }
     oit_image_free(&image);
-    if (!ok)
-        error = refused.isEmpty() ? QString::fromUtf8(err.message) : refused;
-    else
-        log_message("export", QString("wrote %1 (%2x%3)").arg(path).arg(width).arg(height));
-    return ok;
+    exporting_ = false;
+    if (!ok) {
+        error = refused;
+        return false;
+    }
+    export_folder_ = QFileInfo(path).absolutePath();
+    log_message("export", QString("wrote %1 (%2x%3)").arg(path).arg(width).arg(height));
+    return true;
+}
+
+QString MainWindow::export_folder() const
+{
+    if (!export_folder_.isEmpty() && QFileInfo(export_folder_).isDir())
+        return export_folder_;
+    QString pictures = QStandardPaths::writableLocation(QStandardPaths::PicturesLocation);
+    return pictures.isEmpty() ? QDir::homePath() : pictures;
 }
 
 QString MainWindow::oit_program() const
@@ -425,12 +461,13 @@ void MainWindow::export_dialog()
     QSize size = view_->side_pixel_size(); // side A's, side by side
     auto *view_size = new QRadioButton(QString("view size (%1x%2)").arg(size.width()).arg(size.height()));
     auto *custom = new QRadioButton("chosen size");
-    view_size->setChecked(true);
+    // the size chosen last time is offered again
+    (export_size_.isValid() ? custom : view_size)->setChecked(true);
     auto *w = new QSpinBox, *h = new QSpinBox;
     w->setRange(1, 16384);
     h->setRange(1, 16384);
-    w->setValue(size.width());
-    h->setValue(size.height());
+    w->setValue(export_size_.isValid() ? export_size_.width() : size.width());
+    h->setValue(export_size_.isValid() ? export_size_.height() : size.height());
     auto *size_row = new QHBoxLayout;
     size_row->addWidget(w);
     size_row->addWidget(new QLabel("x"));
@@ -443,8 +480,10 @@ void MainWindow::export_dialog()
     form->addRow(buttons);
     if (dialog.exec() != QDialog::Accepted)
         return;
-    QString path = QFileDialog::getSaveFileName(this, "Export PNG", QFileInfo(model_path_).completeBaseName() + ".png",
-                                                "PNG images (*.png)");
+    export_size_ = custom->isChecked() ? QSize(w->value(), h->value()) : QSize();
+    QString path = QFileDialog::getSaveFileName(
+        this, "Export PNG", export_folder() + "/" + QFileInfo(model_path_).completeBaseName() + ".png",
+        "PNG images (*.png)");
     if (path.isEmpty())
         return;
     int width = custom->isChecked() ? w->value() : size.width();

@@ -269,6 +269,12 @@ void RenderView::frame_done(FrameResultPointer result)
     if (result->kind == FrameJob::Kind::Export) {
         if (result->id == export_id_)
             export_result_ = result;
+        // the export's progress ("compose, 4 stages") goes with it: cleared
+        // now, not when the next view frame happens to arrive; a view frame
+        // still running shows its own again with its next stage
+        progress_text_.clear();
+        update();
+        emit frame_progress(QString(), 0, 0.0);
         return;
     }
     if (result->status == OIT_CANCELLED)

@@ -402,6 +402,23 @@ struct PresetReader {
 
 } // namespace
 
+namespace {
+
+Value camera_value(const Camera &camera, rapidjson::Document::AllocatorType &a)
+{
+    Value cam(rapidjson::kObjectType);
+    add(cam, "mode", Value(rapidjson::StringRef(camera.mode() == Camera::Mode::Walk ? "walk" : "orbit")), a);
+    add(cam, "projection", Value(rapidjson::StringRef(camera.orthographic ? "orthographic" : "perspective")), a);
+    add(cam, "fov", Value(double(camera.fov_degrees)), a);
+    add(cam, "eye", array_value(&camera.eye.x, 3, a), a);
+    const double q[4] = {camera.orientation.w, camera.orientation.x, camera.orientation.y, camera.orientation.z};
+    add(cam, "orientation", array_value(q, 4, a), a);
+    add(cam, "target", array_value(&camera.target.x, 3, a), a);
+    return cam;
+}
+
+} // namespace
+
 std::string preset_to_json(const RenderSettings &s, const Camera &camera, const oit_model *model)
 {
     rapidjson::Document d(rapidjson::kObjectType);
@@ -431,8 +448,8 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     add(d, "lambda-alpha", m.lambda_alpha > 0 ? Value(double(m.lambda_alpha)) : Value(rapidjson::StringRef("auto")), a);
     add(d, "lambda-beta", m.lambda_beta > 0 ? Value(double(m.lambda_beta)) : Value(rapidjson::StringRef("auto")), a);
     add(d, "lambda-gamma", m.lambda_gamma > 0 ? Value(double(m.lambda_gamma)) : Value(rapidjson::StringRef("auto")), a);
-    if (m.has_halo_colour)
-        add(d, "halo-colour", array_value(m.halo_colour, 3, a), a);
+    // "auto" (the core's white) is written too: a preset says every setting
+    add(d, "halo-colour", m.has_halo_colour ? array_value(m.halo_colour, 3, a) : Value(rapidjson::StringRef("auto")), a);
     add(d, "last-layer-opaque", Value(m.last_layer_opaque), a);
     if (s.focus_shape == OIT_FOCUS_POINT)
         add(d, "focus-point", array_value(s.focus, 3, a), a);
@@ -440,6 +457,8 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
         add(d, "focus-plane", array_value(s.focus, 4, a), a);
     else if (s.focus_shape == OIT_FOCUS_BOX)
         add(d, "focus-box", array_value(s.focus, 6, a), a);
+    else
+        add(d, "focus", Value(rapidjson::StringRef("none")), a); // the reader's default, said explicitly
     add(d, "contrast", Value(double(s.contrast == 0.0f ? 1.0f : s.contrast)), a);
     add(d, "error-vs-reference", Value(s.error_view), a);
     add(d, "split", Value(rapidjson::StringRef(split_mode_name(s.split))), a);
@@ -460,21 +479,31 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
         add(d, "component-alpha", std::move(alphas), a);
         add(d, "hide", std::move(hidden), a);
     }
-    Value cam(rapidjson::kObjectType);
-    add(cam, "mode", Value(rapidjson::StringRef(camera.mode() == Camera::Mode::Walk ? "walk" : "orbit")), a);
-    add(cam, "projection", Value(rapidjson::StringRef(camera.orthographic ? "orthographic" : "perspective")), a);
-    add(cam, "fov", Value(double(camera.fov_degrees)), a);
-    add(cam, "eye", array_value(&camera.eye.x, 3, a), a);
-    const double q[4] = {camera.orientation.w, camera.orientation.x, camera.orientation.y, camera.orientation.z};
-    add(cam, "orientation", array_value(q, 4, a), a);
-    add(cam, "target", array_value(&camera.target.x, 3, a), a);
-    add(d, "camera", std::move(cam), a);
+    add(d, "camera", camera_value(camera, a), a);
 
     rapidjson::StringBuffer buffer;
     rapidjson::PrettyWriter<rapidjson::StringBuffer> writer(buffer);
     writer.SetIndent(' ', 2);
     d.Accept(writer);
     return std::string(buffer.GetString()) + "\n";
+}
+
+RenderSettings preset_defaults(const RenderSettings &current)
+{
+    RenderSettings s; // every setting a preset holds at its default
+    // what no preset holds is kept: the shader folder (set by the view) and the
+    // tests' configuration (fragment counters, debug, neighbour quality, ...)
+    oit_algorithm_config preset_config = s.config;
+    s.config = current.config;
+    s.config.max_memory_bytes = preset_config.max_memory_bytes;
+    s.config.ll_sort = preset_config.ll_sort;
+    s.config.max_layers = preset_config.max_layers;
+    s.config.layers = preset_config.layers;
+    s.config.moments = preset_config.moments;
+    // the parts are matched by name against a model; without one they stay
+    s.part_alpha = current.part_alpha;
+    s.part_visible = current.part_visible;
+    return s;
 }
 
 namespace {
@@ -485,12 +514,13 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
 {
     has_camera = false;
     PresetReader r{file, text, error};
-    RenderSettings s = out; // applied only if the whole file is good
+    // applied only if the whole file is good; every key it lacks takes its default
+    RenderSettings s = preset_defaults(out);
     static const char *const known[] = {
         "algorithm", "sort", "max-memory", "max-layers", "layers", "moments", "alpha", "shading", "background", "view", "modulation",
         "neighbours", "curvature-neighbours", "curvature-effect", "epsilon-max", "distance", "focus-region",
         "fields", "diffusion-iterations", "blur-iterations", "lambda-alpha", "lambda-beta", "lambda-gamma",
-        "halo-colour", "last-layer-opaque", "focus-point", "focus-plane", "focus-box", "contrast",
+        "halo-colour", "last-layer-opaque", "focus", "focus-point", "focus-plane", "focus-box", "contrast",
         "component-alpha", "hide", "camera", "tessellation",
         // the workbench's comparisons (the first is `oit render`'s flag too)
         "error-vs-reference", "split", "split-algorithm", "wipe"};
@@ -518,7 +548,8 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
     int moments = s.config.moments == OIT_MOMENTS_DEFAULT ? 0 : int(s.config.moments) - OIT_MOMENTS_POWER4;
     if (!r.choice(d, "moments", words, oit_setting_words(OIT_SETTING_MOMENTS, &words), moments))
         return false;
-    s.config.moments = oit_moments(moments + OIT_MOMENTS_POWER4);
+    if (d.HasMember("moments")) // absent: the default itself, not the value it stands for
+        s.config.moments = oit_moments(moments + OIT_MOMENTS_POWER4);
     if (!r.number(d, "alpha", 0.0, 1.0, s.alpha))
         return false;
     int shading = s.shading;
@@ -579,15 +610,22 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
     int diffusion = std::max(0, resolved.diffusion_iterations), blur = std::max(0, resolved.blur_iterations);
     if (!r.whole(d, "diffusion-iterations", 0, 1000, diffusion) || !r.whole(d, "blur-iterations", 0, 1000, blur))
         return false;
-    m.diffusion_iterations = diffusion == 0 ? -1 : diffusion;
-    m.blur_iterations = blur == 0 ? -1 : blur;
+    if (d.HasMember("diffusion-iterations"))
+        m.diffusion_iterations = diffusion == 0 ? -1 : diffusion;
+    if (d.HasMember("blur-iterations"))
+        m.blur_iterations = blur == 0 ? -1 : blur;
     if (!r.number_or_auto(d, "lambda-alpha", 1e-6, 100, m.lambda_alpha) ||
         !r.number_or_auto(d, "lambda-beta", 1e-6, 100, m.lambda_beta) ||
         !r.number_or_auto(d, "lambda-gamma", 1e-6, 100, m.lambda_gamma))
         return false;
-    if (!r.numbers(d, "halo-colour", 3, m.halo_colour, present))
-        return false;
-    m.has_halo_colour = m.has_halo_colour || present;
+    if (d.HasMember("halo-colour") && d["halo-colour"].IsString()) {
+        if (d["halo-colour"].GetString() != std::string("auto"))
+            return r.fail("halo-colour", "must be \"auto\" or an array of 3 numbers");
+    } else {
+        if (!r.numbers(d, "halo-colour", 3, m.halo_colour, present))
+            return false;
+        m.has_halo_colour = present;
+    }
     if (d.HasMember("last-layer-opaque")) {
         if (!d["last-layer-opaque"].IsBool())
             return r.fail("last-layer-opaque", "must be true or false");
@@ -598,6 +636,8 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         oit_focus_shape shape;
         int count;
     } shapes[] = {{"focus-point", OIT_FOCUS_POINT, 3}, {"focus-plane", OIT_FOCUS_PLANE, 4}, {"focus-box", OIT_FOCUS_BOX, 6}};
+    if (d.HasMember("focus") && !(d["focus"].IsString() && d["focus"].GetString() == std::string("none")))
+        return r.fail("focus", "must be \"none\" (a focus is given by focus-point, focus-plane or focus-box)");
     for (const auto &shape : shapes) {
         double values[6] = {0, 0, 0, 0, 0, 0};
         if (!r.numbers(d, shape.key, shape.count, values, present))
@@ -672,7 +712,9 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
             return r.fail("camera", "must be an object");
         static const char *const modes[] = {"orbit", "walk"};
         static const char *const projections[] = {"perspective", "orthographic"};
-        int cam_mode = c.mode() == Camera::Mode::Walk, projection = c.orthographic;
+        // a camera without a mode, projection or fov gets the defaults, as settings do
+        c.fov_degrees = Camera().fov_degrees;
+        int cam_mode = 0, projection = 0;
         double q[4] = {c.orientation.w, c.orientation.x, c.orientation.y, c.orientation.z};
         if (!r.choice(cam, "mode", modes, 2, cam_mode) || !r.choice(cam, "projection", projections, 2, projection) ||
             !r.number(cam, "fov", 1.0, 170.0, c.fov_degrees) || !r.numbers(cam, "eye", 3, &c.eye.x, present) ||
@@ -684,7 +726,11 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         // renormalised only if needed, so a saved view comes back bit for bit
         c.orientation = std::fabs(glm::length(orientation) - 1.0) > 1e-5 ? glm::normalize(orientation) : orientation;
         c.orthographic = projection == 1;
+        // set_mode moves an orbit's target to the point ahead when the mode
+        // changes: the preset's (or the kept) target is put back after it
+        const glm::dvec3 target = c.target;
         c.set_mode(cam_mode ? Camera::Mode::Walk : Camera::Mode::Orbit);
+        c.target = target;
         has_camera = true;
     }
     out = s;
@@ -739,11 +785,50 @@ bool saved_state_from_json(const std::string &file, const std::string &text, Sav
     }
     PresetReader r{file, text, error};
     SavedStateText state;
-    static const char *const known[] = {"settings", "last-model", "recent", "geometry", "window"};
+    static const char *const known[] = {"settings", "last-model", "recent",        "geometry",
+                                        "window",   "views",      "export-folder", "export-size"};
     for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
         std::string key = it->name.GetString();
         if (std::find(std::begin(known), std::end(known), key) == std::end(known))
-            return r.fail(key.c_str(), "unknown key (the keys are settings, last-model, recent, geometry, window)");
+            return r.fail(key.c_str(), "unknown key (the keys are settings, last-model, recent, geometry, window, "
+                                       "views, export-folder, export-size)");
+    }
+    if (d.HasMember("views")) {
+        const Value &views = d["views"];
+        if (!views.IsObject())
+            return r.fail("views", "must be an object {\"model file\": [{\"name\", \"camera\"}]}");
+        for (auto it = views.MemberBegin(); it != views.MemberEnd(); ++it) {
+            if (!it->value.IsArray())
+                return r.fail("views", "each model's views must be an array");
+            std::vector<SavedView> &list = state.views[it->name.GetString()];
+            for (const Value &view : it->value.GetArray()) {
+                if (!view.IsObject() || !view.HasMember("name") || !view["name"].IsString() ||
+                    !view.HasMember("camera"))
+                    return r.fail("views", "every view needs a \"name\" string and a \"camera\"");
+                // the camera is checked as a preset's
+                rapidjson::Document wrapper(rapidjson::kObjectType);
+                wrapper.AddMember("camera", Value(view["camera"], wrapper.GetAllocator()), wrapper.GetAllocator());
+                RenderSettings unused;
+                SavedView saved{view["name"].GetString(), Camera()};
+                bool has_camera;
+                if (!preset_from_object(file, text, wrapper, unused, saved.camera, has_camera, nullptr, error))
+                    return false;
+                list.push_back(saved);
+            }
+        }
+    }
+    if (d.HasMember("export-folder")) {
+        if (!d["export-folder"].IsString())
+            return r.fail("export-folder", "must be a folder name");
+        state.export_folder = d["export-folder"].GetString();
+    }
+    if (d.HasMember("export-size")) {
+        const Value &size = d["export-size"];
+        if (!size.IsArray() || size.Size() != 2 || !size[0].IsInt() || !size[1].IsInt() || size[0].GetInt() < 1 ||
+            size[1].GetInt() < 1 || size[0].GetInt() > 16384 || size[1].GetInt() > 16384)
+            return r.fail("export-size", "must be [width, height] in pixels, 1..16384");
+        state.export_width = size[0].GetInt();
+        state.export_height = size[1].GetInt();
     }
     if (d.HasMember("settings")) {
         // the settings are checked as a preset would be (ranges, names); parts
@@ -808,6 +893,28 @@ std::string saved_state_to_json(const SavedStateText &state)
         add(d, "geometry", string_value(state.geometry, a), a);
     if (!state.window.empty())
         add(d, "window", string_value(state.window, a), a);
+    Value views(rapidjson::kObjectType);
+    for (const auto &entry : state.views) {
+        if (entry.second.empty())
+            continue;
+        Value list(rapidjson::kArrayType);
+        for (const SavedView &view : entry.second) {
+            Value item(rapidjson::kObjectType);
+            add(item, "name", string_value(view.name, a), a);
+            add(item, "camera", camera_value(view.camera, a), a);
+            list.PushBack(std::move(item), a);
+        }
+        views.AddMember(string_value(entry.first, a), std::move(list), a);
+    }
+    if (views.MemberCount() > 0)
+        add(d, "views", std::move(views), a);
+    if (!state.export_folder.empty())
+        add(d, "export-folder", string_value(state.export_folder, a), a);
+    if (state.export_width > 0 && state.export_height > 0) {
+        Value size(rapidjson::kArrayType);
+        size.PushBack(state.export_width, a).PushBack(state.export_height, a);
+        add(d, "export-size", std::move(size), a);
+    }
     rapidjson::StringBuffer buffer;
     rapidjson::PrettyWriter<rapidjson::StringBuffer> writer(buffer);
     writer.SetIndent(' ', 2);

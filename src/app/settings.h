@@ -4,6 +4,7 @@
 // into / out of preset JSON (RapidJSON). Names follow the command line's flags.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -67,8 +68,16 @@ std::string render_command(const std::string &oit_program, const std::string &mo
 
 // Presets: a JSON object whose keys are the command line's flag names.
 std::string preset_to_json(const RenderSettings &settings, const Camera &camera, const oit_model *model);
-// On failure returns false with "FILE:LINE: problem" in error. The camera is
-// changed only if the preset has one; parts are matched by name against model.
+// The settings a preset lacking every key gives: RenderSettings' defaults, with
+// current's parts (without a model they cannot be matched) and what presets
+// do not hold (the shader folder, the tests' configuration). The one place
+// the reader's defaults are resolved.
+RenderSettings preset_defaults(const RenderSettings &current);
+// On failure returns false with "FILE:LINE: problem" in error. Every setting
+// the preset lacks takes its default (preset_defaults), so a preset gives the
+// same state whatever came before. The camera is changed only if the preset
+// has one (its fov, mode and projection default too; the pose is kept if the
+// preset lacks it); parts are matched by name against model.
 bool preset_from_json(const std::string &file_name, const std::string &text, RenderSettings &settings,
                       Camera &camera, bool &has_camera, const oit_model *model, std::string &error);
 
@@ -78,11 +87,23 @@ bool preset_from_json(const std::string &file_name, const std::string &text, Ren
 // every key optional. Reading checks every value, the settings as a preset
 // (ranges, names; parts once a model is loaded), and fails with
 // "FILE:LINE: problem" on the first bad one.
+// A camera pose the user saved and named (the Camera tab's saved views).
+struct SavedView {
+    std::string name;
+    Camera camera;
+};
 struct SavedStateText {
     std::string settings; // preset JSON, "" for none
     std::string last_model;
     std::vector<std::string> recent;
     std::string geometry, window; // base64
+    // "views": {model file: [{"name", "camera": a preset's camera}]}, kept
+    // across model loads and restarts
+    std::map<std::string, std::vector<SavedView>> views;
+    // "export-folder", "export-size": [w, h]: Export PNG's last folder and
+    // chosen size (0 x 0: the view's size)
+    std::string export_folder;
+    int export_width = 0, export_height = 0;
 };
 bool saved_state_from_json(const std::string &file_name, const std::string &text, SavedStateText &out,
                            std::string &error);

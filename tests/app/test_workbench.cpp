@@ -402,6 +402,132 @@ void WorkbenchTest::settings_persist()
     QVERIFY(QTest::qWaitForWindowExposed(window));
 }
 
+// Saved views are named, renamed and deleted, come back when their model is
+// loaded again (another model has its own), and are in the saved state.
+void WorkbenchTest::saved_views_are_named_and_kept_with_the_model()
+{
+    auto *panel = window->findChild<CameraPanel *>();
+    QVERIFY(panel);
+    panel->set_saved_views({});
+    auto names = [panel] {
+        QStringList out;
+        for (const SavedView &view : panel->saved_views())
+            out << QString::fromStdString(view.name);
+        return out;
+    };
+    camera().trackball(glm::vec2(80, 60), glm::vec2(110, 40), view_size.width(), view_size.height());
+    const Camera turned = camera();
+    panel->save_view();
+    panel->save_view();
+    QCOMPARE(names(), QStringList({"view 1", "view 2"}));
+    QVERIFY(panel->rename_view(0, "  inside  "));
+    QVERIFY(!panel->rename_view(0, " ")); // an empty name is refused
+    QVERIFY(panel->delete_view(1));
+    panel->save_view("top");
+    QCOMPARE(names(), QStringList({"inside", "top"}));
+    // the list's own edit renames too
+    auto *list = panel->findChild<QListWidget *>("saved_views");
+    QVERIFY(list && list->count() == 2 && (list->item(1)->flags() & Qt::ItemIsEditable));
+    list->item(1)->setText("from above");
+    QCOMPARE(names(), QStringList({"inside", "from above"}));
+
+    // another model has none; the gearbox's come back with it
+    const QString gearbox = window->model_path();
+    QString other = work + "/one-triangle.obj";
+    QFile file(other);
+    QVERIFY(file.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    file.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    file.close();
+    QSignalSpy loaded(window, &MainWindow::model_loaded);
+    window->load_model(other);
+    QVERIFY(loaded.wait(60000));
+    QCOMPARE(names(), QStringList());
+    window->load_model(gearbox);
+    QVERIFY(loaded.wait(60000));
+    QCOMPARE(names(), QStringList({"inside", "from above"}));
+    window->view()->reset_camera();
+    QVERIFY(panel->go_to_view(0));
+    QCOMPARE(camera().eye, turned.eye);
+    QCOMPARE(camera().orientation, turned.orientation);
+
+    // kept in the saved state (written when they change), camera and all
+    QString path = window->settings_file().path();
+    QFile saved_file(path);
+    QVERIFY(saved_file.open(QIODevice::ReadOnly));
+    SavedStateText saved;
+    std::string error;
+    QVERIFY2(saved_state_from_json(path.toStdString(), saved_file.readAll().toStdString(), saved, error), error.c_str());
+    const std::vector<SavedView> &views = saved.views[gearbox.toStdString()];
+    QCOMPARE(int(views.size()), 2);
+    QCOMPARE(QString::fromStdString(views[0].name), QString("inside"));
+    QCOMPARE(views[0].camera.eye, turned.eye);
+    QCOMPARE(views[0].camera.target, turned.target);
+    QVERIFY(saved.views[other.toStdString()].empty());
+    panel->set_saved_views({});
+}
+
+// After an export (long enough to show its progress) the status bar's
+// progress, busy bar and Cancel are gone at once; the next save dialog opens
+// in the export's folder.
+void WorkbenchTest::export_clears_its_progress_and_remembers_its_folder()
+{
+    window->set_algorithm("dp"); // about a second at 800x600 on llvmpipe: past the progress's 300 ms
+    frame();
+    auto *cancel = window->findChild<QPushButton *>("cancel_frame");
+    auto *bar = window->findChild<QProgressBar *>();
+    QVERIFY(cancel && bar);
+    bool progress_seen = false;
+    QTimer watch;
+    connect(&watch, &QTimer::timeout, [&] { progress_seen = progress_seen || (cancel->isVisible() && bar->isVisible()); });
+    watch.start(20);
+    QString folder = work + "/exports";
+    QDir().mkpath(folder);
+    QString error;
+    QVERIFY2(window->export_png(folder + "/big.png", 800, 600, error), qPrintable(error));
+    watch.stop();
+    QVERIFY2(progress_seen, "the export's progress was never shown (too fast to prove anything)");
+    QVERIFY(!cancel->isVisible());
+    QVERIFY(!bar->isVisible());
+    QVERIFY(!window->view()->rendering());
+    QCOMPARE(QImage(folder + "/big.png").size(), QSize(800, 600));
+    QCOMPARE(window->export_folder(), folder);
+}
+
+// A 3840x2160 export (ll: about 3 s and 425 MB on llvmpipe, as oit render)
+// keeps the window answering: its PNG encoding (0.6-0.7 s) used to run on the
+// GUI thread. Posted events wait less than 250 ms, the window manager's ping
+// limit (tests/app/wm_ping.sh); the render and the encoding run elsewhere.
+void WorkbenchTest::a_uhd_export_keeps_the_window_answering()
+{
+    window->set_algorithm("ll");
+    frame();
+    // a 10 ms timer's ticks: the longest gap between two is the longest the
+    // GUI thread did not run its event loop (a posted event waits as long)
+    QTimer tick;
+    QElapsedTimer since_tick;
+    double worst_gap_ms = 0.0;
+    int ticks = 0;
+    connect(&tick, &QTimer::timeout, [&] {
+        if (since_tick.isValid())
+            worst_gap_ms = std::max(worst_gap_ms, double(since_tick.nsecsElapsed()) / 1e6);
+        since_tick.start();
+        ++ticks;
+    });
+    tick.start(10);
+    QElapsedTimer clock;
+    clock.start();
+    QString path = work + "/uhd.png", error;
+    QVERIFY2(window->export_png(path, 3840, 2160, error), qPrintable(error));
+    // the export's return is an event-loop turn too: a last tick counts the end
+    QTest::qWait(30);
+    tick.stop();
+    qInfo("3840x2160 export: %lld ms; timer ticks: %d, the longest gap %.1f ms", clock.elapsed(), ticks, worst_gap_ms);
+    QVERIFY2(ticks > 10, "the export was too short to prove anything");
+    QVERIFY2(worst_gap_ms < 250.0, qPrintable(QString("the event loop stalled %1 ms during the export").arg(worst_gap_ms)));
+    QCOMPARE(QImageReader(path).size(), QSize(3840, 2160));
+    QFile::remove(path);
+}
+
 void WorkbenchTest::options_an_algorithm_cannot_express_are_left_out()
 {
     window->set_algorithm("dp");

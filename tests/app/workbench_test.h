@@ -14,6 +14,8 @@
 #include <QDoubleSpinBox>
 #include <QLabel>
 #include <QLineEdit>
+#include <QListWidget>
+#include <QTimer>
 #include <QProgressBar>
 #include <QScrollBar>
 #include <QDir>
@@ -27,6 +29,7 @@
 #include <QTabBar>
 #include <QTabWidget>
 #include <QStandardPaths>
+#include <QImageReader>
 #include <QtTest/QtTest>
 #include <QTreeView>
 #include <QJsonArray>
@@ -37,6 +40,7 @@
 
 #include <cmath>
 
+#include "camera_panel.h"
 #include "compare_panel.h"
 #include "error_legend.h"
 #include "main_window.h"
@@ -212,6 +216,9 @@ private slots:
     void step_models_load_with_their_tessellation();
     void presets_round_trip_and_name_errors();
     void settings_persist();
+    void saved_views_are_named_and_kept_with_the_model();
+    void export_clears_its_progress_and_remembers_its_folder();
+    void a_uhd_export_keeps_the_window_answering();
     void options_an_algorithm_cannot_express_are_left_out();
     void controls_an_algorithm_cannot_express_are_disabled();
     void messages_and_the_copied_command_stay_readable();
