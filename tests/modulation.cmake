@@ -236,3 +236,10 @@ add_test(NAME modulation_dp_curvature_sphere_is_not_background
           _ ${OIT} ${WORK}/modulation/egl/dp_onion_curvature.png ${background})
 set_tests_properties(modulation_dp_curvature_sphere_is_not_background PROPERTIES
   FIXTURES_REQUIRED "modbackground;moddp_onion_curvature")
+
+# the selection highlight (--highlight): exact algorithms against the reference,
+# and only the highlighted part's pixels change in every algorithm
+add_test(NAME modulation_highlight
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/highlight.sh ${OIT} ${WORK}/modulation/highlight ${SCENES}
+          ${EXACT_TOLERANCE} ${EXACT_MISMATCH})
+set_tests_properties(modulation_highlight PROPERTIES FIXTURES_REQUIRED scenes)

@@ -5,6 +5,7 @@
 //   alpha' = alpha * component_alpha[component] * saturate(d / focus_region)
 // with d the distance, in model coordinates, to the focus point, to the focus
 // plane, or to the focus box (0 inside it). alpha' == 0: the fragment is never stored.
+//   material rgb' = mix(rgb, highlight rgb, highlight weight[component])  (0: unchanged)
 //   rgb' = saturate((rgb - 0.5) * contrast + 0.5)  (contrast 0 or 1: unchanged)
 #ifndef OIT_LOCAL_MODULATION_GLSL
 #define OIT_LOCAL_MODULATION_GLSL
@@ -14,6 +15,9 @@
 // frame sets none; no limit on the number of parts). The one place the GLSL
 // side reads oit_local_modulation.component_alpha.
 layout(binding = OIT_TEXUNIT_LOCAL_PART_ALPHA) uniform samplerBuffer u_local_part_alpha;
+// Selection highlight: per part (highlight rgb, weight), weight 0 for a part
+// not highlighted (oit_local_modulation.component_highlight).
+layout(binding = OIT_TEXUNIT_LOCAL_PART_TINT) uniform samplerBuffer u_local_part_tint;
 
 
 // The pixel's ray in eye space: its points at NDC depth -1 and +1, where the
@@ -64,6 +68,16 @@ float oit_local_alpha(float alpha, uint component, vec3 eye_position)
         alpha *= clamp(oit_focus_distance(p) / u_local_focus_region, 0.0, 1.0);
     }
     return alpha;
+}
+
+// The material colour of a highlighted part: mix(rgb, highlight, weight),
+// before shading (the reference does the same: reference_raster.c).
+vec3 oit_local_tint(vec3 rgb, uint component)
+{
+    if (component >= uint(textureSize(u_local_part_tint)))
+        return rgb;
+    vec4 tint = texelFetch(u_local_part_tint, int(component));
+    return tint.a > 0.0 ? mix(rgb, tint.rgb, tint.a) : rgb;
 }
 
 vec3 oit_local_contrast(vec3 rgb)

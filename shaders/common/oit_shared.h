@@ -206,6 +206,16 @@
  * part (1 where the frame sets none), filled each frame by
  * oit_gl_bind_part_alpha (gl_frame.c) and read by oit_local_alpha */
 #define OIT_TEXUNIT_LOCAL_PART_ALPHA 23
+/* selection highlight (oit_local_modulation.component_highlight): a buffer
+ * texture (samplerBuffer, rgba32f), per part the highlight colour and its
+ * weight (0: not highlighted), filled each frame by oit_gl_bind_part_alpha and
+ * read by oit_local_tint: material rgb' = mix(rgb, highlight rgb, weight) */
+#define OIT_TEXUNIT_LOCAL_PART_TINT 28
+/* the highlight's defaults (oit_local_highlight): an orange, mixed in at 60% */
+#define OIT_HIGHLIGHT_COLOUR_R_PERCENT 100
+#define OIT_HIGHLIGHT_COLOUR_G_PERCENT 55
+#define OIT_HIGHLIGHT_COLOUR_B_PERCENT 0
+#define OIT_HIGHLIGHT_STRENGTH_PERCENT 60
 /* a plane is seen edge-on from a pixel when its normal is within 1e-6 (in
  * millionths) of perpendicular to the pixel's ray: the interpolated depth is kept */
 #define OIT_EDGE_ON_PLANE_PPM 1

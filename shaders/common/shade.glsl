@@ -38,9 +38,10 @@ float oit_fragment_alpha()
                            v_eye_position);
 }
 
-// The shaded colour and opacity of the current fragment (contrast too).
+// The shaded colour and opacity of the current fragment (highlight and contrast too).
 vec4 oit_shade_fragment()
 {
-    return vec4(oit_shade_rgb(oit_components[v_component].rgb, v_eye_normal, v_eye_position),
+    return vec4(oit_shade_rgb(oit_local_tint(oit_components[v_component].rgb, v_component), v_eye_normal,
+                              v_eye_position),
                 oit_fragment_alpha());
 }

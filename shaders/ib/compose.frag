@@ -101,11 +101,12 @@ void main()
         uint slot = start + i;
         uvec4 core = ib_core_fetch(slot); // buffer texture: gathered, see ib_common.glsl
         float depth = uintBitsToFloat(core.x);
-        vec4 material = ib_component_material(ib_triangle_component(core.y));
+        uint component = ib_triangle_component(core.y);
+        vec4 material = ib_component_material(component);
         float alpha = clamp(u_alpha * material.a, 0.0, 1.0);
         vec3 normal = oit_unpack_normal(core.z);
         vec3 eye_position = ib_eye_position(gl_FragCoord.xy, depth);
-        vec3 rgb = oit_shade_rgb(material.rgb, normal, eye_position);
+        vec3 rgb = oit_shade_rgb(oit_local_tint(material.rgb, component), normal, eye_position);
 #if OIT_VARIANT_VIEWS
         if (ib_view == OIT_IB_VIEW_NEIGHBOURS)
             rgb = neighbour_colour(ib_neighbour_count(slot));
@@ -124,7 +125,7 @@ void main()
             alpha = 1.0;
 #endif
         // local modulation (per-part opacity, focus shapes) scales whatever the mode chose
-        alpha = oit_local_alpha(alpha, ib_triangle_component(core.y), eye_position);
+        alpha = oit_local_alpha(alpha, component, eye_position);
         bool last = ib_last_layer_opaque != 0 && i + 1u == run_length;
 
 #if OIT_VARIANT_IB_MODES

@@ -1,6 +1,6 @@
 /* local_options.c: the flags of the local opacity modulations every algorithm
  * supports (docs/modulation.md): --component-alpha, --hide, --focus-point,
- * --focus-plane, --focus-box, --contrast. Component names, indices and
+ * --focus-plane, --focus-box, --contrast, --highlight, --highlight-colour. Component names, indices and
  * assembly paths are kept as given and resolved against the model once it is
  * loaded (oit_model_match_parts). */
 #include <math.h>
@@ -20,6 +20,7 @@ typedef struct component_setting {
     char *name; /* as given: a component name, an index or an assembly path */
     float alpha;
     const char *flag; /* for messages */
+    bool highlight;   /* --highlight (alpha unused) */
 } component_setting;
 
 static struct {
@@ -30,6 +31,9 @@ static struct {
     double focus[6]; /* model (file) coordinates, in double as they reach the core */
     float contrast;
     float *resolved_alpha; /* handed to frame->local */
+    float *resolved_highlight;
+    bool has_highlight_colour;
+    float highlight_colour[3];
     bool registered_free;
 } options;
 
@@ -39,6 +43,7 @@ void oit_cli_local_options_free(void)
         free(options.settings[i].name);
     free(options.settings);
     free(options.resolved_alpha);
+    free(options.resolved_highlight);
     bool registered = options.registered_free;
     memset(&options, 0, sizeof options);
     options.registered_free = registered;
@@ -113,7 +118,7 @@ static int add_setting(const char *name, size_t name_length, float alpha, const 
     memcpy(copy, name, name_length);
     copy[name_length] = '\0';
     register_free();
-    options.settings[options.count++] = (component_setting){copy, alpha, flag};
+    options.settings[options.count++] = (component_setting){copy, alpha, flag, strcmp(flag, "--highlight") == 0};
     return 1;
 }
 
@@ -135,7 +140,8 @@ static int set_focus(oit_focus_shape shape, const char *flag, const double *valu
 int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oit_status *status)
 {
     static const char *const flags[] = {"--component-alpha", "--hide", "--focus-point",
-                                        "--focus-plane", "--focus-box", "--contrast"};
+                                        "--focus-plane", "--focus-box", "--contrast",
+                                        "--highlight", "--highlight-colour"};
     const char *flag = NULL;
     for (size_t k = 0; k < sizeof flags / sizeof flags[0]; ++k)
         if (strcmp(argv[*i], flags[k]) == 0)
@@ -170,6 +176,31 @@ int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oi
         if (value[0] == '\0')
             BAD("--hide needs a component name, index or assembly path");
         return add_setting(value, strlen(value), 0.0f, flag, err, status);
+    }
+    if (strcmp(flag, "--highlight") == 0) {
+        /* NAME[,NAME...]: each a part, index or assembly path */
+        for (const char *name = value;;) {
+            const char *comma = strchr(name, ',');
+            size_t length = comma ? (size_t)(comma - name) : strlen(name);
+            if (length == 0)
+                BAD("--highlight needs NAME[,NAME...] (component names, indices or assembly paths), got '%s'",
+                    value);
+            if (add_setting(name, length, 1.0f, flag, err, status) < 0)
+                return -1;
+            if (!comma)
+                return 1;
+            name = comma + 1;
+        }
+    }
+    if (strcmp(flag, "--highlight-colour") == 0) {
+        double rgb[3];
+        if (!parse_numbers(value, 3, rgb) || rgb[0] < 0.0 || rgb[0] > 1.0 || rgb[1] < 0.0 ||
+            rgb[1] > 1.0 || rgb[2] < 0.0 || rgb[2] > 1.0)
+            BAD("--highlight-colour must be R,G,B, each in [0, 1], got '%s'", value);
+        options.has_highlight_colour = true;
+        for (int k = 0; k < 3; ++k)
+            options.highlight_colour[k] = (float)rgb[k];
+        return 1;
     }
     if (strcmp(flag, "--focus-point") == 0) {
         double p[3];
@@ -216,8 +247,13 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
      * bounding radius (docs/modulation.md) */
     local->focus_default_region = model->radius > 0.0f ? 0.25f * model->radius : 1.0f;
 
+    local->has_highlight_colour = options.has_highlight_colour;
+    memcpy(local->highlight_colour, options.highlight_colour, sizeof local->highlight_colour);
+
     free(options.resolved_alpha);
     options.resolved_alpha = NULL;
+    free(options.resolved_highlight);
+    options.resolved_highlight = NULL;
     if (options.count == 0)
         return OIT_OK;
     if (model->component_count == 0)
@@ -227,10 +263,13 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
     if (!alpha)
         return oit_fail(err, OIT_E_RUNTIME, "out of memory for %u component opacities",
                         model->component_count);
+    float *highlight = calloc(model->component_count, sizeof *highlight);
     for (uint32_t c = 0; c < model->component_count; ++c)
         alpha[c] = 1.0f;
     bool *selected = malloc(model->component_count * sizeof *selected);
-    if (!selected) {
+    if (!selected || !highlight) {
+        free(selected);
+        free(highlight);
         free(alpha);
         return oit_fail(err, OIT_E_RUNTIME, "out of memory for %u component opacities",
                         model->component_count);
@@ -255,6 +294,7 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
                     break;
                 }
             free(selected);
+            free(highlight);
             free(alpha);
             return oit_fail(err, OIT_E_INPUT,
                             "%s: no component '%s' (the model has %u: %s%s; or give an index 0..%u%s)",
@@ -265,13 +305,33 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
         /* later flags win; a subassembly sets every part under it; any part
          * of the model (no GPU limit) */
         for (uint32_t c = 0; c < model->component_count; ++c)
-            if (selected[c])
-                alpha[c] = setting->alpha;
+            if (selected[c]) {
+                if (setting->highlight)
+                    highlight[c] = 1.0f;
+                else
+                    alpha[c] = setting->alpha;
+            }
+    }
+    bool any_alpha = false, any_highlight = false;
+    for (size_t s = 0; s < options.count; ++s) {
+        any_highlight |= options.settings[s].highlight;
+        any_alpha |= !options.settings[s].highlight;
     }
     free(selected);
-    options.resolved_alpha = alpha;
-    local->component_alpha = alpha;
-    local->component_count = model->component_count;
+    if (any_alpha) {
+        options.resolved_alpha = alpha;
+        local->component_alpha = alpha;
+        local->component_count = model->component_count;
+    } else {
+        free(alpha);
+    }
+    if (any_highlight) {
+        options.resolved_highlight = highlight;
+        local->component_highlight = highlight;
+        local->component_highlight_count = model->component_count;
+    } else {
+        free(highlight);
+    }
     return OIT_OK;
 }
 
@@ -289,6 +349,10 @@ void oit_cli_print_local_help(FILE *out)
           "                         (one shape; model coordinates, each within +-1e9; R is\n"
           "                         --focus-region in model units, auto: 1/4 of the bounding radius)\n"
           "  --contrast C           colour = saturate((colour - 0.5) C + 0.5) per fragment,\n"
-          "                         C in [0.1, 10] (default 1: unchanged)\n",
+          "                         C in [0.1, 10] (default 1: unchanged)\n"
+          "  --highlight NAME[,NAME...]  selection highlight: the parts' material colour mixed\n"
+          "                         60% towards the highlight colour before shading (the\n"
+          "                         reference too); names as --component-alpha; repeatable\n"
+          "  --highlight-colour R,G,B  the highlight colour, each in [0, 1] (default 1,0.55,0)\n",
           out);
 }

@@ -104,11 +104,47 @@ oit_status oit_gl_check_frame_block(GLuint program, const char *description, oit
     return OIT_OK;
 }
 
+/* both per-part buffer textures: opacity and highlight */
 static void bind_part_alpha_texture(const oit_scene *scene)
 {
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_LOCAL_PART_ALPHA);
     glBindTexture(GL_TEXTURE_BUFFER, scene->part_alpha_texture);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_LOCAL_PART_TINT);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->part_tint_texture);
     glActiveTexture(GL_TEXTURE0);
+}
+
+/* The selection highlight (oit_local_modulation.component_highlight): per
+ * part its colour and weight, 0 for every part when the frame highlights none
+ * (the shaders then leave the colour as it is). */
+static void write_part_tint(const oit_scene *scene, const oit_local_modulation *local)
+{
+    if (!scene->part_tint_buffer)
+        return;
+    glBindBuffer(GL_TEXTURE_BUFFER, scene->part_tint_buffer);
+    const uint32_t given = local->component_highlight
+                               ? (local->component_highlight_count < scene->part_count
+                                      ? local->component_highlight_count
+                                      : scene->part_count)
+                               : 0;
+    bool any = false;
+    for (uint32_t i = 0; i < given && !any; ++i)
+        any = local->component_highlight[i] > 0.0f;
+    float *tint = any ? malloc((size_t)given * 4 * sizeof *tint) : NULL;
+    if (tint) {
+        for (uint32_t i = 0; i < given; ++i)
+            tint[4 * i + 3] = oit_local_highlight(local, i, &tint[4 * i]);
+        glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)given * 4 * (GLsizeiptr)sizeof(float), tint);
+        free(tint);
+    }
+    const uint32_t written = tint ? given : 0; /* out of memory: no highlight, never a wrong one */
+    const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    if (written < scene->part_count)
+        glClearBufferSubData(GL_TEXTURE_BUFFER, GL_RGBA32F,
+                             (GLintptr)written * 4 * (GLintptr)sizeof(float),
+                             (GLsizeiptr)(scene->part_count - written) * 4 * (GLsizeiptr)sizeof(float),
+                             GL_RGBA, GL_FLOAT, none);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
 }
 
 /* The one place C hands per-part opacity to the GPU. The buffer is the
@@ -134,6 +170,7 @@ void oit_gl_bind_part_alpha(const oit_scene *scene, const oit_frame_settings *fr
                              (GLsizeiptr)(scene->part_count - given) * (GLsizeiptr)sizeof(float),
                              GL_RED, GL_FLOAT, &one);
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    write_part_tint(scene, local);
     bind_part_alpha_texture(scene);
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "oit.h"
+#include "oit_shared.h"
 
 float oit_local_focus_region(const oit_frame_settings *frame)
 {
@@ -15,6 +16,25 @@ float oit_local_focus_region(const oit_frame_settings *frame)
     if (frame->local.focus_default_region > 0.0f)
         return frame->local.focus_default_region;
     return 1.0f;
+}
+
+float oit_local_highlight(const oit_local_modulation *local, uint32_t component, float rgb[3])
+{
+    if (local->has_highlight_colour) {
+        for (int c = 0; c < 3; ++c)
+            rgb[c] = local->highlight_colour[c];
+    } else {
+        rgb[0] = OIT_HIGHLIGHT_COLOUR_R_PERCENT / 100.0f;
+        rgb[1] = OIT_HIGHLIGHT_COLOUR_G_PERCENT / 100.0f;
+        rgb[2] = OIT_HIGHLIGHT_COLOUR_B_PERCENT / 100.0f;
+    }
+    if (!local->component_highlight || component >= local->component_highlight_count)
+        return 0.0f;
+    float strength = local->highlight_strength > 0.0f ? local->highlight_strength
+                                                      : OIT_HIGHLIGHT_STRENGTH_PERCENT / 100.0f;
+    float weight = strength * local->component_highlight[component];
+    /* NaN and out-of-range weights clamp: the tint never leaves [rgb, colour] */
+    return weight > 0.0f ? (weight < 1.0f ? weight : 1.0f) : 0.0f;
 }
 
 /* General 4x4 inverse by cofactors, in double. */

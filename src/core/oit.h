@@ -508,7 +508,24 @@ typedef struct oit_local_modulation {
      * modulation.focus_region is 0; 0 here too: 1 (the CLI sets a quarter of
      * the model's bounding radius). docs/modulation.md */
     float focus_default_region;
+    /* Selection highlight (docs/modulation.md): part i's material colour
+     * becomes mix(colour, highlight_colour, highlight_strength *
+     * component_highlight[i]) before shading, in every algorithm and the
+     * reference alike, so images with a highlight stay exact. component_highlight
+     * holds component_highlight_count weights in [0, 1] (1: highlighted), or
+     * NULL: no highlight. Zeroed colour and strength mean the defaults
+     * (oit_local_highlight resolves them: OIT_HIGHLIGHT_* in oit_shared.h). */
+    const float *component_highlight;
+    uint32_t component_highlight_count;
+    bool has_highlight_colour;
+    float highlight_colour[3];
+    float highlight_strength; /* in (0, 1]; 0: the default */
 } oit_local_modulation;
+
+/* Part component's highlight: its weight (highlight_strength times the
+ * part's component_highlight, 0 when not highlighted) and the highlight
+ * colour in rgb, defaults resolved; the one place they are. */
+float oit_local_highlight(const oit_local_modulation *local, uint32_t component, float rgb[3]);
 
 /* Progress of one frame, for shells that render off their GUI thread (the
  * workbench). report is called after every stage (every peel of dp and ddp,
@@ -707,6 +724,11 @@ typedef struct oit_scene {
      * oit_gl_bind_part_alpha, read through the buffer texture at
      * OIT_TEXUNIT_LOCAL_PART_ALPHA (common/local_modulation.glsl) */
     unsigned part_alpha_buffer, part_alpha_texture;
+    /* selection highlight: part_count vec4s (highlight rgb, weight; weight 0
+     * for a part not highlighted), rewritten every frame from
+     * oit_local_modulation.component_highlight by oit_gl_bind_part_alpha, read
+     * through the buffer texture at OIT_TEXUNIT_LOCAL_PART_TINT */
+    unsigned part_tint_buffer, part_tint_texture;
     uint32_t part_count;
     unsigned triangle_reach_buffer; /* oit_model.triangle_reach, one float per triangle */
     /* oit_model.planes and .triangle_plane, and buffer textures over them

@@ -51,7 +51,8 @@ typedef struct raster_context {
     /* the current triangle's flat inputs */
     uint32_t triangle;
     uint32_t component;
-    const float *colour;
+    const float *colour;  /* the material's, or tinted_colour for a highlighted part */
+    float tinted_colour[3];
     float material_alpha; /* clamp(frame alpha * material opacity, 0, 1) */
     double part_alpha;    /* times the component's local opacity */
     float alpha;          /* part_alpha as the fragment's float opacity */

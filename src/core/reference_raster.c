@@ -608,6 +608,15 @@ static void rasterize_model_triangle(raster_context *ctx, const oit_model *model
         ctx->part_alpha *= local->component_alpha[ctx->component];
     ctx->alpha = (float)ctx->part_alpha;
     ctx->colour = component->colour;
+    /* selection highlight: the material colour mixed towards the highlight
+     * colour before shading, as oit_local_tint (common/local_modulation.glsl) */
+    float highlight[3];
+    const float weight = oit_local_highlight(local, ctx->component, highlight);
+    if (weight > 0.0f) {
+        for (int c = 0; c < 3; ++c)
+            ctx->tinted_colour[c] = component->colour[c] * (1.0f - weight) + highlight[c] * weight;
+        ctx->colour = ctx->tinted_colour;
+    }
     if (!(ctx->alpha > 0.0f))
         return; /* hidden parts and opacity 0: never stored */
     ctx->use_plane = ctx->fill && model->triangle_plane && model->planes;

@@ -118,6 +118,20 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
     glBindTexture(GL_TEXTURE_BUFFER, scene->part_alpha_texture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, scene->part_alpha_buffer);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
+    /* selection highlight, a vec4 per part, none until a frame sets one
+     * (oit_gl_bind_part_alpha) */
+    const float no_tint[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glGenBuffers(1, &scene->part_tint_buffer);
+    glBindBuffer(GL_TEXTURE_BUFFER, scene->part_tint_buffer);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)(scene->part_count * 4 * sizeof(float)), NULL,
+                 GL_DYNAMIC_DRAW);
+    glClearBufferData(GL_TEXTURE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, no_tint);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    bytes += scene->part_count * 4 * sizeof(float);
+    glGenTextures(1, &scene->part_tint_texture);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->part_tint_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, scene->part_tint_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
     /* per triangle its reach (ib's neighbour search), read as a buffer texture */
     glGenBuffers(1, &scene->triangle_reach_buffer);
     glBindBuffer(GL_TEXTURE_BUFFER, scene->triangle_reach_buffer);
@@ -169,6 +183,8 @@ void oit_scene_release(oit_scene *scene)
         glDeleteBuffers(1, &scene->component_buffer);
         glDeleteTextures(1, &scene->part_alpha_texture);
         glDeleteBuffers(1, &scene->part_alpha_buffer);
+        glDeleteTextures(1, &scene->part_tint_texture);
+        glDeleteBuffers(1, &scene->part_tint_buffer);
         glDeleteBuffers(1, &scene->triangle_reach_buffer);
         glDeleteTextures(1, &scene->plane_texture);
         glDeleteTextures(1, &scene->triangle_plane_texture);
