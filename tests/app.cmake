@@ -37,6 +37,10 @@ set_tests_properties(app_workbench app_command_line app_saved_state PROPERTIES
   ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 900)
 # about 1 s: a regression that waits on a FIFO should fail in minutes, not 15
 set_tests_properties(app_saved_state PROPERTIES TIMEOUT 180)
+# The selection made visible (tests/app/test_selection.cpp): highlight in the
+# view and not in exports, ghosting, bulk opacity, picks revealing and stepping deeper.
+add_test(NAME app_selection COMMAND ${APP_XVFB} $<TARGET_FILE:test_selection>)
+set_tests_properties(app_selection PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 300)
 # app_workbench measures how long the GUI thread keeps posted events waiting
 # (under 100 ms): alone on the machine, not beside another test's renders
 set_tests_properties(app_workbench PROPERTIES RUN_SERIAL TRUE)

@@ -432,8 +432,18 @@ void MainWindow::pick_at(const QPoint &pixel, bool next_contributor)
     // side by side, both halves have the same camera: the pixel within its half
     bool right_half = s.split == SplitMode::SideBySide && pixel.x() >= frame.width;
     QPoint at(right_half ? pixel.x() - frame.width : pixel.x(), pixel.y());
-    // Alt+click: the contributor behind the last one picked there (the second at a new pixel)
-    int rank = !next_contributor ? 1 : at == last_pick_pixel_ ? last_pick_rank_ + 1 : 2;
+    // a click (or Alt+click) where the last one picked, in the same frame: the
+    // contributor behind it (after the last, the front again); elsewhere the
+    // front one (Alt: the second)
+    std::vector<double> camera(frame.modelview, frame.modelview + 16);
+    camera.insert(camera.end(), frame.projection, frame.projection + 16);
+    camera.push_back(frame.width);
+    camera.push_back(frame.height);
+    camera.push_back(frame.alpha);
+    camera.insert(camera.end(), storage.begin(), storage.end()); // the parts' opacities
+    const bool again = at == last_pick_pixel_ && camera == last_pick_camera_;
+    int rank = again ? last_pick_rank_ + 1 : next_contributor ? 2 : 1;
+    last_pick_camera_ = camera;
     std::string error;
     ContributorPick hit = pick_contributor(*model_, frame, at.x(), at.y(), rank, error);
     last_pick_pixel_ = at;
@@ -456,7 +466,7 @@ void MainWindow::pick_at(const QPoint &pixel, bool next_contributor)
                                .arg(100.0 * hit.contribution, 0, 'f', 1)
                                .arg(hit.rank)
                                .arg(hit.parts)
-                               .arg(hit.parts > 1 ? " (Alt+click: the next)" : ""));
+                               .arg(hit.parts > 1 ? " (click again: the next)" : ""));
 }
 
 // ----------------------------------------------- status, progress, messages

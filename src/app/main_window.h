@@ -86,7 +86,9 @@ public:
     bool save_preset(const QString &path, QString &error);
     // Renders off the view, then encodes the PNG off the GUI thread (a local
     // event loop waits, so the window keeps answering); clears the progress.
-    bool export_png(const QString &path, int width, int height, QString &error);
+    // with_highlight: the selection highlight as the view shows it (Export PNG's
+    // "Include selection highlight"); without, none.
+    bool export_png(const QString &path, int width, int height, QString &error, bool with_highlight = false);
     // Where Export PNG's save dialog opens: the last export's folder, else the
     // user's Pictures folder (never the source tree).
     QString export_folder() const;
@@ -109,9 +111,16 @@ public:
     // Turn the camera's target to these parts' bounds and fit them in the view.
     void frame_parts(const std::vector<int> &parts);
     // Select the part that adds most to a view pixel's colour (a click in the
-    // view); next_contributor (Alt+click): the one after it, stepping further
-    // back on each Alt+click at the same pixel.
+    // view); a click again at the same pixel of the same frame (or Alt+click):
+    // the one behind it, stepping further back each time (after the last, the
+    // front again); a click elsewhere starts at the front.
     void pick_at(const QPoint &pixel, bool next_contributor = false);
+    // Selection (main_window_selection.cpp): Parts > Highlight selection (on by
+    // default) tints the selected parts in the view; Parts > Fade others
+    // (ghosting) sets every part not selected to the fade opacity in one undo step.
+    void set_highlight_selection(bool on);
+    bool highlight_selection() const;
+    bool fade_others();
     QSlider *alpha_slider() const;
     ComparePanel *compare_panel() const { return compare_panel_; }
     // View ▸ Error against reference, Split view, Side by side (and the Compare tab)
@@ -144,6 +153,8 @@ private:
     void build_file_menu();
     void build_view_menu();
     void build_help_menu();
+    void build_parts_menu(); // main_window_selection.cpp
+    void update_highlight(); // the view's highlight from the selection and the action
     // The settings panel's tabs, wired to the settings model.
     QTabWidget *build_tabs();
     // The tabs whose controls are bound to the settings (settings_panel.h).
@@ -175,6 +186,9 @@ private:
     ModelPointer model_;
     QPoint last_pick_pixel_{-1, -1}; // where the last click picked, and the rank it showed
     int last_pick_rank_ = 0;
+    std::vector<double> last_pick_camera_; // the frame's matrices and opacities then: a repeated click steps deeper only in it
+    QAction *highlight_action_ = nullptr;
+    QAction *fade_action_ = nullptr;
     QString model_path_;
     QString loading_path_;
     QString last_error_;

@@ -11,6 +11,7 @@
 #include <QAction>
 #include <QActionGroup>
 #include <QApplication>
+#include <QCheckBox>
 #include <QClipboard>
 #include <QDialog>
 #include <QDialogButtonBox>
@@ -72,6 +73,7 @@ void MainWindow::build_menus()
     connect(settings_->undo_stack(), &QUndoStack::canRedoChanged, redo, &QAction::setEnabled);
 
     build_view_menu();
+    build_parts_menu();
     build_help_menu();
 }
 
@@ -330,7 +332,7 @@ bool MainWindow::save_preset(const QString &path, QString &error)
         QByteArray::fromStdString(preset_to_json(settings_->render_settings(), settings_->camera(), model_.get()));
     return write_output_file(path, nullptr, bytes, error);
 }
-bool MainWindow::export_png(const QString &path, int width, int height, QString &error)
+bool MainWindow::export_png(const QString &path, int width, int height, QString &error, bool with_highlight)
 {
     if (exporting_) {
         error = "an export is already running";
@@ -344,7 +346,7 @@ bool MainWindow::export_png(const QString &path, int width, int height, QString 
     oit_image image{};
     oit_frame_settings frame;
     std::string message;
-    bool rendered = view_->render_offscreen(width, height, image, frame, message);
+    bool rendered = view_->render_offscreen(width, height, image, frame, message, with_highlight);
     if (!rendered) {
         exporting_ = false;
         error = QString::fromStdString(message);
@@ -474,6 +476,11 @@ void MainWindow::export_dialog()
     size_row->addWidget(h);
     form->addRow(view_size);
     form->addRow(custom, size_row);
+    auto *with_highlight = new QCheckBox("Include selection highlight");
+    with_highlight->setObjectName("export_highlight");
+    with_highlight->setToolTip("the selected parts tinted as in the view; without, the image has no highlight");
+    with_highlight->setEnabled(!view_->highlight().empty());
+    form->addRow(with_highlight);
     auto *buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
     connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
     connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
@@ -489,7 +496,7 @@ void MainWindow::export_dialog()
     int width = custom->isChecked() ? w->value() : size.width();
     int height = custom->isChecked() ? h->value() : size.height();
     QString error;
-    if (!export_png(path, width, height, error))
+    if (!export_png(path, width, height, error, with_highlight->isChecked()))
         show_error("Export PNG", error);
     else
         status_label_->setText(QString("wrote %1 (%2x%3)").arg(path).arg(width).arg(height));

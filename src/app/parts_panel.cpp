@@ -18,6 +18,7 @@
 #include <QPixmap>
 #include <QPushButton>
 #include <QSortFilterProxyModel>
+#include <QSpinBox>
 #include <QStyle>
 #include <QStyleOptionSlider>
 #include <QStyledItemDelegate>
@@ -27,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 
 // --------------------------------------------------------- the opacity slider
 
@@ -39,8 +41,10 @@ namespace {
 // once the pointer leaves the rows.
 class OpacityDelegate : public QStyledItemDelegate {
 public:
-    explicit OpacityDelegate(QAbstractItemView *view)
-        : QStyledItemDelegate(view), view_(view), viewport_(view->viewport())
+    // set_selection: a selected row's slider sets every selected row (true), else only its own
+    using SetSelection = std::function<bool(const QModelIndex &, float)>;
+    OpacityDelegate(QAbstractItemView *view, SetSelection set_selection)
+        : QStyledItemDelegate(view), view_(view), viewport_(view->viewport()), set_selection_(std::move(set_selection))
     {
         viewport_->installEventFilter(this);
     }
@@ -141,12 +145,14 @@ private:
         const int span = groove.width() - handle.width();
         const int value = QStyle::sliderValueFromPosition(slider.minimum, slider.maximum,
                                                           x - handle.width() / 2 - groove.x(), span, slider.upsideDown);
-        model->setData(index, double(value) / 100.0, PartsModel::AlphaRole);
+        if (!set_selection_(index, float(value) / 100.0f))
+            model->setData(index, double(value) / 100.0, PartsModel::AlphaRole);
     }
 
     QAbstractItemView *view_;
     QWidget *viewport_;
     QPersistentModelIndex dragging_; // the row whose slider the mouse holds
+    SetSelection set_selection_;
 };
 
 // Case-insensitive substring match on the names, worked out by the model in
@@ -281,7 +287,10 @@ PartsPanel::PartsPanel(QWidget *parent) : QWidget(parent)
     view_ = view;
     view_->setObjectName("parts_view");
     view_->setModel(proxy_);
-    view_->setItemDelegateForColumn(PartsModel::OpacityColumn, new OpacityDelegate(view_));
+    view_->setItemDelegateForColumn(
+        PartsModel::OpacityColumn,
+        new OpacityDelegate(view_, [this](const QModelIndex &row, float alpha) { return set_selected_alpha(row, alpha); }));
+    view_->setContextMenuPolicy(Qt::ActionsContextMenu);
     view_->setRootIsDecorated(false);
     view_->setItemsExpandable(false);
     view_->setUniformRowHeights(true); // row geometry without asking every row
@@ -331,8 +340,19 @@ PartsPanel::PartsPanel(QWidget *parent) : QWidget(parent)
     isolate_ = button("parts_isolate", "Isolate selected", "show only the selected parts, hide every other one");
     show_all_ = button("parts_show_all", "Show all", "make every part visible (opacities stay)");
     frame_ = button("parts_frame", "Frame selected", "frame the camera on the selected parts");
+    fade_ = button("parts_fade", "Fade others",
+                   "ghosting: every part not selected to the opacity beside (selected ones keep theirs); "
+                   "one undo step");
+    fade_percent_ = new QSpinBox;
+    fade_percent_->setObjectName("parts_fade_percent");
+    fade_percent_->setRange(0, 100);
+    fade_percent_->setSuffix("%");
+    fade_percent_->setValue(10);
+    fade_percent_->setToolTip("the opacity Fade others gives the parts not selected");
+    buttons->addWidget(fade_percent_);
     buttons->addStretch(1);
     layout->addLayout(buttons);
+    connect(fade_, &QPushButton::clicked, this, &PartsPanel::fade_requested);
     connect(reset_, &QPushButton::clicked, this, [this] {
         apply(std::vector<float>(size_t(model_->part_count()), 1.0f), std::vector<char>(size_t(model_->part_count()), 1));
     });
@@ -443,11 +463,55 @@ QLineEdit *PartsPanel::filter() const { return filter_; }
 
 int PartsPanel::shown_row_count() const { return proxy_->rowCount(); }
 
+bool PartsPanel::fade_others(float alpha)
+{
+    const std::vector<int> selected = selected_parts();
+    if (selected.empty())
+        return false;
+    std::vector<float> faded(size_t(model_->part_count()), alpha);
+    for (int part : selected)
+        faded[size_t(part)] = model_->alpha()[size_t(part)];
+    if (!model_->set_all(faded, model_->visible()))
+        return false;
+    emit parts_changed();
+    return true;
+}
+
+int PartsPanel::fade_percent() const { return fade_percent_->value(); }
+
+void PartsPanel::set_fade_percent(int percent) { fade_percent_->setValue(percent); }
+
+void PartsPanel::add_context_action(QAction *action) { view_->addAction(action); }
+
+bool PartsPanel::set_selected_alpha(const QModelIndex &row, float alpha)
+{
+    QItemSelectionModel *selection = view_->selectionModel();
+    if (!selection->isRowSelected(row.row(), row.parent()) || selection->selectedRows().size() < 2)
+        return false;
+    std::vector<float> values = model_->alpha();
+    for (int part : selected_parts())
+        values[size_t(part)] = alpha;
+    if (model_->set_all(values, model_->visible()))
+        emit parts_changed();
+    return true;
+}
+
 bool PartsPanel::step_current_alpha(int delta_percent)
 {
     const QModelIndex current = view_->currentIndex();
     if (!current.isValid())
         return false;
+    QItemSelectionModel *selection = view_->selectionModel();
+    if (selection->isRowSelected(current.row(), current.parent()) && selection->selectedRows().size() > 1) {
+        // bulk: every selected part by the step from its own percent
+        std::vector<float> values = model_->alpha();
+        for (int part : selected_parts())
+            values[size_t(part)] =
+                float(std::clamp(PartsModel::percent(values[size_t(part)]) + delta_percent, 0, 100)) / 100.0f;
+        if (model_->set_all(values, model_->visible()))
+            emit parts_changed();
+        return true;
+    }
     const QModelIndex source = proxy_->mapToSource(current);
     const int part = model_->part_at(source), node = model_->node_at(source);
     // an assembly: every part under it to its (mean) percent plus the step
@@ -488,6 +552,7 @@ void PartsPanel::update_buttons()
     show_all_->setEnabled(any);
     isolate_->setEnabled(selected);
     frame_->setEnabled(selected);
+    fade_->setEnabled(selected);
 }
 
 void PartsPanel::filter_changed()

@@ -122,6 +122,7 @@ RenderView::~RenderView()
 void RenderView::set_model(std::shared_ptr<const oit_model> model)
 {
     model_ = std::move(model);
+    highlight_.clear(); // the parts were the last model's
     last_full_ms_ = -1.0; // a new model: its cost is unknown
     coarse_scale_ = 2;
     request_frame(true);
@@ -202,7 +203,27 @@ bool RenderView::settled() const
 oit_frame_settings RenderView::current_frame(std::vector<float> &storage) const
 {
     QSize size = side_pixel_size();
-    return make_frame(settings(), *model_, camera(), size.width(), size.height(), storage);
+    oit_frame_settings frame = make_frame(settings(), *model_, camera(), size.width(), size.height(), storage);
+    if (!highlight_.empty()) {
+        frame.local.component_highlight = highlight_.data();
+        frame.local.component_highlight_count = uint32_t(highlight_.size());
+    }
+    return frame;
+}
+
+void RenderView::set_highlight(const std::vector<int> &parts)
+{
+    std::vector<float> weights;
+    if (model_ && !parts.empty()) {
+        weights.assign(model_->component_count, 0.0f);
+        for (int part : parts)
+            if (part >= 0 && uint32_t(part) < model_->component_count)
+                weights[size_t(part)] = 1.0f;
+    }
+    if (weights == highlight_)
+        return;
+    highlight_ = std::move(weights);
+    request_frame(false);
 }
 
 FrameJob RenderView::make_job(int width, int height, int coarse_scale) const
@@ -213,6 +234,7 @@ FrameJob RenderView::make_job(int width, int height, int coarse_scale) const
     job.config = settings().config;
     job.frame = make_frame(settings(), *model_, camera(), width, height, job.component_alpha);
     job.frame.local.component_alpha = nullptr; // the worker points it at its copy
+    job.component_highlight = highlight_;
     job.coarse_scale = coarse_scale;
     if (settings().split != SplitMode::Off)
         job.algorithm_b = settings().split_algorithm;
@@ -336,7 +358,7 @@ void RenderView::frame_done(FrameResultPointer result)
 }
 
 bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,
-                                  std::string &error)
+                                  std::string &error, bool with_highlight)
 {
     if (!model_) {
         error = "no model is loaded";
@@ -354,6 +376,8 @@ bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_f
     job.kind = FrameJob::Kind::Export; // side A's colour image, as `oit render`
     job.algorithm_b.clear();
     job.error_view = false;
+    if (!with_highlight)
+        job.component_highlight.clear();
     frame = job.frame;
     export_result_.reset();
     QEventLoop loop;

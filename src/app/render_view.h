@@ -60,12 +60,17 @@ public:
     void cancel_frame();
     // Render at width x height into image off the view (an export); frame
     // returns the matrices. Waits in a local event loop (the GUI stays live).
+    // with_highlight: the selection highlight as the view shows it (else none).
     bool render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,
-                          std::string &error);
+                          std::string &error, bool with_highlight = false);
     // The frame the view shows now (its size in pixels and its matrices); side
     // by side, the frame of each half (side A's, which Copy as command copies).
     oit_frame_settings current_frame(std::vector<float> &storage) const;
     QSize pixel_size() const;
+    // The selection highlight (oit_local_modulation.component_highlight): these
+    // parts tinted in every frame of the view, none when empty; a new frame if it changed.
+    void set_highlight(const std::vector<int> &parts);
+    const std::vector<float> &highlight() const { return highlight_; } // per part 0 / 1, or empty
     // The size each side renders at: the view's, or half its width side by side.
     QSize side_pixel_size() const;
     QSize render_size() const; // the size of the last frame shown
@@ -178,4 +183,5 @@ private:
     Qt::MouseButtons buttons_ = Qt::NoButton;
     QSet<int> walk_keys_;
     QTimer *walk_timer_ = nullptr;
+    std::vector<float> highlight_; // per part: 1 highlighted; empty: no highlight
 };

@@ -95,6 +95,10 @@ std::string reference_key(const oit_algorithm_config &c, const oit_frame_setting
     for (uint32_t i = 0; l.component_alpha && i < l.component_count; ++i)
         k << l.component_alpha[i];
     k << l.focus_shape << l.focus << l.contrast << l.focus_default_region;
+    k << l.component_highlight_count;
+    for (uint32_t i = 0; l.component_highlight && i < l.component_highlight_count; ++i)
+        k << l.component_highlight[i];
+    k << l.has_highlight_colour << l.highlight_colour << l.highlight_strength;
     return k.str();
 }
 
@@ -371,6 +375,8 @@ void RenderWorker::render_job(FrameJob &job)
     oit_frame_settings frame = job.frame;
     frame.local.component_alpha = job.component_alpha.empty() ? nullptr : job.component_alpha.data();
     frame.local.component_count = uint32_t(job.component_alpha.size());
+    frame.local.component_highlight = job.component_highlight.empty() ? nullptr : job.component_highlight.data();
+    frame.local.component_highlight_count = uint32_t(job.component_highlight.size());
     frame.progress.report = &RenderWorker::progress_callback;
     frame.progress.user = &running;
     const oit_frame_settings requested = frame;

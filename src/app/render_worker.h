@@ -54,6 +54,7 @@ struct FrameJob {
     oit_algorithm_config config{};  // shader_dir is the worker's
     oit_frame_settings frame{};     // at the size to render; progress is the worker's
     std::vector<float> component_alpha; // frame.local.component_alpha points here
+    std::vector<float> component_highlight; // frame.local.component_highlight points here (empty: none)
     int coarse_scale = 1;           // 1: full resolution; N: 1/N of the view per side
     bool refinement = false;        // the full frame of the coarse one before it: waits for it
     std::string algorithm_b;        // split view: the second algorithm, same frame (empty: none)

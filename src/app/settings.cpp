@@ -257,6 +257,18 @@ std::string render_command(const std::string &oit_program, const std::string &mo
     }
     if (s.contrast != 0.0f && s.contrast != 1.0f)
         c << " --contrast " << number(s.contrast);
+    // the selection highlight, when the view shows one: parts by index
+    if (frame.local.component_highlight) {
+        const char *separator = " --highlight ";
+        for (uint32_t i = 0; i < frame.local.component_highlight_count; ++i)
+            if (frame.local.component_highlight[i] > 0.0f) {
+                c << separator << i;
+                separator = ",";
+            }
+        if (frame.local.has_highlight_colour)
+            c << " --highlight-colour " << number(frame.local.highlight_colour[0]) << ","
+              << number(frame.local.highlight_colour[1]) << "," << number(frame.local.highlight_colour[2]);
+    }
     if (s.import.tessellation != OIT_TESSELLATION_NORMAL || s.import.linear_deflection_mm > 0)
         c << " --tessellation " << tessellation_name(s.import);
     if (s.error_view) {

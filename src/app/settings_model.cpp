@@ -82,6 +82,11 @@ void SettingsModel::record_change()
     coalesce_timer_->start();
 }
 
+void SettingsModel::close_step()
+{
+    coalesce_timer_->stop();
+}
+
 void SettingsModel::reset_history()
 {
     stack_->clear();

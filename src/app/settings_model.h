@@ -50,6 +50,9 @@ public:
     bool redo();
     // Forget the history: the current settings are where undo stops.
     void reset_history();
+    // The next change is an undo step of its own, not merged with the last
+    // (a discrete action such as Fade others, right after a slider).
+    void close_step();
     bool can_undo() const;
     bool can_redo() const;
     QUndoStack *undo_stack() const { return stack_; }

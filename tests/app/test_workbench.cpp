@@ -28,7 +28,8 @@ void WorkbenchTest::cleanupTestCase()
 
 void WorkbenchTest::init()
 {
-    // every case starts from the defaults on the gearbox
+    // every case starts from the defaults on the gearbox, nothing selected (a selection is highlighted)
+    window->parts_panel()->view()->selectionModel()->clearSelection();
     settings() = RenderSettings();
     settings().reset_parts(*window->model());
     window->view()->reset_camera();
