@@ -3,7 +3,8 @@
 # (--highlight, docs/modulation.md). The exact algorithms' highlighted images
 # match the reference's highlighted image within the exact tolerance; in every
 # algorithm the highlight changes only the highlighted parts' pixels (and enough
-# of them to be seen); --highlight-colour changes it; bad values exit 2 with one line.
+# of them to be seen); --highlight-colour changes it; parts past 1024 are reached;
+# bad values exit 2 with one line.
 source "$(dirname "$0")/lib.sh"
 oit=$1 work=$2 scenes=$3 tolerance=$4 mismatch=$5
 here=$(dirname "$0")
@@ -39,6 +40,18 @@ render two.png --algorithm ll --highlight gear_1,2
 render two_reference.png --algorithm reference --highlight gear_1 --highlight gear_2
 "$oit" compare "$work/two.png" "$work/two_reference.png" --tolerance "$tolerance" --max-mismatch "$mismatch" ||
     fail "two highlighted parts: ll differs from the reference"
+
+# parts past the first 256 (the chunk the GPU buffer is written in) and 1024:
+# a 1331-part model (tests/many_parts.py), parts 1200 and 1300 highlighted
+python3 "$here/many_parts.py" "$work/many.obj" 1331 >/dev/null || fail "many_parts.py"
+many=(--model "$work/many.obj" --size 96x96 --highlight 1200,1300)
+"$oit" render "${many[@]}" --algorithm reference --out "$work/many_reference.png" >/dev/null || fail "render many reference"
+"$oit" render "${many[@]}" --algorithm ll --out "$work/many_ll.png" >/dev/null || fail "render many ll"
+"$oit" render --model "$work/many.obj" --size 96x96 --algorithm ll --out "$work/many_plain.png" >/dev/null ||
+    fail "render many plain"
+cmp -s "$work/many_ll.png" "$work/many_plain.png" && fail "highlighting parts 1200 and 1300 changed nothing"
+"$oit" compare "$work/many_ll.png" "$work/many_reference.png" --tolerance "$tolerance" --max-mismatch "$mismatch" ||
+    fail "parts 1200 and 1300 highlighted: ll differs from the reference"
 
 r=("$oit" render "${frame[@]}" --out "$work/x.png")
 expect_exit 2 "highlight: no component 'nosuchpart'.*housing" -- "${r[@]}" --highlight nosuchpart

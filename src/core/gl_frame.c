@@ -130,14 +130,16 @@ static void write_part_tint(const oit_scene *scene, const oit_local_modulation *
     bool any = false;
     for (uint32_t i = 0; i < given && !any; ++i)
         any = local->component_highlight[i] > 0.0f;
-    float *tint = any ? malloc((size_t)given * 4 * sizeof *tint) : NULL;
-    if (tint) {
-        for (uint32_t i = 0; i < given; ++i)
-            tint[4 * i + 3] = oit_local_highlight(local, i, &tint[4 * i]);
-        glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)given * 4 * (GLsizeiptr)sizeof(float), tint);
-        free(tint);
+    const uint32_t written = any ? given : 0;
+    /* in chunks from the stack: no allocation that could fail */
+    float tint[4 * 256];
+    for (uint32_t first = 0; first < written; first += 256) {
+        const uint32_t n = written - first < 256 ? written - first : 256;
+        for (uint32_t i = 0; i < n; ++i)
+            tint[4 * i + 3] = oit_local_highlight(local, first + i, &tint[4 * i]);
+        glBufferSubData(GL_TEXTURE_BUFFER, (GLintptr)first * 4 * (GLintptr)sizeof(float),
+                        (GLsizeiptr)n * 4 * (GLsizeiptr)sizeof(float), tint);
     }
-    const uint32_t written = tint ? given : 0; /* out of memory: no highlight, never a wrong one */
     const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     if (written < scene->part_count)
         glClearBufferSubData(GL_TEXTURE_BUFFER, GL_RGBA32F,
@@ -147,7 +149,7 @@ static void write_part_tint(const oit_scene *scene, const oit_local_modulation *
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
 }
 
-/* The one place C hands per-part opacity to the GPU. The buffer is the
+/* The one place C hands per-part opacity (and the selection highlight) to the GPU. The buffer is the
  * scene's (allocated once at upload, part_count floats, counted in
  * oit_scene.gpu_bytes), so every algorithm drawing the scene shares it and
  * no algorithm's memory figures change with the number of parts. */

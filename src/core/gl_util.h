@@ -211,6 +211,9 @@ void oit_gl_draw_scene(const oit_scene *scene);
  * OIT_TEXUNIT_LOCAL_PART_ALPHA, where common/local_modulation.glsl reads it.
  * Every part, however many: no limit. Every GPU algorithm calls it once at
  * the start of render(), before its first pass. */
+/* The selection highlight (frame->local.component_highlight) goes the same
+ * way: colour and weight per part into the scene's part-tint buffer, bound at
+ * OIT_TEXUNIT_LOCAL_PART_TINT (oit_local_tint in common/local_modulation.glsl). */
 void oit_gl_bind_part_alpha(const oit_scene *scene, const oit_frame_settings *frame);
 
 /* ---- limits ---- */
