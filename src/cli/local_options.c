@@ -349,10 +349,17 @@ void oit_cli_print_local_help(FILE *out)
           "                         (one shape; model coordinates, each within +-1e9; R is\n"
           "                         --focus-region in model units, auto: 1/4 of the bounding radius)\n"
           "  --contrast C           colour = saturate((colour - 0.5) C + 0.5) per fragment,\n"
-          "                         C in [0.1, 10] (default 1: unchanged)\n"
-          "  --highlight NAME[,NAME...]  selection highlight: the parts' material colour mixed\n"
-          "                         60% towards the highlight colour before shading (the\n"
-          "                         reference too); names as --component-alpha; repeatable\n"
-          "  --highlight-colour R,G,B  the highlight colour, each in [0, 1] (default 1,0.55,0)\n",
+          "                         C in [0.1, 10] (default 1: unchanged)\n",
           out);
+    /* the highlight's defaults as the core resolves them (oit_local_highlight) */
+    const float one = 1.0f;
+    oit_local_modulation defaults = {.component_highlight = &one, .component_highlight_count = 1};
+    float colour[3];
+    const float strength = oit_local_highlight(&defaults, 0, colour);
+    fprintf(out,
+            "  --highlight NAME[,NAME...]  selection highlight: the parts' material colour mixed\n"
+            "                         %g%% towards the highlight colour before shading (the\n"
+            "                         reference too); names as --component-alpha; repeatable\n"
+            "  --highlight-colour R,G,B  the highlight colour, each in [0, 1] (default %g,%g,%g)\n",
+            100.0 * strength, colour[0], colour[1], colour[2]);
 }
