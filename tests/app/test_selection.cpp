@@ -5,6 +5,9 @@
 // same pixel steps to the contributor behind.
 #include <QAction>
 #include <QApplication>
+#include <QCheckBox>
+#include <QDialog>
+#include <QTimer>
 #include <QItemSelectionModel>
 #include <QSignalSpy>
 #include <QSpinBox>
@@ -209,6 +212,24 @@ private slots:
         QVERIFY2(window->export_png(with, view_size.width(), view_size.height(), error, true), qPrintable(error));
         QCOMPARE(differing_pixels(QImage(without), plain), 0);
         QCOMPARE(differing_pixels(QImage(with), highlighted), 0);
+
+        // Export PNG's dialog offers the highlight, unticked (then cancelled: no file dialog)
+        QAction *export_action = nullptr;
+        for (QAction *action : window->findChildren<QAction *>())
+            if (action->text().startsWith("&Export PNG"))
+                export_action = action;
+        QVERIFY(export_action);
+        bool offered = false, ticked = true;
+        QTimer::singleShot(0, this, [&] {
+            QWidget *dialog = QApplication::activeModalWidget();
+            QCheckBox *box = dialog ? dialog->findChild<QCheckBox *>("export_highlight") : nullptr;
+            offered = box && box->isEnabled();
+            ticked = box && box->isChecked();
+            if (dialog)
+                static_cast<QDialog *>(dialog)->reject();
+        });
+        export_action->trigger();
+        QVERIFY2(offered && !ticked, "Export PNG offers \"Include selection highlight\", unticked");
 
         // Highlight selection off: the plain image, and no --highlight in the command
         window->set_highlight_selection(false);
