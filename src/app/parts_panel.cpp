@@ -299,6 +299,7 @@ PartsPanel::PartsPanel(QWidget *parent) : QWidget(parent)
     view_->setSelectionBehavior(QAbstractItemView::SelectRows);
     view_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     view_->setToolTip("checkbox (or Space): show or hide the part; slider: its opacity (" + parts_opacity_help() +
+                      "; with several rows selected, a selected row's slider and the keys set them all"
                       "); an assembly's check box and slider: every part under it (Shift+Right / Shift+Left "
                       "or its arrow: expand, collapse); Ctrl/Shift-click: select several; double-click a "
                       "part's name: frame it");
@@ -340,18 +341,24 @@ PartsPanel::PartsPanel(QWidget *parent) : QWidget(parent)
     isolate_ = button("parts_isolate", "Isolate selected", "show only the selected parts, hide every other one");
     show_all_ = button("parts_show_all", "Show all", "make every part visible (opacities stay)");
     frame_ = button("parts_frame", "Frame selected", "frame the camera on the selected parts");
-    fade_ = button("parts_fade", "Fade others",
-                   "ghosting: every part not selected to the opacity beside (selected ones keep theirs); "
-                   "one undo step");
+    buttons->addStretch(1);
+    layout->addLayout(buttons);
+    // ghosting on a row of its own: the panel stays narrow
+    auto *fade_row = new QHBoxLayout;
+    fade_ = new QPushButton("Fade others");
+    fade_->setObjectName("parts_fade");
+    fade_->setToolTip("ghosting: every part not selected to the opacity beside (selected ones keep theirs); "
+                      "one undo step (G)");
     fade_percent_ = new QSpinBox;
     fade_percent_->setObjectName("parts_fade_percent");
     fade_percent_->setRange(0, 100);
     fade_percent_->setSuffix("%");
     fade_percent_->setValue(10);
     fade_percent_->setToolTip("the opacity Fade others gives the parts not selected");
-    buttons->addWidget(fade_percent_);
-    buttons->addStretch(1);
-    layout->addLayout(buttons);
+    fade_row->addWidget(fade_);
+    fade_row->addWidget(fade_percent_);
+    fade_row->addStretch(1);
+    layout->addLayout(fade_row);
     connect(fade_, &QPushButton::clicked, this, &PartsPanel::fade_requested);
     connect(reset_, &QPushButton::clicked, this, [this] {
         apply(std::vector<float>(size_t(model_->part_count()), 1.0f), std::vector<char>(size_t(model_->part_count()), 1));
