@@ -33,6 +33,11 @@ for algorithm in ll dp ddp ib kbuffer wboit mboit blend; do
     esac
 done
 
+# the other back end (OSMesa) too
+render osmesa_ll.png --algorithm ll --highlight gear_1 --backend osmesa
+"$oit" compare "$work/osmesa_ll.png" "$work/reference.png" --tolerance "$tolerance" --max-mismatch "$mismatch" ||
+    fail "ll on OSMesa: the highlighted image differs from the reference's"
+
 # a colour of one's own changes the image; several parts, by name and index
 render green.png --algorithm ll --highlight gear_1 --highlight-colour 0,1,0
 cmp -s "$work/green.png" "$work/ll_highlight.png" && fail "--highlight-colour changed nothing"
