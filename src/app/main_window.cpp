@@ -134,9 +134,10 @@ MainWindow::MainWindow(Start start, QWidget *parent)
     rebuild_recent_menu();
     if (start_ == Start::Restore)
         restore_saved_settings();
+    // before the first sync, which takes out the rows the algorithm does not use
+    give_every_control_a_tooltip(tabs_);
     sync_panel_from_settings();
     reset_settings_history();
-    give_every_control_a_tooltip(tabs_);
 }
 
 MainWindow::~MainWindow()

@@ -4,21 +4,24 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QFormLayout>
+#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QVBoxLayout>
 
 ViewsPanel::ViewsPanel(SettingsModel &model, const CapabilityTable &capabilities, QWidget *parent)
     : SettingsPanel(model, parent)
 {
     RenderSettings &s = settings();
     oit_modulation &m = s.modulation;
-    auto *form = new QFormLayout(this);
-    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    auto *layout = new QVBoxLayout(this);
+    QGroupBox *box;
+    QFormLayout *form = group(layout, "View", &box);
     QStringList views = {"colour", "heatmap", "peel-limit:N", "layer:L", "neighbours (ib)",
                          "curvature:L (ib)", "distance:L (ib)", "fields:L (ib)"};
-    form->addRow("view (--view)", view_ = combo(views, [&m] { return int(m.view); },
+    form->addRow("view", view_ = combo(views, [&m] { return int(m.view); },
                                                 [this, &m](int i) {
                                                     m.view = oit_view(i);
                                                     if ((m.view == OIT_VIEW_PEEL_LIMIT) && m.view_parameter < 1)
@@ -30,28 +33,43 @@ ViewsPanel::ViewsPanel(SettingsModel &model, const CapabilityTable &capabilities
                                    m.view_parameter = n;
                                    emit edited();
                                });
-    auto *previous = new QPushButton("◀ nearer");
+    auto *previous = new QPushButton("◀");
     previous->setToolTip("the layer (or peel limit) one nearer the eye");
-    auto *next = new QPushButton("farther ▶");
+    auto *next = new QPushButton("▶");
     next->setToolTip("the layer (or peel limit) one farther from the eye");
+    previous->setMinimumWidth(24); // below the style's 80 px: the panel is narrow
+    next->setMinimumWidth(24);
     connect(previous, &QPushButton::clicked, parameter, [parameter] { parameter->setValue(parameter->value() - 1); });
     connect(next, &QPushButton::clicked, parameter, [parameter] { parameter->setValue(parameter->value() + 1); });
-    auto *row = new QHBoxLayout;
-    row->addWidget(parameter);
-    row->addWidget(previous);
-    row->addWidget(next);
+    auto *row = new QWidget;
+    auto *row_layout = new QHBoxLayout(row);
+    row_layout->setContentsMargins(0, 0, 0, 0);
+    row_layout->addWidget(parameter);
+    row_layout->addWidget(previous);
+    row_layout->addWidget(next);
     form->addRow("N / layer L", row);
-    form->addRow(new QLabel("Layer by layer: choose layer:L and step with the buttons.\n"
-                            "heatmap and peel-limit: ll and ib; the others: ib."));
-    form->addRow(check_box("edge view (ib: --modulation edges)", [&m] { return m.mode == OIT_MODULATE_EDGES; },
-                           [this, &s, &m](bool on) {
-                               m.mode = on ? OIT_MODULATE_EDGES : OIT_MODULATE_NONE;
-                               if (on && s.algorithm != "ib") { // the edges are ib's
-                                   s.algorithm = "ib";
-                                   emit changed();
-                               }
-                               emit changed();
-                           }));
+    // the layers and buffers are shown by the algorithms that keep them (the core's capability tables)
+    auto renders = [&capabilities](QStringList keys) {
+        return [&capabilities, keys](const QString &algorithm) {
+            for (const QString &key : keys)
+                if (algorithm_renders(capabilities, key, algorithm))
+                    return true;
+            return false;
+        };
+    };
+    show_row_when(form, row, renders({"view:peel-limit", "view:layer", "view:curvature", "view:distance", "view:fields"}));
+    auto *hint = new QLabel("Layer by layer: choose layer:L and step nearer (◀) or farther (▶).");
+    hint->setWordWrap(true);
+    form->addRow(hint);
+    show_row_when(form, hint, renders({"view:layer"}));
+    QCheckBox *edges = check_box("edge view", [&m] { return m.mode == OIT_MODULATE_EDGES; },
+                                 [this, &m](bool on) {
+                                     m.mode = on ? OIT_MODULATE_EDGES : OIT_MODULATE_NONE;
+                                     emit changed();
+                                 });
+    form->addRow(edges);
+    show_row_when(form, edges, renders({"modulation:edges"}));
+    layout->addStretch(1);
 
     // what the algorithm cannot express is greyed out (the settings keep it)
     on_sync([this, &s, &capabilities] {
