@@ -23,6 +23,7 @@
 #include "settings.h"
 #include "settings_model.h"
 
+class QDockWidget;
 class QLabel;
 class QMenu;
 class QMessageBox;
@@ -125,6 +126,13 @@ public:
     void reset_settings_history();
     // Bring a settings tab to the front by its name (case-insensitive).
     bool show_tab(const QString &name);
+    // The settings panel's dock (View > Settings panel, F4 shows or hides it).
+    QDockWidget *settings_dock() const { return settings_dock_; }
+    // The settings panel's width at the first start (and in a fresh layout).
+    static constexpr int kSettingsPanelWidth = 300;
+    // Move (and shrink) the window onto the screens' available area when it is
+    // partly off them (a geometry saved on another monitor layout).
+    void keep_on_screen();
 
     // The path of the bundled default model (resources/models/gearbox.obj).
     static QString default_model_path();
@@ -184,6 +192,7 @@ private:
     const CapabilityTable capabilities_;
 
     QTabWidget *tabs_ = nullptr;
+    QDockWidget *settings_dock_ = nullptr;
     AlgorithmPanel *algorithm_panel_ = nullptr;
     OpacityPanel *opacity_panel_ = nullptr;
     PartsPanel *parts_panel_ = nullptr;
