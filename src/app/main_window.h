@@ -33,6 +33,7 @@ class QPushButton;
 class QSlider;
 class QTabWidget;
 class AlgorithmPanel;
+class AlgorithmSwitcher;
 class CameraPanel;
 class ComparePanel;
 class OpacityPanel;
@@ -104,6 +105,8 @@ public:
     // Copy the `oit render` command for the view and show it (File > Copy as command).
     void copy_command();
     void set_algorithm(const QString &name);
+    // View > Algorithm > Switch algorithm… (Ctrl+K): every algorithm, filtered as you type.
+    AlgorithmSwitcher *open_algorithm_switcher();
     void set_part_visible(int index, bool visible);
     void set_part_alpha(int index, float alpha);
     PartsPanel *parts_panel() const { return parts_panel_; }
