@@ -96,14 +96,7 @@ OpacityPanel::OpacityPanel(SettingsModel &model, const CapabilityTable &capabili
 
     // Each row shown for the algorithms that render what it sets (the core's
     // capability tables: a modulation, a distance, the surface neighbours)
-    auto renders = [&capabilities](QStringList keys) {
-        return [&capabilities, keys](const QString &algorithm) {
-            for (const QString &key : keys)
-                if (algorithm_renders(capabilities, key, algorithm))
-                    return true;
-            return false;
-        };
-    };
+    auto renders = [&capabilities](const QStringList &keys) { return renders_any(capabilities, keys); };
     QGroupBox *modulation_box;
     QFormLayout *form = group(layout, "Modulation", &modulation_box);
     form->addRow("modulation", modulation_ = combo(words(OIT_SETTING_MODULATION), [&m] { return int(m.mode); },

@@ -319,6 +319,16 @@ bool algorithm_reads(const QString &algorithm, unsigned option)
     return oit_algorithm_reads(oit_algorithm_find(algorithm.toUtf8().constData()), option);
 }
 
+std::function<bool(const QString &)> renders_any(const CapabilityTable &table, const QStringList &keys)
+{
+    return [&table, keys](const QString &algorithm) {
+        for (const QString &key : keys)
+            if (algorithm_renders(table, key, algorithm))
+                return true;
+        return false;
+    };
+}
+
 QStringList algorithms_where(const std::function<bool(const QString &)> &applies)
 {
     size_t count;

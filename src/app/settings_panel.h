@@ -112,6 +112,8 @@ void grey_out_items(QComboBox *box, const std::vector<std::pair<int, QString>> &
 // and whether it reads an OIT_OPTION_* (the core's oit_algorithm_reads).
 bool algorithm_renders(const CapabilityTable &table, const QString &key, const QString &algorithm);
 bool algorithm_reads(const QString &algorithm, unsigned option);
+// Whether an algorithm renders any of the keys (for show_row_when).
+std::function<bool(const QString &)> renders_any(const CapabilityTable &table, const QStringList &keys);
 // The algorithms of the core's list for which applies() holds.
 QStringList algorithms_where(const std::function<bool(const QString &)> &applies);
 

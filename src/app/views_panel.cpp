@@ -4,7 +4,6 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QFormLayout>
-#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
@@ -17,10 +16,10 @@ ViewsPanel::ViewsPanel(SettingsModel &model, const CapabilityTable &capabilities
     RenderSettings &s = settings();
     oit_modulation &m = s.modulation;
     auto *layout = new QVBoxLayout(this);
-    QGroupBox *box;
-    QFormLayout *form = group(layout, "View", &box);
-    QStringList views = {"colour", "heatmap", "peel-limit:N", "layer:L", "neighbours (ib)",
-                         "curvature:L (ib)", "distance:L (ib)", "fields:L (ib)"};
+    QFormLayout *form = group(layout, "View");
+    // in oit_view's order; those the algorithm cannot show are hidden (below)
+    QStringList views = {"colour", "heatmap", "peel-limit:N", "layer:L", "neighbours",
+                         "curvature:L", "distance:L", "fields:L"};
     form->addRow("view", view_ = combo(views, [&m] { return int(m.view); },
                                                 [this, &m](int i) {
                                                     m.view = oit_view(i);
@@ -49,14 +48,7 @@ ViewsPanel::ViewsPanel(SettingsModel &model, const CapabilityTable &capabilities
     row_layout->addWidget(next);
     form->addRow("N / layer L", row);
     // the layers and buffers are shown by the algorithms that keep them (the core's capability tables)
-    auto renders = [&capabilities](QStringList keys) {
-        return [&capabilities, keys](const QString &algorithm) {
-            for (const QString &key : keys)
-                if (algorithm_renders(capabilities, key, algorithm))
-                    return true;
-            return false;
-        };
-    };
+    auto renders = [&capabilities](const QStringList &keys) { return renders_any(capabilities, keys); };
     show_row_when(form, row, renders({"view:peel-limit", "view:layer", "view:curvature", "view:distance", "view:fields"}));
     auto *hint = new QLabel("Layer by layer: choose layer:L and step nearer (◀) or farther (▶).");
     hint->setWordWrap(true);
