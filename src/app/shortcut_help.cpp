@@ -26,19 +26,22 @@ std::vector<ShortcutEntry> shortcut_entries(const QMenuBar *bar, const QWidget *
 {
     std::vector<ShortcutEntry> entries;
     QList<const QAction *> listed;
-    std::function<void(const QString &, const QMenu *)> walk = [&](const QString &top, const QMenu *menu) {
+    // path: the submenus' titles down to the action ("Standard view ▸ ")
+    std::function<void(const QString &, const QString &, const QMenu *)> walk = [&](const QString &top,
+                                                                                   const QString &path,
+                                                                                   const QMenu *menu) {
         for (const QAction *action : menu->actions()) {
             if (action->menu())
-                walk(top, action->menu());
+                walk(top, path + plain_text(action) + " ▸ ", action->menu());
             else if (!action->shortcut().isEmpty() && !listed.contains(action)) {
-                entries.push_back({top, plain_text(action), action->shortcut()});
+                entries.push_back({top, path + plain_text(action), action->shortcut()});
                 listed << action;
             }
         }
     };
     for (const QAction *top : bar->actions())
         if (top->menu())
-            walk(plain_text(top), top->menu());
+            walk(plain_text(top), QString(), top->menu());
     // actions that live outside the menus (a panel's own) are still the window's keys
     if (window)
         for (const QAction *action : window->findChildren<QAction *>())

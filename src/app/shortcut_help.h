@@ -14,7 +14,7 @@ class QWidget;
 
 struct ShortcutEntry {
     QString menu; // the top-level menu's title ("View"), or "Other" outside the menus
-    QString text; // the action's text, without its mnemonic ("Settings panel")
+    QString text; // the action's text, without its mnemonic, after its submenus' ("Standard view ▸ Front")
     QKeySequence key;
 };
 
