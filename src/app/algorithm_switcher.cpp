@@ -18,7 +18,6 @@ AlgorithmSwitcher::AlgorithmSwitcher(const QString &current, QWidget *parent) : 
     filter_->setObjectName("algorithm_filter");
     filter_->setPlaceholderText("type to filter: name or summary");
     filter_->setToolTip("the algorithms whose name or summary contain the text; Enter chooses the selected one");
-    filter_->setClearButtonEnabled(true);
     list_ = new QListWidget;
     list_->setObjectName("algorithm_list");
     list_->setToolTip("every algorithm of the core's list (oit algorithms); Enter or a double-click chooses");

@@ -332,6 +332,7 @@ private slots:
             QVERIFY2(s->shown().contains(name), qPrintable(name));
             QTest::keyClick(s->filter(), Qt::Key_Return);
             QCOMPARE(QString::fromStdString(window->settings_model()->render_settings().algorithm), name);
+            QTRY_VERIFY(!window->findChild<AlgorithmSwitcher *>()); // closed and deleted
         }
         // typing narrows: "mb" leaves mboit alone
         AlgorithmSwitcher *s = window->open_algorithm_switcher();
