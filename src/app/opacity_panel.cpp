@@ -79,7 +79,8 @@ OpacityPanel::OpacityPanel(SettingsModel &model, const CapabilityTable &capabili
         focus_layout->addWidget(value, i / 3, i % 3);
     }
     gform->addRow("focus (model units)", focus_row);
-    show_row_when(gform, focus_row, [&s](const QString &) { return s.focus_shape != OIT_FOCUS_NONE; }); // no shape: no numbers
+    // no shape: no numbers
+    show_row_when(gform, focus_row, [&s](const QString &) { return s.focus_shape != OIT_FOCUS_NONE; });
     // shared: the focus shapes' fall-off (model units) and ib's distance modulation (eye space)
     gform->addRow("focus region",
                   log_length_row(
@@ -155,7 +156,8 @@ OpacityPanel::OpacityPanel(SettingsModel &model, const CapabilityTable &capabili
                                            }));
     fields_form->addRow("fields", fields);
     show_row_when(fields_form, fields, fields_rendered);
-    QSpinBox *diffusion = spin_box(0, 1000, [&m] { return std::max(0, oit_modulation_defaults(&m).diffusion_iterations); },
+    QSpinBox *diffusion = spin_box(0, 1000,
+                                   [&m] { return std::max(0, oit_modulation_defaults(&m).diffusion_iterations); },
                                    [&m, edit](int n) {
                                        m.diffusion_iterations = n == 0 ? -1 : n;
                                        edit();
@@ -234,15 +236,15 @@ OpacityPanel::OpacityPanel(SettingsModel &model, const CapabilityTable &capabili
     show_group_when_used(neighbours_box);
     layout->addStretch(1);
 
-    // what the algorithm cannot express is greyed out (the settings keep it)
+    // what the algorithm cannot express is hidden and disabled (the settings keep it)
     on_sync([this, &s, &capabilities] {
         QString algorithm = QString::fromStdString(s.algorithm);
-        grey_out_items(modulation_, {{1, "modulation:curvature"},
+        hide_items_not_rendered(modulation_, {{1, "modulation:curvature"},
                                      {2, "modulation:distance"},
                                      {3, "modulation:dist-curv"},
                                      {4, "modulation:fields"},
                                      {5, "modulation:edges"}},
                        capabilities, algorithm);
-        grey_out_items(distance_, {{1, "distance:skip"}, {2, "distance:far"}}, capabilities, algorithm);
+        hide_items_not_rendered(distance_, {{1, "distance:skip"}, {2, "distance:far"}}, capabilities, algorithm);
     });
 }

@@ -289,8 +289,8 @@ std::pair<bool, QString> capability(const CapabilityTable &table, const QString 
     return std::make_pair(ok, tip);
 }
 
-void grey_out_items(QComboBox *box, const std::vector<std::pair<int, QString>> &keys, const CapabilityTable &table,
-                    const QString &algorithm)
+void hide_items_not_rendered(QComboBox *box, const std::vector<std::pair<int, QString>> &keys,
+                             const CapabilityTable &table, const QString &algorithm)
 {
     if (table.empty())
         return;

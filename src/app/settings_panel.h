@@ -105,8 +105,8 @@ std::pair<bool, QString> capability(const CapabilityTable &table, const QString 
 // The combo box's items (index, capability key) the algorithm cannot express
 // are disabled and hidden from its list (shown while chosen), each with that
 // tooltip; the settings keep them, and a frame leaves them out and says so.
-void grey_out_items(QComboBox *box, const std::vector<std::pair<int, QString>> &keys, const CapabilityTable &table,
-                    const QString &algorithm);
+void hide_items_not_rendered(QComboBox *box, const std::vector<std::pair<int, QString>> &keys,
+                             const CapabilityTable &table, const QString &algorithm);
 
 // Whether the algorithm renders the capability key ("modulation:fields", ...),
 // and whether it reads an OIT_OPTION_* (the core's oit_algorithm_reads).

@@ -86,7 +86,8 @@ QString keyboard_and_mouse_help(const QMenuBar *bar, const QWidget *window)
         html += "</table>";
     html += "<h3>Mouse (in the view)</h3><table cellspacing=\"0\" cellpadding=\"2\">";
     for (const auto &[input, what] : mouse_gestures())
-        html += QString("<tr><td><b>%1</b>&nbsp;&nbsp;</td><td>%2</td></tr>").arg(input.toHtmlEscaped(), what.toHtmlEscaped());
+        html += QString("<tr><td><b>%1</b>&nbsp;&nbsp;</td><td>%2</td></tr>")
+                    .arg(input.toHtmlEscaped(), what.toHtmlEscaped());
     html += "</table>";
     return html;
 }

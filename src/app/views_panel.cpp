@@ -49,7 +49,8 @@ ViewsPanel::ViewsPanel(SettingsModel &model, const CapabilityTable &capabilities
     form->addRow("N / layer L", row);
     // the layers and buffers are shown by the algorithms that keep them (the core's capability tables)
     auto renders = [&capabilities](const QStringList &keys) { return renders_any(capabilities, keys); };
-    show_row_when(form, row, renders({"view:peel-limit", "view:layer", "view:curvature", "view:distance", "view:fields"}));
+    show_row_when(form, row,
+                  renders({"view:peel-limit", "view:layer", "view:curvature", "view:distance", "view:fields"}));
     auto *hint = new QLabel("Layer by layer: choose layer:L and step nearer (◀) or farther (▶).");
     hint->setWordWrap(true);
     form->addRow(hint);
@@ -63,9 +64,9 @@ ViewsPanel::ViewsPanel(SettingsModel &model, const CapabilityTable &capabilities
     show_row_when(form, edges, renders({"modulation:edges"}));
     layout->addStretch(1);
 
-    // what the algorithm cannot express is greyed out (the settings keep it)
+    // what the algorithm cannot express is hidden and disabled (the settings keep it)
     on_sync([this, &s, &capabilities] {
-        grey_out_items(view_, {{1, "view:heatmap"},
+        hide_items_not_rendered(view_, {{1, "view:heatmap"},
                                {2, "view:peel-limit"},
                                {3, "view:layer"},
                                {4, "view:neighbours"},
