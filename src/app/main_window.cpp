@@ -53,6 +53,8 @@ MainWindow::MainWindow(Start start, QWidget *parent)
     dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
                       QDockWidget::DockWidgetClosable);
     addDockWidget(Qt::RightDockWidgetArea, dock);
+    // never wider than this, even from a layout saved before the panel was narrow (616 px)
+    dock->setMaximumWidth(kSettingsPanelMaxWidth);
     settings_dock_ = dock;
 
     // loading and long frames: what runs, a busy bar, and a Cancel

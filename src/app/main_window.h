@@ -133,6 +133,7 @@ public:
     QDockWidget *settings_dock() const { return settings_dock_; }
     // The settings panel's width at the first start (and in a fresh layout).
     static constexpr int kSettingsPanelWidth = 300;
+    static constexpr int kSettingsPanelMaxWidth = 480; // 40% of a 1200 px window
     // Move (and shrink) the window onto the screens' available area when it is
     // partly off them (a geometry saved on another monitor layout).
     void keep_on_screen();

@@ -111,6 +111,11 @@ private slots:
               100.0 * window->view()->width() / window->width());
         toggle->trigger();
         QTRY_VERIFY(window->settings_dock()->isVisible());
+        // widened by hand (or by an old saved layout), it stops at its maximum
+        window->resizeDocks({window->settings_dock()}, {900}, Qt::Horizontal);
+        QTRY_COMPARE(window->settings_dock()->width(), MainWindow::kSettingsPanelMaxWidth);
+        window->resizeDocks({window->settings_dock()}, {MainWindow::kSettingsPanelWidth}, Qt::Horizontal);
+        QTRY_COMPARE(window->settings_dock()->width(), MainWindow::kSettingsPanelWidth);
     }
 
     // The panel's state is in the saved state: closed, it stays closed on the next start.
