@@ -41,6 +41,12 @@ set_tests_properties(app_saved_state PROPERTIES TIMEOUT 180)
 # view and not in exports, ghosting, bulk opacity, picks revealing and stepping deeper.
 add_test(NAME app_selection COMMAND ${APP_XVFB} $<TARGET_FILE:test_selection>)
 set_tests_properties(app_selection PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 300)
+
+# The layout: the view's share of the window, the settings panel's options
+# per algorithm, the window on screen, the generated help, the algorithm switcher
+# (tests/app/test_layout.cpp).
+add_test(NAME app_layout COMMAND ${APP_XVFB} $<TARGET_FILE:test_layout>)
+set_tests_properties(app_layout PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
 # app_workbench measures how long the GUI thread keeps posted events waiting
 # (under 100 ms): alone on the machine, not beside another test's renders
 set_tests_properties(app_workbench PROPERTIES RUN_SERIAL TRUE)

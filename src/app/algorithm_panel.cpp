@@ -4,17 +4,21 @@
 #include <QColorDialog>
 #include <QComboBox>
 #include <QFormLayout>
+#include <QGroupBox>
 #include <QLabel>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QVBoxLayout>
 
 #include <algorithm>
 
 AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : SettingsPanel(model, parent)
 {
     RenderSettings &s = settings();
-    auto *form = new QFormLayout(this);
+    auto *layout = new QVBoxLayout(this);
+    auto *form = new QFormLayout;
     form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    layout->addLayout(form);
     size_t count;
     const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
     QStringList names;
@@ -34,26 +38,27 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
         const oit_algorithm_ops *ops = oit_algorithm_find(s.algorithm.c_str());
         summary->setText(ops ? QString("%1%2").arg(ops->summary, ops->exact ? " (exact)" : " (approximate)") : "");
     });
-    form->addRow("algorithm (--algorithm)", algorithm);
+    form->addRow("algorithm", algorithm);
     form->addRow(summary);
-    form->addRow("sort (--sort, ll)", combo(words(OIT_SETTING_SORT), [&s] { return int(s.config.ll_sort); },
-                                            [this, &s](int i) {
-                                                s.config.ll_sort = oit_ll_sort(i);
-                                                emit edited();
-                                            }));
-    form->addRow("neighbours (--neighbours, ib)",
-                 combo(QStringList{"default (welded)"} + words(OIT_SETTING_NEIGHBOURS), [&s] { return int(s.modulation.neighbours); },
-                       [this, &s](int i) {
-                           s.modulation.neighbours = oit_neighbour_search(i);
-                           emit edited();
-                       }));
+    // the options only some algorithms read (the core's capabilities: oit_algorithm_reads), shown for those
+    QGroupBox *layers_box;
+    QFormLayout *layers = group(layout, "Layers and memory", &layers_box);
+    auto reads = [](unsigned option) {
+        return [option](const QString &algorithm) { return algorithm_reads(algorithm, option); };
+    };
+    QComboBox *sort = combo(words(OIT_SETTING_SORT), [&s] { return int(s.config.ll_sort); },
+                            [this, &s](int i) {
+                                s.config.ll_sort = oit_ll_sort(i);
+                                emit edited();
+                            });
+    layers->addRow("sort", sort);
+    show_row_when(layers, sort, reads(OIT_OPTION_SORT));
     auto *memory = spin_box(1, 1 << 22, [&s] { return int(s.config.max_memory_bytes / (1024 * 1024)); },
                             [this, &s](int mb) {
                                 s.config.max_memory_bytes = uint64_t(mb) * 1024 * 1024;
                                 emit edited();
                             });
     memory->setSuffix(" MB");
-    form->addRow("memory budget (--max-memory)", memory);
     // 0 is "no cap" (peel until nothing is left), shown as "none"
     auto *layer_cap = spin_box(0, OIT_PEEL_LAYER_CAP_MAX, [&s] { return s.config.max_layers; },
                                [this, &s](int n) {
@@ -61,7 +66,8 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
                                    emit edited();
                                });
     layer_cap->setSpecialValueText("none");
-    form->addRow("layer cap (--max-layers, dp/ddp)", layer_cap);
+    layers->addRow("layer cap", layer_cap);
+    show_row_when(layers, layer_cap, reads(OIT_OPTION_MAX_LAYERS));
     // the approximations' parameters (OIT_OPTION_LAYERS / OIT_OPTION_MOMENTS in their capabilities)
     auto *approx_layers = spin_box(1, OIT_LAYERS_MAX,
                                    [&s] { return s.config.layers == 0 ? OIT_LAYERS_DEFAULT : s.config.layers; },
@@ -69,9 +75,8 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
                                        s.config.layers = n;
                                        emit edited();
                                    });
-    approx_layers->setToolTip("Layers kept per pixel by kbuffer, hybrid and mlab (k): exact where no pixel has "
-                              "more fragments; memory grows with k");
-    form->addRow("layers (--layers, kbuffer/hybrid/mlab)", approx_layers);
+    layers->addRow("layers", approx_layers);
+    show_row_when(layers, approx_layers, reads(OIT_OPTION_LAYERS));
     auto *moments = combo(words(OIT_SETTING_MOMENTS),
                           [&s] {
                               return s.config.moments == OIT_MOMENTS_DEFAULT ? 0
@@ -81,13 +86,19 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
                               s.config.moments = oit_moments(i + OIT_MOMENTS_POWER4);
                               emit edited();
                           });
-    moments->setToolTip("The moments mboit keeps per pixel: 4 or 6 power moments, or 3 trigonometric ones");
-    form->addRow("moments (--moments, mboit)", moments);
-    form->addRow("shading (--shading)", combo(words(OIT_SETTING_SHADING), [&s] { return int(s.shading); },
-                                              [this, &s](int i) {
-                                                  s.shading = oit_shading_mode(i);
-                                                  emit edited();
-                                              }));
+    layers->addRow("moments", moments);
+    show_row_when(layers, moments, reads(OIT_OPTION_MOMENTS));
+    layers->addRow("memory budget", memory);
+    show_row_when(layers, memory, reads(OIT_OPTION_MAX_MEMORY));
+    show_group_when_used(layers_box);
+
+    // what every algorithm does
+    QFormLayout *look = group(layout, "Shading and import");
+    look->addRow("shading", combo(words(OIT_SETTING_SHADING), [&s] { return int(s.shading); },
+                                  [this, &s](int i) {
+                                      s.shading = oit_shading_mode(i);
+                                      emit edited();
+                                  }));
     auto *background = new QPushButton;
     connect(background, &QPushButton::clicked, this, [this, &s] {
         QColor c = QColorDialog::getColor(QColor::fromRgbF(s.background[0], s.background[1], s.background[2]),
@@ -103,7 +114,7 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
         background->setIcon(swatch(s.background));
         background->setText(colour_text(s.background));
     });
-    form->addRow("background (--background)", background);
+    look->addRow("background", background);
     // items in oit_tessellation_level's order, then a deflection in millimetres a preset gave
     auto *tessellation = combo({"normal", "coarse", "fine", "the preset's (millimetres)"},
                                [&s] { return s.import.linear_deflection_mm > 0 ? 3 : int(s.import.tessellation); },
@@ -115,12 +126,11 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
                                    emit tessellation_changed();
                                });
     tessellation->setObjectName("tessellation");
-    tessellation->setToolTip("How STEP and IGES surfaces become triangles: the linear deflection 1/1000 (normal), "
-                             "1/250 (coarse) or 1/4000 (fine) of the model's diagonal; the model is loaded again");
     on_sync([&s, tessellation] {
         tessellation->setItemText(3, s.import.linear_deflection_mm > 0
                                          ? QString("%1 mm (the preset's)").arg(s.import.linear_deflection_mm)
                                          : QString("the preset's (millimetres)"));
     });
-    form->addRow("tessellation (--tessellation, STEP/IGES)", tessellation);
+    look->addRow("tessellation", tessellation);
+    layout->addStretch(1);
 }

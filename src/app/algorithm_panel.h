@@ -1,6 +1,7 @@
-// algorithm_panel.h: the settings panel's Algorithm tab: the algorithm and
-// its configuration (sort, neighbours, memory budget, layer cap, the
-// approximations' layers and moments), shading and background.
+// algorithm_panel.h: the settings panel's Algorithm tab: the algorithm, the
+// group of options only some algorithms read (sort, layer cap, the
+// approximations' layers and moments, memory budget; each shown for the
+// algorithms that read it), and shading, background and tessellation.
 #pragma once
 
 #include "settings_panel.h"

@@ -59,9 +59,11 @@ CameraPanel::CameraPanel(SettingsModel &model, QWidget *parent) : SettingsPanel(
             refill(); // an empty name: the old one comes back
     });
     auto *row = new QHBoxLayout;
-    row->addWidget(save);
-    row->addWidget(restore);
-    row->addWidget(remove);
+    for (QPushButton *button : {save, restore, remove}) {
+        // its text, not the style's 80 px: the narrow panel puts the row under its label
+        button->setMinimumWidth(button->fontMetrics().horizontalAdvance(button->text()) + 12);
+        row->addWidget(button);
+    }
     form->addRow("saved views", row);
     form->addRow(list_);
 }

@@ -15,9 +15,9 @@ ComparePanel::ComparePanel(RenderSettings &settings, QWidget *parent) : QWidget(
     auto *form = new QFormLayout(this);
     form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
 
-    error_ = new QCheckBox("error against reference (--error-vs-reference)");
+    error_ = new QCheckBox("error against reference");
     error_->setObjectName("error_view");
-    error_->setToolTip("show each pixel's largest channel difference against the CPU reference's image of "
+    error_->setToolTip("error against reference (--error-vs-reference): show each pixel's largest channel difference against the CPU reference's image of "
                        "the same frame (black: exact; blue to red: 1 to 64+, logarithmic), with rmse, psnr, "
                        "ssim, max and the share over 2 in the status line. The reference renders on the "
                        "worker after each full frame (cached per camera, size and settings); coarse frames "

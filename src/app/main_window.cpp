@@ -7,6 +7,7 @@
 #include "opacity_panel.h"
 #include "parts_panel.h"
 #include "pick.h"
+#include "screen_fit.h"
 #include "stats_panel.h"
 #include "views_panel.h"
 
@@ -18,12 +19,14 @@
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileInfo>
+#include <QGuiApplication>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QPlainTextEdit>
 #include <QProgressBar>
+#include <QScreen>
 #include <QPushButton>
 #include <QStatusBar>
 #include <QTabWidget>
@@ -50,6 +53,9 @@ MainWindow::MainWindow(Start start, QWidget *parent)
     dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
                       QDockWidget::DockWidgetClosable);
     addDockWidget(Qt::RightDockWidgetArea, dock);
+    // never wider than this, even from a layout saved before the panel was narrow (616 px)
+    dock->setMaximumWidth(kSettingsPanelMaxWidth);
+    settings_dock_ = dock;
 
     // loading and long frames: what runs, a busy bar, and a Cancel
     progress_label_ = new QLabel;
@@ -116,10 +122,21 @@ MainWindow::MainWindow(Start start, QWidget *parent)
     for (QAction *a : menuBar()->actions())
         if (a->text() == "&View")
             view_menu = a->menu();
+    // the settings panel collapses with one key (its state is in saveState(), the saved state's "window")
+    QAction *panel_action = dock->toggleViewAction();
+    panel_action->setText("Settings &panel");
+    panel_action->setShortcut(QKeySequence("F4"));
+    panel_action->setToolTip("show or hide the settings panel: the view takes the width (F4)");
     if (view_menu)
-        view_menu->addAction(dock->toggleViewAction());
+        view_menu->addAction(panel_action);
 
-    resize(1200, 760);
+    // 1200x760 where the screen has room, else what it has (less the window frame's)
+    if (QScreen *screen = QGuiApplication::primaryScreen())
+        resize(QSize(1200, 760).boundedTo(screen->availableGeometry().size() - QSize(16, 48)));
+    else
+        resize(1200, 760);
+    // a narrow panel: the view dominates (docs/workbench.md measures its share)
+    resizeDocks({dock}, {kSettingsPanelWidth}, Qt::Horizontal);
     // a window that cannot render is not shown: nothing to read or save
     if (!startup_error().isEmpty())
         start_ = Start::Untouched;
@@ -134,9 +151,10 @@ MainWindow::MainWindow(Start start, QWidget *parent)
     rebuild_recent_menu();
     if (start_ == Start::Restore)
         restore_saved_settings();
+    // before the first sync, which takes out the rows the algorithm does not use
+    give_every_control_a_tooltip(tabs_);
     sync_panel_from_settings();
     reset_settings_history();
-    give_every_control_a_tooltip(tabs_);
 }
 
 MainWindow::~MainWindow()
@@ -187,6 +205,7 @@ QTabWidget *MainWindow::build_tabs()
     connect(view_, &RenderView::wipe_moved, compare_panel_, [this] { compare_panel_->sync(); });
 
     tabs_ = new QTabWidget;
+    tabs_->setTabPosition(QTabWidget::West); // seven tabs fit the narrow panel's height, not its width
     tabs_->addTab(scrolled(algorithm_panel_), "Algorithm");
     tabs_->addTab(scrolled(opacity_panel_), "Opacity");
     tabs_->addTab(parts_panel_, "Parts");
@@ -219,6 +238,9 @@ void MainWindow::restore_saved_settings()
     QByteArray layout = QByteArray::fromBase64(QByteArray::fromStdString(saved_.window));
     if ((!geometry.isEmpty() && !restoreGeometry(geometry)) || (!layout.isEmpty() && !restoreState(layout)))
         log_message("warning", "the saved window layout was not restored (Qt did not take it)");
+    // saved on another monitor layout or a larger screen: moved (and shrunk) onto today's screens
+    if (!geometry.isEmpty())
+        keep_on_screen();
     export_folder_ = QString::fromStdString(saved_.export_folder);
     if (saved_.export_width > 0 && saved_.export_height > 0)
         export_size_ = QSize(saved_.export_width, saved_.export_height);
@@ -261,6 +283,23 @@ void MainWindow::save_state(bool closing)
     if (closing)
         std::fprintf(stderr, "oit-workbench: warning: settings not saved: %s\n", error.toLocal8Bit().constData());
     last_save_error_ = error;
+}
+
+void MainWindow::keep_on_screen()
+{
+    QList<QRect> screens;
+    for (QScreen *screen : QGuiApplication::screens())
+        screens << screen->availableGeometry();
+    QScreen *primary = QGuiApplication::primaryScreen();
+    QRect fitted = fit_on_screens(geometry(), screens, primary ? screens.indexOf(primary->availableGeometry()) : 0);
+    if (fitted.isValid() && fitted != geometry()) {
+        log_message("window", QString("the saved window (%1x%2 at %3,%4) was moved onto the screen")
+                                  .arg(geometry().width())
+                                  .arg(geometry().height())
+                                  .arg(geometry().x())
+                                  .arg(geometry().y()));
+        setGeometry(fitted);
+    }
 }
 
 QString MainWindow::saved_last_model() const

@@ -23,6 +23,7 @@
 #include "settings.h"
 #include "settings_model.h"
 
+class QDockWidget;
 class QLabel;
 class QMenu;
 class QMessageBox;
@@ -32,6 +33,7 @@ class QPushButton;
 class QSlider;
 class QTabWidget;
 class AlgorithmPanel;
+class AlgorithmSwitcher;
 class CameraPanel;
 class ComparePanel;
 class OpacityPanel;
@@ -105,6 +107,8 @@ public:
     // Copy the `oit render` command for the view and show it (File > Copy as command).
     void copy_command();
     void set_algorithm(const QString &name);
+    // View > Algorithm > Switch algorithm… (Ctrl+K): every algorithm, filtered as you type.
+    AlgorithmSwitcher *open_algorithm_switcher();
     void set_part_visible(int index, bool visible);
     void set_part_alpha(int index, float alpha);
     PartsPanel *parts_panel() const { return parts_panel_; }
@@ -134,6 +138,14 @@ public:
     void reset_settings_history();
     // Bring a settings tab to the front by its name (case-insensitive).
     bool show_tab(const QString &name);
+    // The settings panel's dock (View > Settings panel, F4 shows or hides it).
+    QDockWidget *settings_dock() const { return settings_dock_; }
+    // The settings panel's width at the first start (and in a fresh layout).
+    static constexpr int kSettingsPanelWidth = 300;
+    static constexpr int kSettingsPanelMaxWidth = 480; // 40% of a 1200 px window
+    // Move (and shrink) the window onto the screens' available area when it is
+    // partly off them (a geometry saved on another monitor layout).
+    void keep_on_screen();
 
     // The path of the bundled default model (resources/models/gearbox.obj).
     static QString default_model_path();
@@ -198,6 +210,7 @@ private:
     const CapabilityTable capabilities_;
 
     QTabWidget *tabs_ = nullptr;
+    QDockWidget *settings_dock_ = nullptr;
     AlgorithmPanel *algorithm_panel_ = nullptr;
     OpacityPanel *opacity_panel_ = nullptr;
     PartsPanel *parts_panel_ = nullptr;

@@ -7,6 +7,8 @@
 #include "file_io.h"
 #include "parts_panel.h"
 #include "settings_panel.h"
+#include "shortcut_help.h"
+#include "algorithm_switcher.h"
 
 #include <QAction>
 #include <QActionGroup>
@@ -231,13 +233,16 @@ void MainWindow::build_view_menu()
     menu_action(view, "&Cancel frame", QKeySequence("Esc"), this, [this] { view_->cancel_frame(); });
     view->addSeparator();
     QMenu *algorithms = view->addMenu("&Algorithm");
+    // every algorithm of the core's list, filtered as you type (the ten first also have Ctrl+1..9, Ctrl+0)
+    algorithms->addAction("&Switch algorithm…", this, [this] { open_algorithm_switcher(); }, QKeySequence("Ctrl+K"));
+    algorithms->addSeparator();
     auto *algorithm_group = new QActionGroup(this);
     size_t count;
     const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
     for (size_t i = 0; i < count; ++i) {
         QString name = list[i]->name;
-        QAction *action = algorithms->addAction(name, this, [this, name] { set_algorithm(name); },
-                                                QKeySequence(QString("Ctrl+%1").arg(i + 1)));
+        QKeySequence key = i < 10 ? QKeySequence(QString("Ctrl+%1").arg((i + 1) % 10)) : QKeySequence();
+        QAction *action = algorithms->addAction(name, this, [this, name] { set_algorithm(name); }, key);
         action->setCheckable(true);
         action->setToolTip(list[i]->summary);
         algorithm_group->addAction(action);
@@ -252,14 +257,8 @@ void MainWindow::build_view_menu()
 void MainWindow::build_help_menu()
 {
     QMenu *help = menuBar()->addMenu("&Help");
-    help->addAction("&Keyboard and mouse", this, [this] {
-        QMessageBox::information(this, "Keyboard and mouse",
-                                 "Orbit: left drag turns (virtual trackball), right or middle drag (or Shift) pans,\n"
-                                 "wheel zooms. Walk (V): W/A/S/D move, Q/E down/up, left drag looks around.\n"
-                                 "Home resets the camera, O toggles orthographic, H the heatmap,\n"
-                                 "Ctrl+1..7 choose the algorithm, Ctrl+E exports a PNG,\n"
-                                 "Ctrl+Shift+C copies the equivalent `oit render` command.");
-    });
+    // generated from the menus' actions and the view's gestures (shortcut_help.h)
+    help->addAction("&Keyboard and mouse", this, [this] { show_keyboard_and_mouse_help(this, menuBar()); });
     help->addAction("&About", this, [this] {
         QMessageBox::about(this, "About oit-workbench",
                            QString("<b>oit-workbench</b> %1<br>Order-independent transparency for multi-part "
@@ -267,6 +266,14 @@ void MainWindow::build_help_menu()
                                .arg(QApplication::applicationVersion(),
                                     QString::fromStdString(view_->renderer()).toHtmlEscaped()));
     });
+}
+
+AlgorithmSwitcher *MainWindow::open_algorithm_switcher()
+{
+    auto *switcher = new AlgorithmSwitcher(QString::fromStdString(settings_->render_settings().algorithm), this);
+    connect(switcher, &AlgorithmSwitcher::chosen, this, &MainWindow::set_algorithm);
+    switcher->open();
+    return switcher;
 }
 
 void MainWindow::rebuild_recent_menu()

@@ -5,6 +5,7 @@
 #include "parts_panel.h"
 
 #include <QApplication>
+#include <QGridLayout>
 #include <QHBoxLayout>
 #include <QHash>
 #include <QHeaderView>
@@ -308,7 +309,7 @@ PartsPanel::PartsPanel(QWidget *parent) : QWidget(parent)
     header->setSectionResizeMode(PartsModel::PartColumn, QHeaderView::Stretch);
     // fixed widths: ResizeToContents would measure rows on every layout
     header->setSectionResizeMode(PartsModel::OpacityColumn, QHeaderView::Fixed);
-    header->resizeSection(PartsModel::OpacityColumn, 130);
+    header->resizeSection(PartsModel::OpacityColumn, 90); // the name gets the narrow panel's width
     header->setSectionResizeMode(PartsModel::PercentColumn, QHeaderView::Fixed);
     header->resizeSection(PartsModel::PercentColumn, view_->fontMetrics().horizontalAdvance("100%") + 16);
     connect(view_, &QAbstractItemView::doubleClicked, this, [this](const QModelIndex &index) {
@@ -329,19 +330,18 @@ PartsPanel::PartsPanel(QWidget *parent) : QWidget(parent)
     note_->setToolTip("what the list holds, and which parts the per-part settings reach");
     layout->addWidget(note_);
 
-    auto *buttons = new QHBoxLayout;
+    auto *buttons = new QGridLayout; // two a row: the panel is narrow
     auto button = [&](const char *name, const char *text, const char *tooltip) {
         auto *b = new QPushButton(text);
         b->setObjectName(name);
         b->setToolTip(tooltip);
-        buttons->addWidget(b);
+        buttons->addWidget(b, buttons->count() / 2, buttons->count() % 2);
         return b;
     };
     reset_ = button("parts_reset", "Reset", "every part visible and at full opacity");
     isolate_ = button("parts_isolate", "Isolate selected", "show only the selected parts, hide every other one");
     show_all_ = button("parts_show_all", "Show all", "make every part visible (opacities stay)");
     frame_ = button("parts_frame", "Frame selected", "frame the camera on the selected parts");
-    buttons->addStretch(1);
     layout->addLayout(buttons);
     // ghosting on a row of its own: the panel stays narrow
     auto *fade_row = new QHBoxLayout;

@@ -6,15 +6,18 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QIcon>
 #include <QLabel>
+#include <QListView>
 #include <QPainter>
 #include <QPixmap>
 #include <QScrollArea>
 #include <QSlider>
 #include <QSpinBox>
 #include <QStandardItemModel>
+#include <QVBoxLayout>
 
 #include <algorithm>
 #include <cmath>
@@ -39,8 +42,11 @@ QWidget *SettingsPanel::linked_row(QSlider *&slider, QDoubleSpinBox *&spin,
     layout->setContentsMargins(0, 0, 0, 0);
     slider = new QSlider(Qt::Horizontal);
     slider->setRange(0, 1000);
+    slider->setMinimumWidth(64); // still a slider in a narrow panel (the row goes under its label)
     spin = new QDoubleSpinBox;
     configure(spin);
+    spin->setMinimumWidth(56);
+    spin->setMaximumWidth(88); // a number, not the range's longest text
     layout->addWidget(slider, 1);
     layout->addWidget(spin);
     QSlider *s = slider;
@@ -134,6 +140,10 @@ QComboBox *SettingsPanel::combo(const QStringList &items, std::function<int()> g
 {
     auto *box = new QComboBox;
     box->addItems(items);
+    // narrow in the panel (a long item does not widen it); the open list shows whole items
+    box->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    box->setMinimumContentsLength(8);
+    box->view()->setMinimumWidth(box->view()->sizeHintForColumn(0) + 24);
     connect(box, QOverload<int>::of(&QComboBox::currentIndexChanged), box, [=](int i) {
         if (!syncing_ && i >= 0)
             set(i);
@@ -163,6 +173,81 @@ QCheckBox *SettingsPanel::check_box(const QString &text, std::function<bool()> g
     });
     on_sync([=] { box->setChecked(get()); });
     return box;
+}
+
+QFormLayout *SettingsPanel::group(QVBoxLayout *layout, const QString &title, QGroupBox **box_out)
+{
+    auto *box = new QGroupBox(title);
+    auto *form = new QFormLayout(box);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
+    layout->addWidget(box);
+    if (box_out)
+        *box_out = box;
+    return form;
+}
+
+void SettingsPanel::show_row_when(QFormLayout *form, QWidget *field, std::function<bool(const QString &)> applies)
+{
+    QStringList where = algorithms_where(applies);
+    size_t count;
+    oit_algorithm_list(&count);
+    if (!where.isEmpty() && size_t(where.size()) < count) // for the tooltip: the algorithms it applies to
+        field->setProperty("applies_to", where);
+    if (!row_applies_.count(form))
+        on_sync([this, form] { refresh_rows(form); }); // once per form, where its first such row is
+    row_applies_[form][field] = std::move(applies);
+}
+
+void SettingsPanel::refresh_rows(QFormLayout *form)
+{
+    // Qt 5's QFormLayout keeps a hidden row's spacing: a row that does not
+    // apply is taken out of the form (its widgets hidden), and put back in its place
+    std::vector<FormRow> &rows = form_rows_[form];
+    if (rows.empty())
+        for (int r = 0; r < form->rowCount(); ++r) {
+            QLayoutItem *label = form->itemAt(r, QFormLayout::LabelRole);
+            QLayoutItem *field = form->itemAt(r, QFormLayout::FieldRole);
+            if (!field)
+                field = form->itemAt(r, QFormLayout::SpanningRole);
+            if (field && field->widget())
+                rows.push_back({label ? label->widget() : nullptr, field->widget()});
+        }
+    const QString algorithm = QString::fromStdString(settings().algorithm);
+    const auto &applies = row_applies_[form];
+    int at = 0; // where the next row shown goes
+    for (const FormRow &row : rows) {
+        auto rule = applies.find(row.field);
+        bool shown = rule == applies.end() || rule->second(algorithm);
+        int present = -1;
+        QFormLayout::ItemRole role;
+        form->getWidgetPosition(row.field, &present, &role);
+        if (shown && present < 0) {
+            if (row.label)
+                form->insertRow(at, row.label, row.field);
+            else
+                form->insertRow(at, row.field);
+        } else if (!shown && present >= 0) {
+            QFormLayout::TakeRowResult taken = form->takeRow(present);
+            delete taken.labelItem; // the layout items, not the widgets
+            delete taken.fieldItem;
+        }
+        row.field->setVisible(shown);
+        if (row.label)
+            row.label->setVisible(shown);
+        at += shown;
+    }
+}
+
+void SettingsPanel::show_group_when_used(QGroupBox *box)
+{
+    on_sync([box] {
+        bool used = false;
+        auto *form = qobject_cast<QFormLayout *>(box->layout());
+        for (int i = 0; form && i < form->count(); ++i)
+            if (QWidget *w = form->itemAt(i)->widget())
+                used = used || !w->isHidden();
+        box->setVisible(used);
+    });
 }
 
 QWidget *scrolled(QWidget *content)
@@ -204,61 +289,111 @@ std::pair<bool, QString> capability(const CapabilityTable &table, const QString 
     return std::make_pair(ok, tip);
 }
 
-void grey_out_items(QComboBox *box, const std::vector<std::pair<int, QString>> &keys, const CapabilityTable &table,
-                    const QString &algorithm)
+void hide_items_not_rendered(QComboBox *box, const std::vector<std::pair<int, QString>> &keys,
+                             const CapabilityTable &table, const QString &algorithm)
 {
     if (table.empty())
         return;
     auto *model = qobject_cast<QStandardItemModel *>(box->model());
     if (!model)
         return;
+    auto *list = qobject_cast<QListView *>(box->view());
     for (const auto &[index, key] : keys) {
         auto [ok, tip] = capability(table, key, box->itemText(index), algorithm);
         QStandardItem *item = model->item(index);
         item->setEnabled(ok);
         item->setToolTip(tip);
+        if (list)
+            list->setRowHidden(index, !ok && index != box->currentIndex());
     }
+}
+
+bool algorithm_renders(const CapabilityTable &table, const QString &key, const QString &algorithm)
+{
+    auto found = table.find(key);
+    return found != table.end() && found->second.contains(algorithm);
+}
+
+bool algorithm_reads(const QString &algorithm, unsigned option)
+{
+    return oit_algorithm_reads(oit_algorithm_find(algorithm.toUtf8().constData()), option);
+}
+
+std::function<bool(const QString &)> renders_any(const CapabilityTable &table, const QStringList &keys)
+{
+    return [&table, keys](const QString &algorithm) {
+        for (const QString &key : keys)
+            if (algorithm_renders(table, key, algorithm))
+                return true;
+        return false;
+    };
+}
+
+QStringList algorithms_where(const std::function<bool(const QString &)> &applies)
+{
+    size_t count;
+    const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
+    QStringList names;
+    for (size_t i = 0; i < count; ++i)
+        if (applies(QString::fromUtf8(list[i]->name)))
+            names << list[i]->name;
+    return names;
 }
 
 // --------------------------------------------------------------- tooltips
 
-// What each row of the settings panel does, by its label (the flag in
-// brackets is `oit render`'s, which Copy as command writes).
-static const std::pair<const char *, const char *> kRowTips[] = {
-    {"algorithm", "how transparency is composited: the exact ones (dp, ddp, ll, ib, reference) agree; "
-                  "blend and wboit approximate"},
-    {"sort", "ll's per-pixel sort: insertion sort in the lists, or a copy into a local array"},
-    {"neighbours", "ib: how a fragment finds its neighbours on the surface (shared vertex index, welded "
-                   "position, or the epsilon depth/normal search)"},
-    {"memory budget", "the most the fragment pools of ll and ib may grow to"},
-    {"layer cap", "dp/ddp: stop after this many layers (none: peel until nothing is left); a frame cut short "
-                  "is marked TRUNCATED"},
-    {"shading", "flat: the material colour; headlight: lit from the eye"},
-    {"background", "the colour behind the model"},
-    {"alpha", "opacity of every surface, times the part's own opacity"},
-    {"contrast", "stretch the composited colour about mid-grey (1: unchanged)"},
-    {"focus shape", "fade surfaces by their distance to a point, plane or box (every algorithm)"},
-    {"focus (model units)", "the focus shape's point, plane (a b c d) or box (min, max), model coordinates"},
-    {"focus region", "fall-off length of the focus shape and of ib's distance modulation; logarithmic slider, "
-                     "left end 0 = automatic"},
-    {"modulation", "ib's opacity modulation from the surface around each fragment; other algorithms do "
-                   "what they can and the Messages say what they left out"},
-    {"curvature effect", "how strongly curvature raises opacity (delta_c)"},
-    {"curvature neighbours", "curvature from 4 or 8 neighbours"},
-    {"distance", "ib: distance to the next fragment, to the one K places on, or to the last"},
-    {"skip K", "ib: the fragment K places on for the skip distance"},
-    {"fields", "ib: which transparency fields (alpha, beta, gamma) modulate"},
-    {"diffusion iterations", "ib: diffusion steps of the fields over the surface (0 = none)"},
-    {"blur iterations", "ib: blur passes of the beta field (0 = none)"},
-    {"lambda", "ib: weight of the field (0 = automatic)"},
-    {"epsilon max", "ib: the largest epsilon the epsilon neighbour search accepts"},
-    {"halo colour", "ib: the colour of the halos the fields draw"},
-    {"view", "what the view shows: the colour, the list-length heatmap, one layer, or ib's buffers"},
-    {"N / layer L", "the peel limit or layer the view shows"},
-    {"mode", "orbit turns about the target; walk moves with W/A/S/D, Q/E"},
-    {"projection", "perspective or orthographic"},
-    {"field of view", "vertical field of view of the perspective camera"},
-    {"saved views", "camera poses kept for this model: double-click one to return to it"},
+// What each row of the settings panel does, by its label: the `oit render`
+// flag it sets (which Copy as command writes), and a description.
+struct RowTip {
+    const char *label, *flag, *description;
+};
+static const RowTip kRowTips[] = {
+    {"algorithm", "--algorithm", "how transparency is composited: the exact ones (dp, ddp, ll, ib, reference) agree; "
+                                 "blend and wboit approximate"},
+    {"sort", "--sort", "ll's per-pixel sort: insertion sort in the lists, or a copy into a local array"},
+    {"neighbours", "--neighbours", "how a fragment finds its neighbours on the surface (shared vertex index, welded "
+                                   "position, or the epsilon depth/normal search)"},
+    {"memory budget", "--max-memory", "the most the fragment pools and buffers may grow to"},
+    {"layer cap", "--max-layers", "stop after this many layers (none: peel until nothing is left); a frame cut short "
+                                  "is marked TRUNCATED"},
+    {"layers", "--layers", "layers kept per pixel (k): exact where no pixel has more fragments; memory grows with k"},
+    {"moments", "--moments", "the moments kept per pixel: 4 or 6 power moments, or 3 trigonometric ones"},
+    {"shading", "--shading", "flat: the material colour; headlight: lit from the eye"},
+    {"background", "--background", "the colour behind the model"},
+    {"tessellation", "--tessellation", "how STEP and IGES surfaces become triangles: the linear deflection 1/1000 "
+                                       "(normal), 1/250 (coarse) or 1/4000 (fine) of the model's diagonal; the model "
+                                       "is loaded again (other formats have their triangles)"},
+    {"alpha", "--alpha", "opacity of every surface, times the part's own opacity"},
+    {"contrast", "--contrast", "stretch the composited colour about mid-grey (1: unchanged)"},
+    {"focus shape", "--focus-point, --focus-plane, --focus-box",
+     "fade surfaces by their distance to a point, plane or box (every algorithm)"},
+    {"focus (model units)", "--focus-point, --focus-plane, --focus-box",
+     "the focus shape's point, plane (a b c d) or box (min, max), model coordinates"},
+    {"focus region", "--focus-region", "fall-off length of the focus shape and of the distance modulation; "
+                                       "logarithmic slider, left end 0 = automatic"},
+    {"modulation", "--modulation", "opacity modulation from the surface around each fragment; the values the "
+                                   "algorithm cannot render are hidden"},
+    {"curvature effect", "--curvature-effect", "how strongly curvature raises opacity (delta_c)"},
+    {"curvature neighbours", "--curvature-neighbours", "curvature from 4 or 8 neighbours"},
+    {"distance", "--distance", "distance to the next fragment, to the one K places on, or to the last"},
+    {"skip K", "--distance skip:K", "the fragment K places on for the skip distance"},
+    {"fields", "--fields", "which transparency fields (alpha, beta, gamma) modulate"},
+    {"diffusion iterations", "--diffusion-iterations", "diffusion steps of the fields over the surface (0 = none)"},
+    {"blur iterations", "--blur-iterations", "blur passes of the beta field (0 = none)"},
+    {"lambda alpha", "--lambda-alpha", "diffusion rate of the alpha field (0 = automatic)"},
+    {"lambda beta", "--lambda-beta", "diffusion rate of the beta field (0 = automatic)"},
+    {"lambda gamma", "--lambda-gamma", "diffusion rate of the gamma field (0 = automatic)"},
+    {"epsilon max", "--epsilon-max", "the largest epsilon the epsilon neighbour search accepts"},
+    {"halo colour", "--halo-colour", "the colour of the halos the gamma field draws"},
+    {"last layer opaque", "--last-layer-opaque", "the farthest fragment of every pixel is opaque"},
+    {"view", "--view", "what the view shows: the colour, the list-length heatmap, one layer, or a buffer; the "
+                       "views the algorithm cannot show are hidden"},
+    {"N / layer L", "--view peel-limit:N, layer:L", "the peel limit or layer the view shows"},
+    {"edge view", "--modulation edges", "opaque where a fragment has fewer than four surface neighbours"},
+    {"mode", nullptr, "orbit turns about the target; walk moves with W/A/S/D, Q/E"},
+    {"projection", nullptr, "perspective or orthographic"},
+    {"field of view", nullptr, "vertical field of view of the perspective camera"},
+    {"saved views", nullptr, "camera poses kept for this model: double-click one to return to it"},
 };
 
 void give_every_control_a_tooltip(QWidget *root)
@@ -290,12 +425,21 @@ void give_every_control_a_tooltip(QWidget *root)
             if (name.isEmpty())
                 if (auto *button = qobject_cast<QAbstractButton *>(field))
                     name = button->text().remove('&');
-            QString tip;
-            for (const auto &entry : kRowTips)
-                if (!name.isEmpty() && name.startsWith(entry.first))
-                    tip = QString("%1: %2").arg(name, entry.second);
-            if (tip.isEmpty())
-                tip = name;
+            const RowTip *row_tip = nullptr;
+            for (const auto &entry : kRowTips) // the longest label that starts the name
+                if (!name.isEmpty() && name.startsWith(entry.label) &&
+                    (!row_tip || qstrlen(entry.label) > qstrlen(row_tip->label)))
+                    row_tip = &entry;
+            // the algorithms it applies to, where only some (show_row_when)
+            QStringList applies_to = field->property("applies_to").toStringList();
+            QString where = applies_to.isEmpty() ? QString() : applies_to.join(", ");
+            QString tip = name;
+            if (row_tip && row_tip->flag)
+                tip += QString(" (%1%2)").arg(row_tip->flag, where.isEmpty() ? "" : "; " + where);
+            else if (!where.isEmpty())
+                tip += QString(" (%1)").arg(where);
+            if (row_tip)
+                tip += QString(": %1").arg(row_tip->description);
             if (tip.isEmpty())
                 continue;
             for (QWidget *control : controls)

@@ -3,14 +3,16 @@
 // reads its setting in sync() and writes it when the user changes it, then
 // says so with edited() (render) or changed() (other controls show it too:
 // refresh them, then render); the window records the undo step and asks for
-// the frame. Also: the options an algorithm cannot express greyed out in a
-// combo box (the core's capability tables), and a tooltip on every control.
+// the frame. Also: the rows an algorithm cannot use hidden, the values it
+// cannot express hidden and disabled in a combo box (both from the core's
+// capability tables), and a tooltip on every control (with its flag).
 #pragma once
 
 #include <QString>
 #include <QWidget>
 
 #include <functional>
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -19,6 +21,9 @@
 
 class QCheckBox;
 class QComboBox;
+class QFormLayout;
+class QGroupBox;
+class QVBoxLayout;
 class QIcon;
 class QDoubleSpinBox;
 class QSlider;
@@ -43,6 +48,15 @@ protected:
     void on_sync(std::function<void()> action) { sync_actions_.push_back(std::move(action)); }
     bool syncing() const { return syncing_; }
 
+    // A labelled group of rows (Layers, Modulation, ...) added to layout, and its form.
+    QFormLayout *group(QVBoxLayout *layout, const QString &title, QGroupBox **box_out = nullptr);
+    // Show form's row of field (and its label) only while applies(the current
+    // algorithm) (read from the core's capabilities, algorithm_uses below);
+    // the field remembers the algorithms it applies to for its tooltip.
+    void show_row_when(QFormLayout *form, QWidget *field, std::function<bool(const QString &)> applies);
+    // Show the group only while one of its rows is shown (after its rows' show_row_when).
+    void show_group_when_used(QGroupBox *box);
+
     // Controls bound to one value: get() shows it, set() takes the user's.
     // A slider with a numeric field, linear between low and high.
     QWidget *slider_row(double low, double high, int decimals, std::function<float()> get,
@@ -59,6 +73,13 @@ protected:
 
 private:
     SettingsModel &model_;
+    // show_row_when's rows: each form's rows as built (label or none, field), and the rule of those shown for some
+    struct FormRow {
+        QWidget *label, *field;
+    };
+    std::map<QFormLayout *, std::vector<FormRow>> form_rows_;
+    std::map<QFormLayout *, std::map<QWidget *, std::function<bool(const QString &)>>> row_applies_;
+    void refresh_rows(QFormLayout *form);
     std::vector<std::function<void()>> sync_actions_;
     bool syncing_ = false; // true while sync() sets the controls
     // A slider (0..1000) and a spin box (set up by configure first) in one row,
@@ -82,11 +103,21 @@ QString colour_text(const float colour[3]);
 std::pair<bool, QString> capability(const CapabilityTable &table, const QString &key, const QString &what,
                                     const QString &algorithm);
 // The combo box's items (index, capability key) the algorithm cannot express
-// are disabled, each with that tooltip; the settings keep them, and a frame
-// leaves them out and says so.
-void grey_out_items(QComboBox *box, const std::vector<std::pair<int, QString>> &keys, const CapabilityTable &table,
-                    const QString &algorithm);
+// are disabled and hidden from its list (shown while chosen), each with that
+// tooltip; the settings keep them, and a frame leaves them out and says so.
+void hide_items_not_rendered(QComboBox *box, const std::vector<std::pair<int, QString>> &keys,
+                             const CapabilityTable &table, const QString &algorithm);
 
-// Every control in root's form layouts gets a tooltip: the row's description,
-// with its label (which names the command-line flag) in front.
+// Whether the algorithm renders the capability key ("modulation:fields", ...),
+// and whether it reads an OIT_OPTION_* (the core's oit_algorithm_reads).
+bool algorithm_renders(const CapabilityTable &table, const QString &key, const QString &algorithm);
+bool algorithm_reads(const QString &algorithm, unsigned option);
+// Whether an algorithm renders any of the keys (for show_row_when).
+std::function<bool(const QString &)> renders_any(const CapabilityTable &table, const QStringList &keys);
+// The algorithms of the core's list for which applies() holds.
+QStringList algorithms_where(const std::function<bool(const QString &)> &applies);
+
+// Every control in root's form layouts gets a tooltip: its label, the
+// command-line flag it sets and the algorithms it applies to (rows shown for
+// some only), then what it does.
 void give_every_control_a_tooltip(QWidget *root);

@@ -8,17 +8,19 @@
 #include <QLabel>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QVBoxLayout>
 
 ViewsPanel::ViewsPanel(SettingsModel &model, const CapabilityTable &capabilities, QWidget *parent)
     : SettingsPanel(model, parent)
 {
     RenderSettings &s = settings();
     oit_modulation &m = s.modulation;
-    auto *form = new QFormLayout(this);
-    form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
-    QStringList views = {"colour", "heatmap", "peel-limit:N", "layer:L", "neighbours (ib)",
-                         "curvature:L (ib)", "distance:L (ib)", "fields:L (ib)"};
-    form->addRow("view (--view)", view_ = combo(views, [&m] { return int(m.view); },
+    auto *layout = new QVBoxLayout(this);
+    QFormLayout *form = group(layout, "View");
+    // in oit_view's order; those the algorithm cannot show are hidden (below)
+    QStringList views = {"colour", "heatmap", "peel-limit:N", "layer:L", "neighbours",
+                         "curvature:L", "distance:L", "fields:L"};
+    form->addRow("view", view_ = combo(views, [&m] { return int(m.view); },
                                                 [this, &m](int i) {
                                                     m.view = oit_view(i);
                                                     if ((m.view == OIT_VIEW_PEEL_LIMIT) && m.view_parameter < 1)
@@ -30,32 +32,41 @@ ViewsPanel::ViewsPanel(SettingsModel &model, const CapabilityTable &capabilities
                                    m.view_parameter = n;
                                    emit edited();
                                });
-    auto *previous = new QPushButton("◀ nearer");
+    auto *previous = new QPushButton("◀");
     previous->setToolTip("the layer (or peel limit) one nearer the eye");
-    auto *next = new QPushButton("farther ▶");
+    auto *next = new QPushButton("▶");
     next->setToolTip("the layer (or peel limit) one farther from the eye");
+    previous->setMinimumWidth(24); // below the style's 80 px: the panel is narrow
+    next->setMinimumWidth(24);
     connect(previous, &QPushButton::clicked, parameter, [parameter] { parameter->setValue(parameter->value() - 1); });
     connect(next, &QPushButton::clicked, parameter, [parameter] { parameter->setValue(parameter->value() + 1); });
-    auto *row = new QHBoxLayout;
-    row->addWidget(parameter);
-    row->addWidget(previous);
-    row->addWidget(next);
+    auto *row = new QWidget;
+    auto *row_layout = new QHBoxLayout(row);
+    row_layout->setContentsMargins(0, 0, 0, 0);
+    row_layout->addWidget(parameter);
+    row_layout->addWidget(previous);
+    row_layout->addWidget(next);
     form->addRow("N / layer L", row);
-    form->addRow(new QLabel("Layer by layer: choose layer:L and step with the buttons.\n"
-                            "heatmap and peel-limit: ll and ib; the others: ib."));
-    form->addRow(check_box("edge view (ib: --modulation edges)", [&m] { return m.mode == OIT_MODULATE_EDGES; },
-                           [this, &s, &m](bool on) {
-                               m.mode = on ? OIT_MODULATE_EDGES : OIT_MODULATE_NONE;
-                               if (on && s.algorithm != "ib") { // the edges are ib's
-                                   s.algorithm = "ib";
-                                   emit changed();
-                               }
-                               emit changed();
-                           }));
+    // the layers and buffers are shown by the algorithms that keep them (the core's capability tables)
+    auto renders = [&capabilities](const QStringList &keys) { return renders_any(capabilities, keys); };
+    show_row_when(form, row,
+                  renders({"view:peel-limit", "view:layer", "view:curvature", "view:distance", "view:fields"}));
+    auto *hint = new QLabel("Layer by layer: choose layer:L and step nearer (◀) or farther (▶).");
+    hint->setWordWrap(true);
+    form->addRow(hint);
+    show_row_when(form, hint, renders({"view:layer"}));
+    QCheckBox *edges = check_box("edge view", [&m] { return m.mode == OIT_MODULATE_EDGES; },
+                                 [this, &m](bool on) {
+                                     m.mode = on ? OIT_MODULATE_EDGES : OIT_MODULATE_NONE;
+                                     emit changed();
+                                 });
+    form->addRow(edges);
+    show_row_when(form, edges, renders({"modulation:edges"}));
+    layout->addStretch(1);
 
-    // what the algorithm cannot express is greyed out (the settings keep it)
+    // what the algorithm cannot express is hidden and disabled (the settings keep it)
     on_sync([this, &s, &capabilities] {
-        grey_out_items(view_, {{1, "view:heatmap"},
+        hide_items_not_rendered(view_, {{1, "view:heatmap"},
                                {2, "view:peel-limit"},
                                {3, "view:layer"},
                                {4, "view:neighbours"},
