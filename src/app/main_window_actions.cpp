@@ -181,8 +181,8 @@ void MainWindow::build_view_menu()
         // key does nothing, silently; the trigger says why (view_refusal)
         if (capabilities_.empty())
             return;
-        auto [ok, tip] = capability(capabilities_, "view:heatmap", "heatmap view", QString::fromStdString(s.algorithm));
-        heatmap->setToolTip(tip);
+        heatmap->setToolTip(
+            capability(capabilities_, "view:heatmap", "heatmap view", QString::fromStdString(s.algorithm)).second);
     });
     QAction *error_view = view->addAction("&Error against reference");
     error_view->setShortcut(QKeySequence("R"));
