@@ -384,6 +384,21 @@ private slots:
         QVERIFY(glm::length(camera().eye - before) > 0.01 * window->model()->radius);
         QVERIFY2(roll(camera()) > 1e-3, "a diagonal trackball drag rolls");
         orbit->setCurrentIndex(0);
+        // the up axis Z: the model framed again, upright about Z; Top looks down -z, Front along +y
+        auto *up = window->findChild<QComboBox *>("up_axis");
+        QVERIFY(up);
+        QCOMPARE(up->currentIndex(), 0);
+        up->setCurrentIndex(1);
+        QCOMPARE(camera().up, Camera::Up::Z);
+        QVERIFY(roll(camera()) < 1e-9);
+        QVERIFY(glm::dot(camera().orientation * glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)) > 0.5);
+        auto forward = [this] { return camera().orientation * glm::dvec3(0, 0, -1); };
+        action("&Top")->trigger();
+        QVERIFY(glm::length(forward() - glm::dvec3(0, 0, -1)) < 1e-9);
+        action("&Front")->trigger();
+        QVERIFY(glm::length(forward() - glm::dvec3(0, 1, 0)) < 1e-9);
+        up->setCurrentIndex(0);
+        QCOMPARE(camera().up, Camera::Up::Y);
         settle();
     }
 };
