@@ -103,8 +103,9 @@ void Camera::matrices(int width, int height, double modelview[16], double projec
     double fov = glm::radians(double(fov_degrees));
     // a narrower image than the framed view: widen the field of view until its
     // narrower axis shows what the framed view's narrower axis shows
-    if (framed_aspect > 0.0 && std::min(1.0, aspect) < std::min(1.0, framed_aspect))
-        fov = 2.0 * std::atan(std::tan(fov / 2.0) * std::min(1.0, framed_aspect) / std::min(1.0, aspect));
+    double widen = widening(aspect, framed_aspect);
+    if (widen != 1.0)
+        fov = 2.0 * std::atan(std::tan(fov / 2.0) * widen);
     glm::dmat4 proj;
     if (orthographic) {
         // the same size at the target as the perspective view shows there
@@ -162,10 +163,19 @@ void Camera::turntable(glm::vec2 from, glm::vec2 to, int width, int height)
     eye = target + orientation * glm::dvec3(0.0, 0.0, distance);
 }
 
-void Camera::pan(glm::vec2 delta, int height)
+double Camera::widening(double aspect, double framed_aspect)
+{
+    if (framed_aspect > 0.0 && std::min(1.0, aspect) < std::min(1.0, framed_aspect))
+        return std::min(1.0, framed_aspect) / std::min(1.0, aspect);
+    return 1.0;
+}
+
+void Camera::pan(glm::vec2 delta, int width, int height, double framed_aspect)
 {
     double distance = std::max(glm::length(target - eye), scene_radius * 1e-3);
-    double per_pixel = 2.0 * distance * std::tan(glm::radians(double(fov_degrees)) / 2.0) / double(std::max(1, height));
+    double aspect = width > 0 && height > 0 ? double(width) / double(height) : 1.0;
+    double per_pixel = 2.0 * distance * std::tan(glm::radians(double(fov_degrees)) / 2.0) *
+                       widening(aspect, framed_aspect) / double(std::max(1, height));
     glm::dvec3 move = orientation * glm::dvec3(-delta.x * per_pixel, delta.y * per_pixel, 0.0);
     eye += move;
     target += move;

@@ -53,8 +53,12 @@ public:
     void turntable(glm::vec2 from, glm::vec2 to, int width, int height);
     // The world's up axis as a vector.
     glm::dvec3 up_vector() const;
-    // Pan by a pixel delta (both modes): the point under the mouse follows it.
-    void pan(glm::vec2 delta_pixels, int height);
+    // Pan by a pixel delta (both modes) in an image of width x height (framed_aspect
+    // as matrices'): the point under the mouse follows it.
+    void pan(glm::vec2 delta_pixels, int width, int height, double framed_aspect = 0.0);
+    // How much matrices() widens tan(fov / 2) for an image of this aspect framing
+    // a view of framed_aspect (1 unless the image's narrower axis is narrower).
+    static double widening(double aspect, double framed_aspect);
     // Wheel: orbit moves towards the target, walk moves forwards. steps > 0 is closer.
     void zoom(float steps);
     // Walk: move in the camera's frame (x right, y world up, z forwards) by model radii.

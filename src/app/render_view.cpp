@@ -517,7 +517,8 @@ void RenderView::mouseMoveEvent(QMouseEvent *event)
                (event->modifiers() & Qt::ShiftModifier);
     Camera &camera = settings_.camera();
     if (pan)
-        camera.pan(to - from, size.height());
+        camera.pan(to - from, side_pixel_size().width(), side_pixel_size().height(),
+                   double(size.width()) / double(size.height())); // side by side: a half of the view
     else if (camera.mode() == Camera::Mode::Orbit)
         camera.orbit(from, to, size.width(), size.height());
     else

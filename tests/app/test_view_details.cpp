@@ -16,6 +16,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include "camera_panel.h"
 #include "heatmap_legend.h"
 #include "main_window.h"
@@ -248,6 +250,23 @@ private slots:
         QVERIFY2(inside(b, r->b.image.size()), qPrintable("side B: " + describe(b, r->b.image.size())));
         // as large as it fits: the model spans most of the half's width
         QVERIFY2(a.width() > r->image.width() / 2, qPrintable(describe(a, r->image.size())));
+        // a pan in a half moves the point under the mouse with it (the half's widened field of view)
+        for (double framed_aspect : {0.0, 160.0 / 120.0}) {
+            Camera c = camera();
+            const int w = 80, h = 120;
+            auto project = [&](const Camera &cam, const glm::dvec3 &p) {
+                double mv[16], proj[16];
+                cam.matrices(w, h, mv, proj, framed_aspect);
+                glm::dvec4 clip = glm::make_mat4(proj) * glm::make_mat4(mv) * glm::dvec4(p, 1.0);
+                return glm::dvec2((clip.x / clip.w + 1.0) * 0.5 * w, (1.0 - clip.y / clip.w) * 0.5 * h);
+            };
+            const glm::dvec3 point = c.target;
+            glm::dvec2 before = project(c, point);
+            c.pan(glm::vec2(10, -7), w, h, framed_aspect);
+            glm::dvec2 moved = project(c, point) - before;
+            QVERIFY2(glm::length(moved - glm::dvec2(10, -7)) < 1e-6,
+                     qPrintable(QString("moved %1, %2 for a drag of 10, -7").arg(moved.x).arg(moved.y)));
+        }
         // the whole view is unchanged: its frame of the model is the same as before
         window->set_split(SplitMode::Off);
         settle();
