@@ -51,6 +51,12 @@ set_tests_properties(app_layout PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESO
 # (under 100 ms): alone on the machine, not beside another test's renders
 set_tests_properties(app_workbench PROPERTIES RUN_SERIAL TRUE)
 
+# The heatmap legend, H without a heatmap, the summaries, side by side and the
+# standard views framing the model, Open recent after a failure, the turntable
+# orbit (tests/app/test_view_details.cpp); a few seconds.
+add_test(NAME app_view_details COMMAND ${APP_XVFB} $<TARGET_FILE:test_view_details>)
+set_tests_properties(app_view_details PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
+
 # The parts list at 10,000 parts, and picking (tests/app/parts_panel.cmake).
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/parts_panel.cmake)
 # The window manager's ping answered while loading and rendering (tests/app/wm_ping.cmake).

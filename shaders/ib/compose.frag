@@ -17,7 +17,8 @@ layout(location = OIT_UNIFORM_IB_PASS) uniform int fields_copy;
 
 layout(location = 0) out vec4 out_colour;
 
-// blue -> green -> yellow -> red
+// blue -> green -> yellow -> red; oit_heatmap_colour (image_error.c) is the same
+// scale for the legends: change both together
 vec3 heat(float t)
 {
     t = clamp(t, 0.0, 1.0) * 3.0;

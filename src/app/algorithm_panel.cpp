@@ -36,7 +36,7 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
         algorithm->setItemData(int(i), QString(list[i]->summary), Qt::ToolTipRole);
     on_sync([&s, summary] {
         const oit_algorithm_ops *ops = oit_algorithm_find(s.algorithm.c_str());
-        summary->setText(ops ? QString("%1%2").arg(ops->summary, ops->exact ? " (exact)" : " (approximate)") : "");
+        summary->setText(ops ? QString::fromStdString(algorithm_summary(*ops)) : "");
     });
     form->addRow("algorithm", algorithm);
     form->addRow(summary);

@@ -15,12 +15,32 @@ CameraPanel::CameraPanel(SettingsModel &model, QWidget *parent) : SettingsPanel(
     Camera &c = camera();
     auto *form = new QFormLayout(this);
     form->setRowWrapPolicy(QFormLayout::WrapLongRows); // narrow panels put fields under labels
-    form->addRow("mode", combo({"orbit (trackball, wheel zoom, right-drag pan)", "walk (W/A/S/D, Q/E, mouse look)"},
+    form->addRow("mode", combo({"orbit (left drag turns, wheel zoom, right-drag pan)", "walk (W/A/S/D, Q/E, mouse look)"},
                                [&c] { return c.mode() == Camera::Mode::Walk ? 1 : 0; },
                                [this, &c](int i) {
                                    c.set_mode(i ? Camera::Mode::Walk : Camera::Mode::Orbit);
                                    emit changed();
                                }));
+    QComboBox *orbit = combo({"turntable (about the up axis, no roll)", "trackball (free, rolls)"},
+                             [&c] { return c.orbit_style == Camera::Orbit::Trackball ? 1 : 0; },
+                             [this, &c](int i) {
+                                 c.orbit_style = i ? Camera::Orbit::Trackball : Camera::Orbit::Turntable;
+                                 emit changed();
+                             });
+    orbit->setObjectName("orbit_style");
+    orbit->setToolTip("orbit: what a left drag does. Turntable: sideways turns about the up axis, up and down "
+                      "tilts (short of the poles), the up axis stays up; trackball: turns freely, and rolls");
+    form->addRow("orbit", orbit);
+    QComboBox *up = combo({"Y", "Z"}, [&c] { return c.up == Camera::Up::Z ? 1 : 0; },
+                          [this, &c](int i) {
+                              c.up = i ? Camera::Up::Z : Camera::Up::Y;
+                              emit changed();
+                              emit reset_camera_requested(); // the default view, upright about the new axis
+                          });
+    up->setObjectName("up_axis");
+    up->setToolTip("up axis: the model's vertical axis, for the turntable, the standard views, Reset and walk "
+                   "(Y: glTF, OBJ; Z: most CAD and IFC files)");
+    form->addRow("up axis", up);
     form->addRow("projection", combo({"perspective", "orthographic"}, [&c] { return c.orthographic ? 1 : 0; },
                                      [this, &c](int i) {
                                          c.orthographic = i == 1;

@@ -1,4 +1,5 @@
-// camera_panel.h: the settings panel's Camera tab: orbit or walk,
+// camera_panel.h: the settings panel's Camera tab: orbit or walk, turntable
+// or trackball orbit, the up axis (Y or Z; changing it frames the model again),
 // perspective or orthographic, the field of view, Reset, and the camera poses
 // saved for the model: named, renamed (edit in the list), deleted, and kept
 // with the model in the saved state (MainWindow).

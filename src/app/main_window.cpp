@@ -88,8 +88,9 @@ MainWindow::MainWindow(Start start, QWidget *parent)
 
     loader_ = new ModelLoader(this);
     connect(loader_, &ModelLoader::loaded, this, &MainWindow::load_finished);
-    connect(loader_, &ModelLoader::failed, this, [this](const QString &, const QString &message) {
-        load_failed(message);
+    connect(loader_, &ModelLoader::failed, this, [this](const QString &path, const QString &message) {
+        // a file that failed to open leaves Open recent, and the error says so
+        load_failed(forget_recent(path) ? message + " (removed from Open recent)" : message);
     });
     connect(view_, &RenderView::frame_rendered, this, &MainWindow::update_stats);
     connect(view_, &RenderView::frame_progress, this, &MainWindow::frame_progress);
@@ -455,7 +456,7 @@ void MainWindow::frame_parts(const std::vector<int> &parts)
         box_min[a] = m.origin[a] + lo[a];
         box_max[a] = m.origin[a] + hi[a];
     }
-    QSize size = view_->side_pixel_size();
+    QSize size = view_->pixel_size(); // the whole view: side by side, each half shows as much (make_frame)
     settings_->camera().frame_box(box_min, box_max, size.width(), size.height());
     settings_->camera_edited();
     render_now();

@@ -76,6 +76,11 @@ public:
     // the loaded model's import warnings (oit_model.warnings), shown in a notice
     QStringList model_warnings() const { return model_warnings_; }
     QString status_text() const;
+    // File > Open recent, newest first (a model that failed to open is dropped).
+    const QStringList &recent_models() const { return recent_; }
+    // Why the current algorithm cannot show this oit_view, in the core's words
+    // (oit_frame_check: "mboit: buffer views are ll's and ib's ..."); empty if it can.
+    QString view_refusal(int view) const;
     // The message area: loads, exports, copies, warnings, cancels and errors
     // stay readable there (newest last), each line "[hh:mm:ss] kind: text".
     QStringList messages() const;
@@ -175,6 +180,8 @@ private:
     void load_finished(ModelPointer model, const QString &path);
     void load_failed(const QString &message);
     void add_recent(const QString &path);
+    // A model that failed to open leaves Open recent; false if it was not there.
+    bool forget_recent(const QString &path);
     // Write the saved state (the recent models and the last model; closing,
     // also the settings and the window's layout); a failure goes to the
     // Messages once (and to stderr when closing, the Messages going with the window).

@@ -37,6 +37,8 @@
 #include <QUndoStack>
 #include <QVBoxLayout>
 
+#include <cstring>
+
 namespace {
 
 // A menu entry with a shortcut that runs a function.
@@ -139,7 +141,8 @@ void MainWindow::build_view_menu()
     for (const StandardView &v : standard_views) {
         float azimuth = v.azimuth, elevation = v.elevation;
         menu_action(standard, v.name, QKeySequence(QString("Alt+%1").arg(number++)), this, [this, azimuth, elevation] {
-            settings_->camera().set_view_direction(azimuth, elevation);
+            QSize size = view_->pixel_size(); // the whole model in the whole view
+            settings_->camera().set_view_direction(azimuth, elevation, size.width(), size.height());
             settings_->camera_edited();
             view_->request_frame(true);
         });
@@ -163,19 +166,27 @@ void MainWindow::build_view_menu()
     QAction *heatmap = view->addAction("&Heatmap");
     heatmap->setShortcut(QKeySequence("H"));
     heatmap->setCheckable(true);
-    connect(heatmap, &QAction::triggered, this, [this](bool on) {
+    connect(heatmap, &QAction::triggered, this, [this, heatmap](bool on) {
+        // H where the algorithm has no heatmap: say why in the core's words, not nothing
+        QString refused = on ? view_refusal(OIT_VIEW_HEATMAP) : QString();
+        if (!refused.isEmpty()) {
+            heatmap->setChecked(false);
+            status_label_->setText("no heatmap: " + refused);
+            log_message("heatmap", "not shown: " + refused);
+            return;
+        }
         settings_->render_settings().modulation.view = on ? OIT_VIEW_HEATMAP : OIT_VIEW_COLOUR;
         settings_changed();
     });
     sync_actions_.push_back([this, heatmap] {
         const RenderSettings &s = settings_->render_settings();
         heatmap->setChecked(s.modulation.view == OIT_VIEW_HEATMAP);
-        // greyed out where the algorithm cannot show it, unless it is on (the capability tables)
+        // not greyed out where the algorithm cannot show it: a disabled action's
+        // key does nothing, silently; the trigger says why (view_refusal)
         if (capabilities_.empty())
             return;
-        auto [ok, tip] = capability(capabilities_, "view:heatmap", "heatmap view", QString::fromStdString(s.algorithm));
-        heatmap->setEnabled(ok || s.modulation.view == OIT_VIEW_HEATMAP);
-        heatmap->setToolTip(tip);
+        heatmap->setToolTip(
+            capability(capabilities_, "view:heatmap", "heatmap view", QString::fromStdString(s.algorithm)).second);
     });
     QAction *error_view = view->addAction("&Error against reference");
     error_view->setShortcut(QKeySequence("R"));
@@ -254,6 +265,19 @@ void MainWindow::build_view_menu()
     view->addSeparator();
 }
 
+QString MainWindow::view_refusal(int view) const
+{
+    const oit_algorithm_ops *ops = oit_algorithm_find(settings_->render_settings().algorithm.c_str());
+    if (!ops)
+        return QString();
+    // only the view asked: the frame's other settings would be refused first
+    oit_frame_settings probe;
+    std::memset(&probe, 0, sizeof probe);
+    probe.modulation.view = oit_view(view);
+    oit_error err{};
+    return oit_frame_check(ops, &probe, &err) == OIT_OK ? QString() : QString::fromUtf8(err.message);
+}
+
 void MainWindow::build_help_menu()
 {
     QMenu *help = menuBar()->addMenu("&Help");
@@ -291,6 +315,14 @@ void MainWindow::add_recent(const QString &path)
     while (recent_.size() > 8)
         recent_.removeLast();
     rebuild_recent_menu();
+}
+
+bool MainWindow::forget_recent(const QString &path)
+{
+    if (recent_.removeAll(QFileInfo(path).absoluteFilePath()) + recent_.removeAll(path) == 0)
+        return false;
+    rebuild_recent_menu();
+    return true;
 }
 
 void MainWindow::open_model_dialog()

@@ -1,6 +1,7 @@
 // render_view.cpp: see render_view.h.
 #include "render_view.h"
 #include "error_legend.h"
+#include "heatmap_legend.h"
 #include "split_view.h"
 
 #include <QCoreApplication>
@@ -43,6 +44,8 @@ RenderView::RenderView(SettingsModel &settings_model, QWidget *parent) : QWidget
     setMouseTracking(true); // the cursor shows where the wipe line can be grabbed
     legend_ = new ErrorLegend(this);
     legend_->hide();
+    heatmap_legend_ = new HeatmapLegend(this);
+    heatmap_legend_->hide();
     oit_stats_reset(&last_stats_);
     walk_timer_ = new QTimer(this);
     walk_timer_->setInterval(33);
@@ -181,6 +184,14 @@ void RenderView::update_overlays()
     legend_->set_bar_width(std::min(150, width() / 2 - 40)); // a small corner of a small view
     legend_->move(6, height() - legend_->height() - 6);
     legend_->setVisible(map);
+    // the heatmap's scale is the shown frame's longest list (side A's, as rendered: not left out)
+    bool heatmap = !map && r && r->status == OIT_OK && r->modulation.view == OIT_VIEW_HEATMAP && r->stats.max_list > 0;
+    if (heatmap) {
+        heatmap_legend_->set_longest(r->stats.max_list);
+        heatmap_legend_->set_bar_width(std::min(150, width() / 2 - 40));
+        heatmap_legend_->move(6, height() - heatmap_legend_->height() - 6);
+    }
+    heatmap_legend_->setVisible(heatmap);
     update();
 }
 
@@ -530,9 +541,10 @@ void RenderView::mouseMoveEvent(QMouseEvent *event)
                (event->modifiers() & Qt::ShiftModifier);
     Camera &camera = settings_.camera();
     if (pan)
-        camera.pan(to - from, size.height());
+        camera.pan(to - from, side_pixel_size().width(), side_pixel_size().height(),
+                   double(size.width()) / double(size.height())); // side by side: a half of the view
     else if (camera.mode() == Camera::Mode::Orbit)
-        camera.trackball(from, to, size.width(), size.height());
+        camera.orbit(from, to, size.width(), size.height());
     else
         camera.look(to - from);
     last_mouse_ = event->pos();

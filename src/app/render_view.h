@@ -34,6 +34,7 @@
 
 class QTimer;
 class ErrorLegend;
+class HeatmapLegend;
 
 class RenderView : public QWidget {
     Q_OBJECT
@@ -101,6 +102,8 @@ public:
     QImage shown_b() const;
     // The error view's legend (hidden when the view shows no error map).
     ErrorLegend *legend() const { return legend_; }
+    // The heatmap view's legend, the shown frame's scale (hidden in other views).
+    HeatmapLegend *heatmap_legend() const { return heatmap_legend_; }
     // Full frames slower than this go coarse first while interacting (tests set 0).
     void set_slow_frame_ms(double ms) { slow_frame_ms_ = ms; }
 
@@ -160,6 +163,7 @@ private:
     QImage shown_;                // what paintEvent draws (coarse or full)
     FrameResultPointer shown_result_; // the result shown_ came from
     ErrorLegend *legend_ = nullptr;
+    HeatmapLegend *heatmap_legend_ = nullptr;
     bool dragging_wipe_ = false;
     QImage last_image_;
     FrameResultPointer last_result_;

@@ -40,7 +40,9 @@ oit_frame_settings make_frame(const RenderSettings &s, const oit_model &model, c
     std::memset(&frame, 0, sizeof frame);
     frame.width = width;
     frame.height = height;
-    camera.matrices(width, height, frame.modelview, frame.projection);
+    // side by side, each half shows what the whole view (twice as wide) frames
+    double framed_aspect = s.split == SplitMode::SideBySide ? 2.0 * width / std::max(1, height) : 0.0;
+    camera.matrices(width, height, frame.modelview, frame.projection, framed_aspect);
     frame.alpha = s.alpha;
     frame.shading = s.shading;
     std::copy(s.background, s.background + 3, frame.background);
@@ -422,6 +424,8 @@ Value camera_value(const Camera &camera, rapidjson::Document::AllocatorType &a)
     add(cam, "mode", Value(rapidjson::StringRef(camera.mode() == Camera::Mode::Walk ? "walk" : "orbit")), a);
     add(cam, "projection", Value(rapidjson::StringRef(camera.orthographic ? "orthographic" : "perspective")), a);
     add(cam, "fov", Value(double(camera.fov_degrees)), a);
+    add(cam, "orbit", Value(rapidjson::StringRef(camera.orbit_style == Camera::Orbit::Trackball ? "trackball" : "turntable")), a);
+    add(cam, "up", Value(rapidjson::StringRef(camera.up == Camera::Up::Z ? "z" : "y")), a);
     add(cam, "eye", array_value(&camera.eye.x, 3, a), a);
     const double q[4] = {camera.orientation.w, camera.orientation.x, camera.orientation.y, camera.orientation.z};
     add(cam, "orientation", array_value(q, 4, a), a);
@@ -725,10 +729,13 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         static const char *const modes[] = {"orbit", "walk"};
         static const char *const projections[] = {"perspective", "orthographic"};
         // a camera without a mode, projection or fov gets the defaults, as settings do
+        static const char *const orbits[] = {"turntable", "trackball"};
+        static const char *const ups[] = {"y", "z"};
         c.fov_degrees = Camera().fov_degrees;
-        int cam_mode = 0, projection = 0;
+        int cam_mode = 0, projection = 0, orbit = 0, up = 0;
         double q[4] = {c.orientation.w, c.orientation.x, c.orientation.y, c.orientation.z};
         if (!r.choice(cam, "mode", modes, 2, cam_mode) || !r.choice(cam, "projection", projections, 2, projection) ||
+            !r.choice(cam, "orbit", orbits, 2, orbit) || !r.choice(cam, "up", ups, 2, up) ||
             !r.number(cam, "fov", 1.0, 170.0, c.fov_degrees) || !r.numbers(cam, "eye", 3, &c.eye.x, present) ||
             !r.numbers(cam, "orientation", 4, q, present) || !r.numbers(cam, "target", 3, &c.target.x, present))
             return false;
@@ -738,6 +745,8 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         // renormalised only if needed, so a saved view comes back bit for bit
         c.orientation = std::fabs(glm::length(orientation) - 1.0) > 1e-5 ? glm::normalize(orientation) : orientation;
         c.orthographic = projection == 1;
+        c.orbit_style = orbit == 1 ? Camera::Orbit::Trackball : Camera::Orbit::Turntable;
+        c.up = up == 1 ? Camera::Up::Z : Camera::Up::Y;
         // set_mode moves an orbit's target to the point ahead when the mode
         // changes: the preset's (or the kept) target is put back after it
         const glm::dvec3 target = c.target;
@@ -955,4 +964,21 @@ bool read_model_list(const std::string &file, const std::string &text, const std
         out.push_back({entry["name"].GetString(), path});
     }
     return true;
+}
+
+std::string algorithm_summary(const oit_algorithm_ops &ops)
+{
+    const std::string line = ops.summary ? ops.summary : "";
+    const std::string word = ops.exact ? "exact" : "approximate";
+    // the word on its own (case aside), not inside another ("inexact")
+    std::string lower = line;
+    for (char &c : lower)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (size_t at = lower.find(word); at != std::string::npos; at = lower.find(word, at + 1)) {
+        bool starts = at == 0 || !std::isalpha(static_cast<unsigned char>(lower[at - 1]));
+        bool ends = at + word.size() == lower.size() || !std::isalpha(static_cast<unsigned char>(lower[at + word.size()]));
+        if (starts && ends)
+            return line;
+    }
+    return line + " (" + word + ")";
 }

@@ -58,6 +58,11 @@ std::string view_name(const oit_modulation &modulation);
 bool parse_view(const std::string &text, oit_modulation &modulation);
 const char *modulation_mode_name(oit_modulation_mode mode);
 
+// The Algorithm tab's summary: the core's one line and whether the algorithm
+// is exact, "(exact)" or "(approximate)", unless the line already says so
+// (mboit's ends in "approximate": never "approximate (approximate)").
+std::string algorithm_summary(const oit_algorithm_ops &ops);
+
 // The `oit render` command that reproduces a frame (matrices row by row, with
 // enough digits that every double survives the round trip). With the error
 // view, --error-vs-reference and --error-map (out_path's name with "-error").

@@ -145,7 +145,8 @@ oit_status oit_image_error_compute(const oit_image *image, const oit_image *refe
 
 /* ------------------------------------------------------------ error map */
 
-/* blue -> green -> yellow -> red, as the buffer views' heat map */
+/* blue -> green -> yellow -> red: heat() of ll/compose.frag and ib/compose.frag
+ * (the buffer views' heatmap), in double where they use float */
 static void heat(double t, uint8_t rgb[3])
 {
     t = t < 0.0 ? 0.0 : t > 1.0 ? 3.0 : t * 3.0;
@@ -176,6 +177,11 @@ void oit_error_map_colour(int difference, uint8_t rgb[3])
         return;
     }
     heat(oit_error_map_position(difference), rgb);
+}
+
+void oit_heatmap_colour(int64_t length, int64_t longest, uint8_t rgb[3])
+{
+    heat((double)length / (double)(longest > 1 ? longest : 1), rgb);
 }
 
 /* 3x5 digits and '+', one row of three bits per line, top first */

@@ -286,6 +286,12 @@ oit_status oit_image_error_map(const oit_image *image, const oit_image *referenc
 /* The map's scale: where a difference lies on the bar (0..1), and its colour. */
 double oit_error_map_position(int difference);
 void oit_error_map_colour(int difference, uint8_t rgb[3]);
+/* The buffer views' heatmap (view "heatmap", ll and ib): the colour of a pixel
+ * whose list holds length fragments when the frame's longest list
+ * (oit_stats.max_list) is longest, as their compose shaders compute it:
+ * heat(length / max(longest, 1)), blue -> green -> yellow -> red (the error
+ * map's scale). Pixels without fragments show the background. */
+void oit_heatmap_colour(int64_t length, int64_t longest, uint8_t rgb[3]);
 
 /* ------------------------------------------------------------------- files */
 /* atomic_file.c. WHAT names the file in the user's words (a flag such as

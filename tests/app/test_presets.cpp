@@ -20,7 +20,7 @@ static_assert(sizeof(oit_modulation) == 84, "oit_modulation changed: presets (se
 static_assert(sizeof(oit_algorithm_config) == 64, "oit_algorithm_config changed: presets (settings.cpp) and this test");
 static_assert(sizeof(oit_import_options) == 16, "oit_import_options changed: presets (settings.cpp) and this test");
 static_assert(sizeof(RenderSettings) == 376, "RenderSettings changed: presets (settings.cpp) and this test");
-static_assert(sizeof(Camera) == 128, "Camera changed: presets (settings.cpp) and this test");
+static_assert(sizeof(Camera) == 136, "Camera changed: presets (settings.cpp) and this test");
 
 namespace {
 
@@ -76,6 +76,8 @@ void every_field_changed(RenderSettings &s, Camera &c)
     c.set_mode(Camera::Mode::Walk);
     c.orthographic = true;
     c.fov_degrees = 55.0f;
+    c.orbit_style = Camera::Orbit::Trackball;
+    c.up = Camera::Up::Z;
     c.eye = glm::dvec3(1.25, -2.5, 3.75);
     c.orientation = glm::normalize(glm::dquat(0.9, 0.1, -0.2, 0.3));
     c.target = glm::dvec3(0.5, 0.25, -0.125);
@@ -109,7 +111,8 @@ QStringList differences(const RenderSettings &a, const RenderSettings &b)
 QStringList camera_differences(const Camera &a, const Camera &b)
 {
     QStringList out;
-    SAME(mode()) SAME(orthographic) SAME(fov_degrees) SAME(eye) SAME(orientation) SAME(target)
+    SAME(mode()) SAME(orthographic) SAME(fov_degrees) SAME(orbit_style) SAME(up) SAME(eye) SAME(orientation)
+    SAME(target)
     return out;
 }
 #undef SAME
@@ -148,7 +151,7 @@ private slots:
         // (the deflection stands for it)
         QVERIFY2(changed_fields.size() == 47 && !changed_fields.contains("import.tessellation"),
                  qPrintable(changed_fields.join(", ")));
-        QCOMPARE(camera_differences(camera, default_camera).size(), 6);
+        QCOMPARE(camera_differences(camera, default_camera).size(), 8);
 
         const std::string text = preset_to_json(changed, camera, &model_.m);
         RenderSettings loaded = defaults;
@@ -215,6 +218,8 @@ private slots:
         QCOMPARE(camera.mode(), Camera::Mode::Orbit);
         QVERIFY(!camera.orthographic);
         QCOMPARE(camera.fov_degrees, Camera().fov_degrees);
+        QCOMPARE(camera.orbit_style, Camera::Orbit::Turntable);
+        QCOMPARE(camera.up, Camera::Up::Y);
         QCOMPARE(camera.eye, glm::dvec3(0, 0, 5));
         QCOMPARE(camera.target, before_camera.target); // the pose it lacks is kept
     }
