@@ -17,6 +17,7 @@
 
 #include "file_io.h"
 #include "main_window.h"
+#include "parts_panel.h"
 
 namespace {
 
@@ -66,7 +67,13 @@ int main(int argc, char **argv)
                            "show this tab of the settings panel: algorithm, opacity, parts, camera, views, "
                            "stats, compare",
                            "NAME");
-    parser.addOptions({algorithm, preset, size, screenshot, screenshot_after, fresh, tab});
+    QCommandLineOption select("select",
+                              "select these parts once the model is loaded (names or assembly paths, as "
+                              "`oit render --highlight`; the selection is highlighted)",
+                              "NAME[,NAME...]");
+    QCommandLineOption fade_others("fade-others",
+                                   "with --select: Fade others, the parts not selected to PERCENT opacity", "PERCENT");
+    parser.addOptions({algorithm, preset, size, screenshot, screenshot_after, fresh, tab, select, fade_others});
     if (!parser.parse(app.arguments()))
         return fail(parser.errorText() + " (see oit-workbench --help)");
     if (parser.isSet("help")) {
@@ -102,6 +109,16 @@ int main(int argc, char **argv)
             return fail("--screenshot-after '" + parser.value(screenshot_after) +
                         "' needs --screenshot and 0..3600000 milliseconds");
     }
+    int fade_percent = -1;
+    if (parser.isSet(fade_others)) {
+        bool ok = false;
+        fade_percent = parser.value(fade_others).toInt(&ok);
+        if (!ok || fade_percent < 0 || fade_percent > 100 || !parser.isSet(select))
+            return fail("--fade-others '" + parser.value(fade_others) + "' needs --select and 0..100 percent");
+    }
+    const QStringList select_names = parser.value(select).split(',', Qt::SkipEmptyParts);
+    if (parser.isSet(select) && select_names.isEmpty())
+        return fail("--select needs at least one part name");
     QString refused;
     if (automated && !check_output_path(parser.value(screenshot), "--screenshot", refused))
         return fail(refused); // a FIFO would wait for a reader; a device is not replaced
@@ -141,6 +158,26 @@ int main(int argc, char **argv)
                 window.view()->setMinimumSize(64, 64);
                 window.view()->setMaximumSize(QWIDGETSIZE_MAX, QWIDGETSIZE_MAX);
             });
+    }
+    if (!select_names.isEmpty()) {
+        // the selection (and its ghosting) once the model is in, before the first grab
+        auto done = std::make_shared<bool>(false); // the first model only, not one opened later
+        QObject::connect(&window, &MainWindow::model_loaded, &app, [&window, select_names, fade_percent, automated, done] {
+            if (*done)
+                return;
+            *done = true;
+            QString error;
+            if (!window.select_parts_named(select_names, error)) {
+                fail("--select: " + error);
+                if (automated)
+                    QCoreApplication::exit(2);
+                return;
+            }
+            if (fade_percent >= 0) {
+                window.parts_panel()->set_fade_percent(fade_percent);
+                window.fade_others();
+            }
+        }, Qt::DirectConnection);
     }
     window.load_model(model_path);
 

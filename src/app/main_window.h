@@ -130,6 +130,10 @@ public:
     void set_highlight_selection(bool on);
     bool highlight_selection() const;
     bool fade_others();
+    // Select the parts these names or assembly paths match (as `oit render --highlight`
+    // and --component-alpha match them: oit_model_match_parts); false, with the
+    // name that matches nothing in error, when one does not match.
+    bool select_parts_named(const QStringList &names, QString &error);
     QSlider *alpha_slider() const;
     ComparePanel *compare_panel() const { return compare_panel_; }
     // View ▸ Error against reference, Split view, Side by side (and the Compare tab)

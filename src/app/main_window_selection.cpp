@@ -14,6 +14,9 @@
 #include <QMenu>
 #include <QMenuBar>
 
+#include <algorithm>
+#include <memory>
+
 void MainWindow::build_parts_menu()
 {
     QMenu *parts = menuBar()->addMenu("&Parts");
@@ -63,4 +66,29 @@ bool MainWindow::fade_others()
     else if (changed)
         status_label_->setText(QString("faded the parts not selected to %1%").arg(parts_panel_->fade_percent()));
     return changed;
+}
+
+bool MainWindow::select_parts_named(const QStringList &names, QString &error)
+{
+    if (!model_) {
+        error = "no model is loaded";
+        return false;
+    }
+    std::vector<bool> chosen(model_->component_count, false);
+    std::unique_ptr<bool[]> matched(new bool[model_->component_count]);
+    for (const QString &name : names) {
+        std::fill(matched.get(), matched.get() + model_->component_count, false);
+        if (oit_model_match_parts(model_.get(), name.toUtf8().constData(), matched.get()) == 0) {
+            error = "no part or assembly named '" + name + "'";
+            return false;
+        }
+        for (uint32_t i = 0; i < model_->component_count; ++i)
+            chosen[i] = chosen[i] || matched[i];
+    }
+    std::vector<int> parts;
+    for (uint32_t i = 0; i < model_->component_count; ++i)
+        if (chosen[i])
+            parts.push_back(int(i));
+    parts_panel_->select_parts(parts); // selection_changed: the highlight follows
+    return true;
 }

@@ -464,6 +464,25 @@ void PartsPanel::select_part(int index)
     static_cast<PartsView *>(view_)->scroll_when_shown = !view_->isVisible();
 }
 
+void PartsPanel::select_parts(const std::vector<int> &indices)
+{
+    if (indices.empty()) {
+        view_->selectionModel()->clearSelection();
+        return;
+    }
+    for (int index : indices)
+        if (index >= 0 && index < model_->part_count() && !model_->filter_shows_part(index))
+            filter_->clear(); // a filter would hide a part to be selected
+    select_part(indices.front()); // the first: current, its assemblies open, scrolled to
+    for (size_t i = 1; i < indices.size(); ++i) {
+        const int index = indices[i];
+        if (index < 0 || index >= model_->part_count())
+            continue;
+        view_->selectionModel()->select(proxy_->mapFromSource(model_->part_index(index)),
+                                        QItemSelectionModel::Select | QItemSelectionModel::Rows);
+    }
+}
+
 QAbstractItemView *PartsPanel::view() const { return view_; }
 
 QLineEdit *PartsPanel::filter() const { return filter_; }

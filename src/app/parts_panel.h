@@ -36,6 +36,8 @@ public:
     std::vector<int> selected_parts() const; // component indices, ascending (an assembly's row: every part under it)
     // select only it, make it current, open its assemblies and scroll to it (clears a filter that hides it)
     void select_part(int index);
+    // select exactly these parts (the first made current, opened and scrolled to)
+    void select_parts(const std::vector<int> &indices);
     // Ghosting: every part not selected to opacity alpha (selected ones keep
     // theirs), as one change (one parts_changed); false when nothing is
     // selected or nothing changed.
