@@ -7,6 +7,8 @@ if(NOT TARGET test_workbench)
 endif()
 # The settings' undo history, coalescing included: no display needed (tests/app/settings_model.cmake).
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/settings_model.cmake)
+# Preview-then-refine: the stand-in while moving, the status, no needless frame (tests/app/preview.cmake).
+include(${CMAKE_CURRENT_SOURCE_DIR}/app/preview.cmake)
 find_program(XVFB_RUN xvfb-run)
 if(NOT XVFB_RUN)
   message(WARNING "xvfb-run not found (Debian: xvfb, xauth): the workbench tests are not registered")
