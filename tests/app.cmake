@@ -7,8 +7,6 @@ if(NOT TARGET test_workbench)
 endif()
 # The settings' undo history, coalescing included: no display needed (tests/app/settings_model.cmake).
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/settings_model.cmake)
-# Preview-then-refine: the stand-in while moving, the status, no needless frame (tests/app/preview.cmake).
-include(${CMAKE_CURRENT_SOURCE_DIR}/app/preview.cmake)
 find_program(XVFB_RUN xvfb-run)
 if(NOT XVFB_RUN)
   message(WARNING "xvfb-run not found (Debian: xvfb, xauth): the workbench tests are not registered")
@@ -45,6 +43,8 @@ set_tests_properties(app_workbench PROPERTIES RUN_SERIAL TRUE)
 
 # The parts list at 10,000 parts, and picking (tests/app/parts_panel.cmake).
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/parts_panel.cmake)
+# Preview-then-refine: the stand-in while moving, the status, no needless frame (tests/app/preview.cmake).
+include(${CMAKE_CURRENT_SOURCE_DIR}/app/preview.cmake)
 # The window manager's ping answered while loading and rendering (tests/app/wm_ping.cmake).
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/wm_ping.cmake)
 
