@@ -59,6 +59,8 @@ set_tests_properties(app_view_details PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}
 
 # The parts list at 10,000 parts, and picking (tests/app/parts_panel.cmake).
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/parts_panel.cmake)
+# Preview-then-refine: the stand-in while moving, the status, no needless frame (tests/app/preview.cmake).
+include(${CMAKE_CURRENT_SOURCE_DIR}/app/preview.cmake)
 # The window manager's ping answered while loading and rendering (tests/app/wm_ping.cmake).
 include(${CMAKE_CURRENT_SOURCE_DIR}/app/wm_ping.cmake)
 

@@ -132,5 +132,24 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
                                          : QString("the preset's (millimetres)"));
     });
     look->addRow("tessellation", tessellation);
+    // the workbench's own: what renders while the camera or a slider moves (render_worker.h)
+    QStringList previews{"auto (ll coarse, or wboit)", "same as chosen"};
+    QStringList preview_values{"auto", "same"};
+    for (const QString &name : names)
+        previews << name, preview_values << name;
+    auto *preview = combo(previews,
+                          [&s, preview_values] {
+                              return std::max(0, int(preview_values.indexOf(QString::fromStdString(s.preview_algorithm))));
+                          },
+                          [this, &s, preview_values](int i) {
+                              s.preview_algorithm = preview_values[i].toStdString();
+                              emit edited();
+                          });
+    preview->setObjectName("preview_algorithm");
+    preview->setToolTip("While the camera or a slider moves and the chosen algorithm's full frames are slow, "
+                        "frames come from this fast stand-in at a coarse scale, and the chosen algorithm "
+                        "refines when the input rests. auto: ll, or wboit where ll's fill is too slow; same as "
+                        "chosen: the chosen algorithm, coarse");
+    look->addRow("preview while moving", preview);
     layout->addStretch(1);
 }

@@ -94,6 +94,12 @@ MainWindow::MainWindow(Start start, QWidget *parent)
     });
     connect(view_, &RenderView::frame_rendered, this, &MainWindow::update_stats);
     connect(view_, &RenderView::frame_progress, this, &MainWindow::frame_progress);
+    // while the full frame is not up, the status line names what is on screen
+    // ("dp refining…, showing ll preview"), not the last full frame's time
+    connect(view_, &RenderView::status_changed, this, [this](const QString &text) {
+        if (!text.isEmpty())
+            status_label_->setText(text);
+    });
     connect(view_, &RenderView::clicked, this, &MainWindow::pick_at);
     connect(view_, &RenderView::render_failed, this, [this](const QString &message) {
         last_error_ = message;

@@ -56,8 +56,10 @@ RenderView::RenderView(SettingsModel &settings_model, QWidget *parent) : QWidget
     connect(rest_timer_, &QTimer::timeout, this, [this] {
         if (interacting())
             rest_timer_->start(); // still dragging or walking: stay coarse
-        else
+        else {
             submit(1, true);
+            emit status_changed(frame_status());
+        }
     });
     // while a frame runs: the overlay's clock, and the start-up budget
     progress_timer_ = new QTimer(this);
@@ -108,8 +110,9 @@ RenderView::RenderView(SettingsModel &settings_model, QWidget *parent) : QWidget
                     running_job_id_ = id;
                 }
                 QString what = id == export_id_ ? "export" : id == latest_coarse_id_ ? "coarse frame" : "full frame";
+                const std::string &algorithm = id == latest_coarse_id_ ? coarse_algorithm_ : settings().algorithm;
                 progress_text_ = QString("%1 %2: %3, %4 stages, %5 — Esc cancels")
-                                     .arg(QString::fromStdString(settings().algorithm), what, stage)
+                                     .arg(QString::fromStdString(algorithm), what, stage)
                                      .arg(stages_done)
                                      .arg(seconds_text(elapsed_ms));
                 emit frame_progress(stage, stages_done, elapsed_ms);
@@ -127,6 +130,10 @@ void RenderView::set_model(std::shared_ptr<const oit_model> model)
     model_ = std::move(model);
     highlight_.clear(); // the parts were the last model's
     last_full_ms_ = -1.0; // a new model: its cost is unknown
+    full_ms_.clear();
+    wboit_preview_ = false;
+    requested_key_.clear(); // the keys do not name the model
+    requested_view_key_.clear();
     coarse_scale_ = 2;
     request_frame(true);
 }
@@ -253,6 +260,16 @@ FrameJob RenderView::make_job(int width, int height, int coarse_scale) const
     return job;
 }
 
+std::string RenderView::preview_algorithm() const
+{
+    const std::string &choice = settings().preview_algorithm;
+    if (choice == "same" || settings().split != SplitMode::Off)
+        return settings().algorithm; // a split view compares its own two, coarse
+    if (choice == "auto" || !oit_algorithm_find(choice.c_str()))
+        return wboit_preview_ ? "wboit" : "ll";
+    return choice;
+}
+
 void RenderView::request_frame(bool interactive)
 {
     update_overlays(); // the error view or the split may have changed
@@ -260,30 +277,71 @@ void RenderView::request_frame(bool interactive)
         update();
         return;
     }
-    bool slow = last_full_ms_ < 0.0 || last_full_ms_ > slow_frame_ms_;
-    if (interactive && progressive_ && slow) {
-        submit(coarse_scale_);
+    // the rules are render_worker.h's: what changed since the last request decides
+    QSize size = side_pixel_size();
+    FrameJob full = make_job(size.width(), size.height(), 1);
+    full.frame.local.component_alpha = full.component_alpha.empty() ? nullptr : full.component_alpha.data();
+    std::string view_key = frame_key(full.frame);
+    std::string key = full.algorithm + "|" + full.algorithm_b + "|" + char('0' + full.error_view) + "|" +
+                      config_key(full.config) + view_key;
+    if (interactive && key == requested_key_) {
+        update(); // nothing changed: its frames are shown or on their way
+        return;
+    }
+    bool view_changed = view_key != requested_view_key_;
+    requested_key_ = key;
+    requested_view_key_ = view_key;
+    auto known = full_ms_.find(settings().algorithm);
+    bool slow = known == full_ms_.end() || known->second > slow_frame_ms_;
+    if (interactive && progressive_ && slow && view_changed) {
+        submit(coarse_scale_, false, preview_algorithm());
         rest_timer_->start();
     } else {
         rest_timer_->stop();
         submit(1);
     }
+    emit status_changed(frame_status());
 }
 
-void RenderView::submit(int coarse_scale, bool refinement)
+void RenderView::submit(int coarse_scale, bool refinement, const std::string &algorithm)
 {
     QSize full = side_pixel_size();
     int width = std::max(1, full.width() / coarse_scale), height = std::max(1, full.height() / coarse_scale);
     if (!rendering())
         running_clock_.restart();
     FrameJob job = make_job(width, height, coarse_scale);
+    if (!algorithm.empty())
+        job.algorithm = algorithm;
     job.refinement = refinement;
+    std::string job_algorithm = job.algorithm;
     latest_id_ = worker_->submit(std::move(job));
+    ++jobs_submitted_;
     latest_is_full_ = coarse_scale == 1;
-    if (!latest_is_full_)
+    if (!latest_is_full_) {
         latest_coarse_id_ = latest_id_;
+        coarse_algorithm_ = job_algorithm;
+    }
     if (!progress_timer_->isActive())
         progress_timer_->start();
+}
+
+QString RenderView::frame_status() const
+{
+    const FrameResult *shown = shown_result_.get();
+    QString chosen = QString::fromStdString(settings().algorithm);
+    bool full_shown = shown && shown->coarse_scale == 1 && shown->algorithm == settings().algorithm;
+    bool waiting = rest_timer_->isActive() || (rendering() && latest_id_ != shown_full_id_);
+    if (!waiting || full_shown)
+        return QString(); // the full frame of this algorithm is up: the stats say it
+    QString what = rest_timer_->isActive() ? chosen + " refines when the input rests" : chosen + " refining…";
+    if (!shown)
+        return chosen + " rendering…";
+    QString algorithm = QString::fromStdString(shown->algorithm);
+    if (shown->coarse_scale > 1)
+        return QString("%1, showing %2 %3 (1/%4 scale)")
+            .arg(what, algorithm, shown->algorithm == settings().algorithm ? "coarse frame" : "preview")
+            .arg(shown->coarse_scale);
+    return QString("%1 rendering…, showing %2 (the previous algorithm)").arg(chosen, algorithm);
 }
 
 void RenderView::cancel_frame()
@@ -293,6 +351,7 @@ void RenderView::cancel_frame()
     bool was_rendering = rendering() || rest_timer_->isActive();
     rest_timer_->stop();
     worker_->cancel();
+    requested_key_.clear(); // the same request renders again
     if (was_rendering)
         emit frame_cancelled("cancelled: the view keeps the last frame; Render (F5) starts it again");
 }
@@ -340,6 +399,7 @@ void RenderView::frame_done(FrameResultPointer result)
         last_image_ = result->image;
         last_stats_ = result->stats;
         last_full_ms_ = result->wall_ms;
+        full_ms_[result->algorithm] = result->wall_ms;
         shown_full_id_ = result->id;
         if (last_stats_.overflow_retries > 0)
             overflow_total_ += long(last_stats_.overflow_retries);
@@ -354,17 +414,25 @@ void RenderView::frame_done(FrameResultPointer result)
         update();
         emit options_left_out(left_out);
         emit frame_rendered();
+        if (result->id != latest_id_)
+            emit status_changed(frame_status()); // a newer frame is on its way: not the stats
         if (continuous_ && result->id == latest_id_)
             submit(1);
     } else {
-        // coarser when a coarse frame is itself slow, finer when it is cheap
-        if (result->wall_ms > 150.0 && coarse_scale_ < 8)
+        // coarser when a preview is itself slow, finer when it is cheap (the
+        // algorithms' time: an upload does not count); "auto" turns to wboit
+        // when ll is too slow even at the coarsest scale
+        double ms = result->render_ms + result->b.render_ms;
+        if (ms > kPreviewBudgetMs && coarse_scale_ < kMaxCoarseScale)
             coarse_scale_ *= 2;
-        else if (result->wall_ms < 30.0 && coarse_scale_ > 2)
+        else if (ms > kPreviewBudgetMs && result->algorithm == "ll" && settings().preview_algorithm == "auto")
+            wboit_preview_ = true;
+        else if (ms < kPreviewBudgetMs / 4.0 && coarse_scale_ > 2)
             coarse_scale_ /= 2;
         update();
         emit options_left_out(left_out);
         emit coarse_frame_rendered();
+        emit status_changed(frame_status());
     }
 }
 

@@ -4,10 +4,12 @@
 // settings and the camera it renders are the window's (settings_model.h).
 //
 // Progressive frames: while the user interacts (drags, walks, moves a slider,
-// types in a spin box) and full frames are slow, the view asks for a coarse
-// frame (1/coarse_scale of the pixels per side, adapted to its cost) and,
-// once the input has rested for kRestMs, for the full frame. A frame running
-// longer than kProgressAfterMs shows its stage and peel count over the image.
+// types in a spin box) and full frames are slow, the view asks for a preview
+// (a fast stand-in algorithm at 1/coarse_scale of the pixels per side, adapted
+// to its cost) and, once the input has rested for kRestMs, for the full frame;
+// when nothing changed it asks for nothing. The rules are render_worker.h's.
+// A frame running longer than kProgressAfterMs shows its stage and peel count
+// over the image.
 //
 // Comparisons (settings.error_view, settings.split): the error view shows the
 // full frame's error map against the reference with a legend (error_legend.h;
@@ -22,6 +24,7 @@
 #include <QSet>
 #include <QWidget>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,6 +45,8 @@ public:
     static constexpr int kRestMs = 200;           // input at rest: refine to the full frame
     static constexpr double kSlowFrameMs = 60.0;  // full frames slower than this go coarse first
     static constexpr int kProgressAfterMs = 300;  // then the overlay shows the frame's progress
+    static constexpr double kPreviewBudgetMs = 60.0; // a preview slower than this goes coarser
+    static constexpr int kMaxCoarseScale = 8;        // the coarsest preview: 1/8 per side
 
     // Shows frames of the settings model's render settings and camera (the
     // window's); the mouse and keys move that camera and the wipe line.
@@ -104,6 +109,13 @@ public:
     ErrorLegend *legend() const { return legend_; }
     // The heatmap view's legend, the shown frame's scale (hidden in other views).
     HeatmapLegend *heatmap_legend() const { return heatmap_legend_; }
+    // What is on screen when it is not the full frame of the latest request
+    // ("dp refining…, showing ll preview (1/4 scale)"); empty when it is.
+    QString frame_status() const;
+    // The algorithm previews render with now (the stand-in, render_worker.h).
+    std::string preview_algorithm() const;
+    // View jobs submitted since the view was made (tests count them).
+    int jobs_submitted() const { return jobs_submitted_; }
     // Full frames slower than this go coarse first while interacting (tests set 0).
     void set_slow_frame_ms(double ms) { slow_frame_ms_ = ms; }
 
@@ -123,6 +135,9 @@ signals:
     // a click without a drag (pixel coordinates); next_contributor: with Alt held
     void clicked(const QPoint &pixel, bool next_contributor);
     void wipe_moved(float wipe);       // the user dragged the wipe line
+    // frame_status() changed while the full frame is not on screen (after
+    // frame_rendered when a newer frame is on its way)
+    void status_changed(const QString &text);
 
 protected:
     void paintEvent(QPaintEvent *event) override;
@@ -141,7 +156,8 @@ private:
     // The camera moved by the mouse or keys: its controls follow, and a frame.
     void camera_moved();
     FrameJob make_job(int width, int height, int coarse_scale) const;
-    void submit(int coarse_scale, bool refinement = false);
+    // algorithm: the job's (empty: the chosen one)
+    void submit(int coarse_scale, bool refinement = false, const std::string &algorithm = std::string());
     void frame_done(FrameResultPointer result);
     void walk_tick();
     bool interacting() const;
@@ -170,6 +186,12 @@ private:
     oit_stats last_stats_{};
     long overflow_total_ = 0;
     double last_full_ms_ = -1.0;  // unknown until a full frame finished
+    std::map<std::string, double> full_ms_; // each algorithm's last full frame on this model
+    std::string requested_key_;      // everything the latest request decides (empty: none)
+    std::string requested_view_key_; // what it shows (frame_key: camera, size, settings)
+    std::string coarse_algorithm_;   // the latest coarse job's
+    bool wboit_preview_ = false;     // "auto": ll previews were too slow at the coarsest scale
+    int jobs_submitted_ = 0;
     double slow_frame_ms_ = kSlowFrameMs;
     int coarse_scale_ = 2;
     bool progressive_ = true;

@@ -23,11 +23,7 @@ double now_ms()
 // reallocate every buffer on each switch).
 std::string algorithm_key(const std::string &name, const FrameJob &job)
 {
-    const oit_algorithm_config &c = job.config;
-    return name + "/" + std::to_string(int(c.ll_sort)) + "/" + std::to_string(c.max_memory_bytes) + "/" +
-           std::to_string(c.max_layers) + "/" + std::to_string(c.initial_fragment_capacity) + "/" +
-           std::to_string(c.layers) + "/" + std::to_string(int(c.moments)) + "/" + std::to_string(c.debug) + "/" + std::to_string(c.neighbour_quality) + "/" +
-           (job.coarse_scale > 1 ? "coarse" : "full");
+    return name + "/" + config_key(job.config) + (job.coarse_scale > 1 ? "coarse" : "full");
 }
 
 // The GL state of a fresh context, which is what `oit render` starts from:
@@ -79,11 +75,19 @@ private:
     std::string bytes_;
 };
 
-std::string reference_key(const oit_algorithm_config &c, const oit_frame_settings &f)
+} // namespace
+
+std::string config_key(const oit_algorithm_config &c)
+{
+    return std::to_string(int(c.ll_sort)) + "/" + std::to_string(c.max_memory_bytes) + "/" +
+           std::to_string(c.max_layers) + "/" + std::to_string(c.initial_fragment_capacity) + "/" +
+           std::to_string(c.layers) + "/" + std::to_string(int(c.moments)) + "/" + std::to_string(c.debug) + "/" +
+           std::to_string(c.neighbour_quality) + "/";
+}
+
+std::string frame_key(const oit_frame_settings &f)
 {
     KeyWriter k;
-    k << c.ll_sort << c.max_memory_bytes << c.max_layers << c.initial_fragment_capacity
-      << c.neighbour_quality << c.layers << int(c.moments);
     k << f.width << f.height << f.modelview << f.projection << f.alpha << f.shading << f.background;
     const oit_modulation &m = f.modulation;
     k << m.view << m.view_parameter << m.mode << m.neighbours << m.curvature_neighbours << m.curvature_effect
@@ -100,6 +104,16 @@ std::string reference_key(const oit_algorithm_config &c, const oit_frame_setting
         k << l.component_highlight[i];
     k << l.has_highlight_colour << l.highlight_colour << l.highlight_strength;
     return k.str();
+}
+
+namespace {
+
+std::string reference_key(const oit_algorithm_config &c, const oit_frame_settings &f)
+{
+    KeyWriter k;
+    k << c.ll_sort << c.max_memory_bytes << c.max_layers << c.initial_fragment_capacity
+      << c.neighbour_quality << c.layers << int(c.moments);
+    return k.str() + frame_key(f);
 }
 
 // A QImage (RGBA8888: rows are packed) seen as the core's image, without a copy.
@@ -283,9 +297,11 @@ bool RenderWorker::keep_going(Running &running, const char *stage, int stages_do
         if (stopping_ || running.job->id <= cancel_up_to_)
             return false;
         if (running.job->kind == FrameJob::Kind::View && pending_view_) {
+            // a coarse frame gives way to a full frame the user asked for,
+            // never to the next coarse frame of a drag nor to its refinement
             bool coarse = running.job->coarse_scale > 1;
-            bool own_refinement = coarse && pending_view_->refinement;
-            if (!own_refinement && (!coarse || elapsed > kCoarseGraceMs))
+            bool waits_for_it = pending_view_->coarse_scale > 1 || pending_view_->refinement;
+            if (!coarse || !waits_for_it)
                 return false; // superseded
         }
     }

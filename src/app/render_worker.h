@@ -8,11 +8,38 @@
 //
 // Scheduling, in one place (RenderWorker::keep_going):
 // - the newest view job replaces a pending one (latest settings win);
-// - a running view frame is abandoned between stages (between peels for dp
-//   and ddp) when a newer view job waits, except a coarse frame younger than
-//   kCoarseGraceMs, which finishes so that a continuous drag still moves, and
-//   a coarse frame whose own refinement waits (the coarse frame comes first);
+// - a running full view frame is abandoned between stages (between peels for
+//   dp and ddp) when a newer view job waits; a running coarse frame (a
+//   preview) finishes when the job waiting is the next coarse frame of the
+//   drag or a refinement, so that a continuous drag always moves (superseding
+//   previews by newer ones used to show nothing until the drag stopped when a
+//   preview took longer than the moves' interval); it is abandoned for a full
+//   frame the user asked for (an algorithm switch, F5);
 // - cancel() abandons whatever runs or waits; export jobs are never superseded.
+//
+// What the view asks for (RenderView::request_frame; the rules live here):
+// - nothing changed since the last request (same algorithm, settings, camera,
+//   size, comparisons): no job at all, its frames are shown or on their way;
+// - the view did not change, only the algorithm, its configuration or a
+//   comparison did: the full frame at once, never a coarse one (the image on
+//   screen already shows this view);
+// - the view changed (camera, size, opacity, a modulation, a part) while the
+//   user interacts, and the chosen algorithm's last full frame on this model
+//   took over RenderView::kSlowFrameMs (or is unknown): a preview job, then the full frame
+//   once the input rested for RenderView::kRestMs (a refinement: it waits for the preview);
+//   otherwise the full frame at once ("fast enough, no stand-in");
+// - the preview renders with the stand-in of "Preview algorithm while
+//   moving" (RenderSettings::preview_algorithm) at 1/coarse_scale per side:
+//   "auto" is ll, or wboit once an ll preview at the coarsest scale still took
+//   over RenderView::kPreviewBudgetMs (ll's fill grows with the fragments; wboit's does
+//   not sort: on the 512-sphere scene at 150x95 ll takes 100 ms, wboit 61 ms;
+//   on the engine both about 35 ms: docs/workbench.md); "same" is the chosen
+//   algorithm itself (the view's behaviour before stand-ins); a split view
+//   previews with its own two algorithms;
+// - the scale adapts to the preview's own time: coarser (up to
+//   RenderView::kMaxCoarseScale) above kPreviewBudgetMs, finer below a quarter of it.
+// The status line names what is on screen and what renders
+// (RenderView::frame_status: "dp refining…, showing ll preview (1/4 scale)").
 // Options an algorithm cannot express (the core refuses them with
 // OIT_E_INPUT before doing any work) are dropped one by one and named in
 // FrameResult::left_out instead of failing the frame.
@@ -107,6 +134,13 @@ struct FrameResult {
 using FrameResultPointer = std::shared_ptr<const FrameResult>;
 Q_DECLARE_METATYPE(FrameResultPointer)
 
+// Everything that decides what a frame shows besides the algorithm and its
+// configuration, as bytes: the size, the camera's matrices, every setting
+// and the per-part opacity. Equal keys: the same view.
+std::string frame_key(const oit_frame_settings &frame);
+// What makes two configurations render differently, as text (the shader folder aside).
+std::string config_key(const oit_algorithm_config &config);
+
 // Which algorithms render each option: feature key ("view:heatmap",
 // "modulation:fields", "distance:skip", ...) -> their names, from the core's
 // capability tables (oit_capabilities); no frame is rendered to find out.
@@ -120,8 +154,6 @@ void reduce_to_capabilities(const oit_algorithm_ops *ops, oit_frame_settings &fr
 class RenderWorker : public QObject {
     Q_OBJECT
 public:
-    // A coarse frame younger than this finishes even when superseded.
-    static constexpr double kCoarseGraceMs = 250.0;
     // The worker (and llvmpipe's threads it starts) runs this much nicer than the GUI.
     static constexpr int kNiceIncrement = 5;
     // Progress signals at most this often.

@@ -480,6 +480,7 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     add(d, "split", Value(rapidjson::StringRef(split_mode_name(s.split))), a);
     add(d, "split-algorithm", string_value(s.split_algorithm, a), a);
     add(d, "wipe", Value(double(s.wipe)), a);
+    add(d, "preview-algorithm", string_value(s.preview_algorithm, a), a);
     if (s.import.linear_deflection_mm > 0)
         add(d, "tessellation", Value(s.import.linear_deflection_mm), a);
     else
@@ -539,7 +540,9 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         "halo-colour", "last-layer-opaque", "focus", "focus-point", "focus-plane", "focus-box", "contrast",
         "component-alpha", "hide", "camera", "tessellation",
         // the workbench's comparisons (the first is `oit render`'s flag too)
-        "error-vs-reference", "split", "split-algorithm", "wipe"};
+        "error-vs-reference", "split", "split-algorithm", "wipe",
+        // the workbench's interaction: what renders while moving
+        "preview-algorithm"};
     for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
         std::string key = it->name.GetString();
         if (std::find(std::begin(known), std::end(known), key) == std::end(known))
@@ -680,6 +683,13 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
     }
     if (!r.number(d, "wipe", 0.0, 1.0, s.wipe))
         return false;
+    if (d.HasMember("preview-algorithm")) {
+        const Value &p = d["preview-algorithm"];
+        if (!p.IsString() || !(std::strcmp(p.GetString(), "auto") == 0 || std::strcmp(p.GetString(), "same") == 0 ||
+                               oit_algorithm_find(p.GetString())))
+            return r.fail("preview-algorithm", "must be auto, same or an algorithm (oit algorithms lists them)");
+        s.preview_algorithm = p.GetString();
+    }
     if (d.HasMember("tessellation")) {
         const Value &t = d["tessellation"];
         std::string text = t.IsString() ? t.GetString() : t.IsNumber() ? exact_number(t.GetDouble()) : "";

@@ -36,6 +36,12 @@ struct RenderSettings {
     SplitMode split = SplitMode::Off;
     std::string split_algorithm = "blend"; // side B; side A is `algorithm`
     float wipe = 0.5f;                 // the wipe line, 0..1 of the view's width
+    // "Preview algorithm while moving" (preset key "preview-algorithm"): the
+    // stand-in that renders while the camera or a slider moves and full frames
+    // are slow: "auto" (ll at a coarse scale, or wboit where ll's fill is too
+    // slow), "same" (the chosen algorithm, coarse) or an algorithm's name;
+    // render_worker.h has the rules
+    std::string preview_algorithm = "auto";
     // how STEP and IGES files are tessellated (--tessellation; applies when a
     // model is loaded)
     oit_import_options import{};

@@ -19,7 +19,7 @@
 static_assert(sizeof(oit_modulation) == 84, "oit_modulation changed: presets (settings.cpp) and this test");
 static_assert(sizeof(oit_algorithm_config) == 64, "oit_algorithm_config changed: presets (settings.cpp) and this test");
 static_assert(sizeof(oit_import_options) == 16, "oit_import_options changed: presets (settings.cpp) and this test");
-static_assert(sizeof(RenderSettings) == 376, "RenderSettings changed: presets (settings.cpp) and this test");
+static_assert(sizeof(RenderSettings) == 408, "RenderSettings changed: presets (settings.cpp) and this test");
 static_assert(sizeof(Camera) == 136, "Camera changed: presets (settings.cpp) and this test");
 
 namespace {
@@ -70,6 +70,7 @@ void every_field_changed(RenderSettings &s, Camera &c)
     s.split = SplitMode::SideBySide;
     s.split_algorithm = "wboit";
     s.wipe = 0.3f;
+    s.preview_algorithm = "wboit";
     // the tessellation is a level or a deflection in mm (one setting; the level
     // round trip is app_workbench's tessellation test)
     s.import.linear_deflection_mm = 0.25;
@@ -104,7 +105,7 @@ QStringList differences(const RenderSettings &a, const RenderSettings &b)
     SAME(modulation.lambda_beta) SAME(modulation.lambda_gamma) SAME(modulation.has_halo_colour)
     SAME_ARRAY(modulation.halo_colour, 3) SAME(modulation.last_layer_opaque) SAME(modulation.epsilon_max)
     SAME(focus_shape) SAME_ARRAY(focus, 6) SAME(contrast) SAME(part_alpha) SAME(part_visible) SAME(error_view)
-    SAME(split) SAME(split_algorithm) SAME(wipe) SAME(import.tessellation) SAME(import.linear_deflection_mm)
+    SAME(split) SAME(split_algorithm) SAME(wipe) SAME(preview_algorithm) SAME(import.tessellation) SAME(import.linear_deflection_mm)
     return out;
 }
 
@@ -149,7 +150,7 @@ private slots:
         QStringList changed_fields = differences(changed, defaults);
         // 48 comparisons (arrays element by element), all but import.tessellation
         // (the deflection stands for it)
-        QVERIFY2(changed_fields.size() == 47 && !changed_fields.contains("import.tessellation"),
+        QVERIFY2(changed_fields.size() == 48 && !changed_fields.contains("import.tessellation"),
                  qPrintable(changed_fields.join(", ")));
         QCOMPARE(camera_differences(camera, default_camera).size(), 8);
 
