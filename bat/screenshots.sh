@@ -58,6 +58,22 @@ run() {
   "${command[@]}" > /dev/null
 }
 
+# the whole window as it opens on a 1400x1000 screen (1200x760): the view dominates, the
+# settings panel narrow beside it
+run_window() {
+  local name=$1; shift
+  local command=("$workbench" --screenshot "$out/$name.png" "$@")
+  if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
+    command=(xvfb-run -a -s "-screen 0 1400x1000x24" "${command[@]}")
+  fi
+  echo "== $name: ${*}"
+  "${command[@]}" > /dev/null
+}
+
+run_window gearbox-window "$gearbox" --algorithm ll --tab opacity
+# ghosting: the two pistons selected (highlighted), every other part faded to 10%
+run_window engine-ghosted "$engine" --algorithm ll --tab parts \
+  --select "Piston_123-844_0_Parts_1-0,Piston_123-844_0_Parts_1-0#2" --fade-others 10
 run gearbox-ll-stats "$gearbox" --algorithm ll --tab stats
 run gearbox-blend-opacity "$gearbox" --algorithm blend --preset "$presets/gearbox-blend.json" --tab opacity
 run gearbox-ib-curvature "$gearbox" --algorithm ib --preset "$presets/gearbox-ib.json" --tab opacity

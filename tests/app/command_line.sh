@@ -26,6 +26,13 @@ JSON
 run --preset "$work/preset.json" --size 120x90 --screenshot "$work/preset.png" > /dev/null \
   || fail "a good preset was refused"
 
+# the default model with gear_1 selected and the others ghosted: a different window
+# from the same command without (the highlight and the faded parts), same size
+run --algorithm ll --size 120x90 --tab parts --screenshot "$work/plain.png" > /dev/null
+run --algorithm ll --size 120x90 --tab parts --select gear_1 --fade-others 10 --screenshot "$work/ghosted.png" > /dev/null \
+  || fail "--select gear_1 --fade-others 10 failed"
+cmp -s "$work/plain.png" "$work/ghosted.png" && fail "--select and --fade-others changed nothing in the window"
+
 # bad input: exit 2 (3 for a frame that fails) and a one-line reason
 expect_error() {
   local expected=2
@@ -44,6 +51,10 @@ expect_error "unknown algorithm" --algorithm nonesuch --screenshot "$work/never.
 expect_error "--size" --size 12 --screenshot "$work/never.png"
 printf '{\n  "alpha": 2\n}\n' > "$work/bad-preset.json"
 expect_error "bad-preset.json:2:" --preset "$work/bad-preset.json" --screenshot "$work/never.png"
+# --select and --fade-others (issue 27): names as `oit render --highlight` takes them
+expect_error "no part or assembly named 'nonesuch'" --select gear_1,nonesuch --screenshot "$work/never.png"
+expect_error "--fade-others '10' needs --select" --fade-others 10 --screenshot "$work/never.png"
+expect_error "--fade-others '150' needs --select and 0..100" --select gear_1 --fade-others 150 --screenshot "$work/never.png"
 [ ! -e "$work/never.png" ] || fail "a screenshot was written after an error"
 # an option the algorithm cannot express (dp has no heatmap) is left out, never a
 # grey view: the frame renders and one warning line names what was left out

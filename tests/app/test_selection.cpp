@@ -23,6 +23,7 @@
 #include "pick.h"
 #include "render_view.h"
 #include "settings_model.h"
+#include "window_test_main.h"
 
 namespace {
 
@@ -282,16 +283,6 @@ private slots:
     }
 };
 
-int main(int argc, char **argv)
-{
-    // the window imports models by running this program as a contained worker
-    if (oit_import_worker_requested(argc, argv))
-        return oit_import_worker_main(argc, argv);
-    QApplication app(argc, argv);
-    QApplication::setOrganizationName("oit-workbench-test");
-    QApplication::setApplicationName("oit-workbench-test-selection");
-    SelectionTest test;
-    return QTest::qExec(&test, argc, argv);
-}
+OIT_WINDOW_TEST_MAIN(SelectionTest, "oit-workbench-test-selection")
 
 #include "test_selection.moc"

@@ -21,6 +21,7 @@
 #include "camera_panel.h"
 #include "heatmap_legend.h"
 #include "main_window.h"
+#include "window_test_main.h"
 
 namespace {
 
@@ -422,15 +423,5 @@ private slots:
     }
 };
 
-int main(int argc, char **argv)
-{
-    // the window imports models by running this program as a contained worker
-    if (oit_import_worker_requested(argc, argv))
-        return oit_import_worker_main(argc, argv);
-    QApplication app(argc, argv);
-    QApplication::setOrganizationName("oit-workbench-test");
-    QApplication::setApplicationName("oit-workbench-test");
-    ViewDetailsTest test;
-    return QTest::qExec(&test, argc, argv);
-}
+OIT_WINDOW_TEST_MAIN(ViewDetailsTest, "oit-workbench-test")
 #include "test_view_details.moc"

@@ -5,6 +5,7 @@
 // Environment: OIT_CLI = the `oit` program (for Export PNG against `oit render`),
 // OIT_TEST_WORK = a scratch directory.
 #include "workbench_test.h"
+#include "window_test_main.h"
 
 void WorkbenchTest::initTestCase()
 {
@@ -788,15 +789,5 @@ void WorkbenchTest::startup_does_not_replay_a_slow_state_blindly()
     window->set_algorithm("ll");
 }
 
-int main(int argc, char **argv)
-{
-    // the window imports models by running this program as a contained worker
-    if (oit_import_worker_requested(argc, argv))
-        return oit_import_worker_main(argc, argv);
-    QApplication app(argc, argv);
-    QApplication::setOrganizationName("oit-workbench-test");
-    QApplication::setApplicationName("oit-workbench-test");
-    WorkbenchTest test;
-    return QTest::qExec(&test, argc, argv);
-}
+OIT_WINDOW_TEST_MAIN(WorkbenchTest, "oit-workbench-test")
 
