@@ -50,18 +50,6 @@ JSON
 
 run() {
   local name=$1; shift
-  local command=("$workbench" --size 600x600 --screenshot "$out/$name.png" "$@")
-  if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
-    command=(xvfb-run -a -s "-screen 0 1400x1000x24" "${command[@]}")
-  fi
-  echo "== $name: ${*}"
-  "${command[@]}" > /dev/null
-}
-
-# the whole window as it opens on a 1400x1000 screen (1200x760): the view dominates, the
-# settings panel narrow beside it
-run_window() {
-  local name=$1; shift
   local command=("$workbench" --screenshot "$out/$name.png" "$@")
   if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
     command=(xvfb-run -a -s "-screen 0 1400x1000x24" "${command[@]}")
@@ -70,9 +58,11 @@ run_window() {
   "${command[@]}" > /dev/null
 }
 
-run_window gearbox-window "$gearbox" --algorithm ll --tab opacity
+# the window as it opens on the 1400x1000 screen (1200x760): the view dominates, the settings
+# panel narrow beside it
+run gearbox-window "$gearbox" --algorithm ll --tab opacity
 # ghosting: the two pistons selected (highlighted), every other part faded to 10%
-run_window engine-ghosted "$engine" --algorithm ll --tab parts \
+run engine-ghosted "$engine" --algorithm ll --tab parts \
   --select "Piston_123-844_0_Parts_1-0,Piston_123-844_0_Parts_1-0#2" --fade-others 10
 run gearbox-ll-stats "$gearbox" --algorithm ll --tab stats
 run gearbox-blend-opacity "$gearbox" --algorithm blend --preset "$presets/gearbox-blend.json" --tab opacity
@@ -82,6 +72,6 @@ run gearbox-split-wipe "$gearbox" --algorithm ll --preset "$presets/gearbox-spli
 run gearbox-blend-error "$gearbox" --algorithm blend --preset "$presets/gearbox-error.json" --tab compare
 run engine-ll-heatmap "$engine" --algorithm ll --preset "$presets/engine-heatmap.json" --tab views
 run engine-wboit-focus "$engine" --algorithm wboit --preset "$presets/engine-focus.json" --tab opacity
-# a long frame in progress: the coarse frame, the stage and peel count, and Cancel
+# a long frame in progress: the stand-in's preview, the status naming both, the peel count, Cancel
 run spheres-dp-progress "$presets/spheres.obj" --algorithm dp --screenshot-after 4000
 echo "wrote $(ls "$out"/*.png | wc -l) screenshots to $out"
