@@ -79,17 +79,9 @@ private:
 private slots:
     void initTestCase()
     {
-        QStandardPaths::setTestModeEnabled(true);
-        work = qEnvironmentVariable("OIT_TEST_WORK", QDir::tempPath() + "/oit-workbench-test") + "/selection";
-        QDir().mkpath(work);
-        window = new MainWindow(MainWindow::Start::Fresh);
-        window->show();
-        QVERIFY(QTest::qWaitForWindowExposed(window));
-        window->view()->setFixedSize(view_size);
-        QTRY_COMPARE(window->view()->size(), view_size);
-        QSignalSpy loaded(window, &MainWindow::model_loaded);
-        window->load_model(MainWindow::default_model_path());
-        QVERIFY(loaded.wait(60000));
+        open_test_window(window, work, view_size, "/selection");
+        if (QTest::currentTestFailed())
+            return;
         QVERIFY(window->show_tab("Parts")); // the list's rows have their geometry
     }
     void cleanupTestCase() { delete window; }

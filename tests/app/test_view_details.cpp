@@ -103,17 +103,7 @@ private:
 private slots:
     void initTestCase()
     {
-        QStandardPaths::setTestModeEnabled(true); // the saved state of the tests stays apart
-        work = qEnvironmentVariable("OIT_TEST_WORK", QDir::tempPath() + "/oit-workbench-test") + "/view_details";
-        QDir().mkpath(work);
-        window = new MainWindow(MainWindow::Start::Fresh);
-        window->show();
-        QVERIFY(QTest::qWaitForWindowExposed(window));
-        window->view()->setFixedSize(view_size);
-        QTRY_COMPARE(window->view()->size(), view_size);
-        QSignalSpy loaded(window, &MainWindow::model_loaded);
-        window->load_model(MainWindow::default_model_path());
-        QVERIFY2(loaded.wait(60000), qPrintable(window->status_text() + " / " + window->last_error()));
+        open_test_window(window, work, view_size, "/view_details");
     }
     void cleanupTestCase() { delete window; }
     void init()

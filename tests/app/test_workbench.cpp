@@ -9,17 +9,7 @@
 
 void WorkbenchTest::initTestCase()
 {
-    QStandardPaths::setTestModeEnabled(true); // the saved state of the tests stays apart
-    work = qEnvironmentVariable("OIT_TEST_WORK", QDir::tempPath() + "/oit-workbench-test");
-    QDir().mkpath(work);
-    window = new MainWindow(MainWindow::Start::Fresh);
-    window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(window));
-    window->view()->setFixedSize(view_size);
-    QTRY_COMPARE(window->view()->size(), view_size);
-    QSignalSpy loaded(window, &MainWindow::model_loaded);
-    window->load_model(MainWindow::default_model_path());
-    QVERIFY(loaded.wait(60000));
+    open_test_window(window, work, view_size, "");
 }
 
 void WorkbenchTest::cleanupTestCase()
