@@ -224,6 +224,13 @@
  * fits a nearly edge-on triangle only within the coplanar tolerance) still
  * passes dp's depth test against the cleared 1.0, as every list keeps it */
 #define OIT_CANONICAL_DEPTH_MAX 0.999999940395355224609375
+/* section planes (oit_local_modulation.sections; docs/sections.md): at most
+ * this many at once */
+#define OIT_SECTIONS_MAX 6
+/* The component vertex attribute carries, above these bits, 1 + the section
+ * whose cap the vertex belongs to (oit_model.vertex_section_cap; 0: not a cap):
+ * geometry.vert splits it off; parts number below 1 << this */
+#define OIT_COMPONENT_CAP_SHIFT 28
 /* focus shapes (oit_focus_shape in oit.h) */
 #define OIT_FOCUS_SHAPE_NONE 0
 #define OIT_FOCUS_SHAPE_POINT 1

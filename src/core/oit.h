@@ -81,6 +81,10 @@ typedef struct oit_component {
     uint32_t first_triangle;  /* the component's triangles are contiguous */
     uint32_t triangle_count;
     float longest_edge;       /* its longest triangle edge (model space; computed) */
+    /* Whether it encloses a volume (oit_model_finish): every edge, by welded
+     * vertex ids, is used by an even number of its triangles. Only closed parts
+     * get section caps (docs/sections.md); a sheet or a tray missing a face is open. */
+    bool closed;
 } oit_component;
 
 /* An assembly node (a STEP/IGES (sub)assembly or instance, a glTF, FBX or COLLADA
@@ -148,6 +152,12 @@ typedef struct oit_model {
     /* Their tessellation: linear deflection (mm) and angular deflection
      * (radians) used, and the milliseconds it took; 0 when not tessellated. */
     double tessellation_linear_mm, tessellation_angular_rad, tessellation_ms;
+    /* Section caps (oit_model_derive): per vertex 0, or 1 + the section whose
+     * cap the vertex's triangles are; NULL in a model with no caps. A cap
+     * fragment lies on its own plane, so that section never removes it (the
+     * rule in docs/sections.md); the GPU gets it in the component attribute's
+     * high bits (OIT_COMPONENT_CAP_SHIFT). */
+    uint8_t *vertex_section_cap;
 } oit_model;
 
 /* How B-rep files (STEP, IGES) are tessellated. Zeroed: normal detail. */
@@ -499,6 +509,10 @@ typedef enum oit_focus_shape {
     OIT_FOCUS_BOX = 3
 } oit_focus_shape;
 
+/* The most section planes at once, for programs that must not include the
+ * shaders' header; equal to oit_shared.h's OIT_SECTIONS_MAX (sections.c asserts it). */
+#define OIT_SECTION_PLANES_MAX 6
+
 typedef struct oit_local_modulation {
     /* per-component opacity multipliers in [0, 1], component_count of them, or
      * NULL for all 1; 0 hides the part: its fragments are never stored.
@@ -526,12 +540,33 @@ typedef struct oit_local_modulation {
     bool has_highlight_colour;
     float highlight_colour[3];
     float highlight_strength; /* in (0, 1]; 0: the default */
+    /* Section planes (--section; docs/sections.md): section i keeps the points
+     * p with dot(sections[i].xyz, p) <= sections[i][3] (model (file)
+     * coordinates, of the model as drawn: exploded where it is) and removes the
+     * rest, in every algorithm, the reference and the pick alike. The normal
+     * need not be unit length; a zero normal is refused. */
+    uint32_t section_count; /* 0..OIT_SECTION_PLANES_MAX */
+    double sections[OIT_SECTION_PLANES_MAX][4];
+    /* Which parts the sections cut (--section-parts): section_parts_count
+     * flags, nonzero where part i is cut; NULL: every part. Parts at or past
+     * the count are not cut. */
+    const uint8_t *section_parts;
+    uint32_t section_parts_count;
+    /* Caps (--caps): false (the default) draws a cap where a section cuts a
+     * closed part (oit_model_derive makes them); true: none. */
+    bool no_caps;
 } oit_local_modulation;
 
 /* Part component's highlight: its weight (highlight_strength times the
  * part's component_highlight, 0 when not highlighted) and the highlight
  * colour in rgb, defaults resolved; the one place they are. */
 float oit_local_highlight(const oit_local_modulation *local, uint32_t component, float rgb[3]);
+
+/* Whether section i removes model (file coordinates) point p of part
+ * component, by the one rule (sections.c): the part is cut (section_parts)
+ * and dot(n, p) > d. The reference and the pick have their own code for it in
+ * the frame's relative coordinates; this is for the shells (measurement, tests). */
+bool oit_section_removes(const oit_local_modulation *local, uint32_t component, const double p[3]);
 
 /* Progress of one frame, for shells that render off their GUI thread (the
  * workbench). report is called after every stage (every peel of dp and ddp,
@@ -601,6 +636,39 @@ void oit_plane_to_eye_double(const oit_frame_settings *frame, double out[16]);
  * formulas are in shaders/common/local_modulation.glsl, the reference has its
  * own). The focus shapes' fall-off length, in model units. */
 float oit_local_focus_region(const oit_frame_settings *frame);
+
+/* ----------------------------------------------- exploded view, section caps */
+
+/* The exploded view's offsets (explode.c; docs/sections.md, "Exploded view"),
+ * 3 floats per component (model units) into offsets: factor 0 gives all
+ * zeros. Without an assembly tree, part p moves by factor * (centre(p) -
+ * centre(model)); with one, every node and part moves away from its parent's
+ * centre by factor * (centre(child) - centre(parent)), and a part's offset is
+ * the sum along its path from the top. Centres are bounding-box centres of
+ * the geometry under a node. OIT_E_INPUT for a factor outside
+ * [0, OIT_EXPLODE_MAX] or not finite. */
+#define OIT_EXPLODE_MAX 10.0
+oit_status oit_explode_offsets(const oit_model *model, double factor, float *offsets, oit_error *err);
+
+/* The model as drawn (model_derive.c): the parts moved by part_offsets (3
+ * floats per part, part_offset_count parts; NULL: none), then, unless
+ * local->no_caps, a cap appended to each closed part every section of local
+ * cuts (section_caps.c): triangles on the section's plane, filling the part's
+ * cross-section, with the part's component (contiguous with its own
+ * triangles), its colour and opacity, the section's plane as their coplanar
+ * cluster (so caps of nested parts tie bit for bit and order by triangle
+ * index) and vertex_section_cap set. The origin stays; bounds, radius, planes,
+ * welded ids and reach are the moved model's. out is a new model
+ * (oit_model_free); the input is not changed. open_cut, when not NULL,
+ * receives per part 1 where a section cuts an open part (no cap: the shells
+ * name them). */
+oit_status oit_model_derive(const oit_model *model, const float *part_offsets, uint32_t part_offset_count,
+                            const oit_local_modulation *local, oit_model *out, uint8_t *open_cut,
+                            oit_error *err);
+/* Whether oit_model_derive would change anything (an offset not zero, or a
+ * cap to make): shells draw the model itself otherwise. */
+bool oit_model_derive_needed(const oit_model *model, const float *part_offsets,
+                             uint32_t part_offset_count, const oit_local_modulation *local);
 
 /* -------------------------------------------------------------- statistics */
 

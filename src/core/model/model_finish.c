@@ -46,6 +46,7 @@ void oit_model_free(oit_model *model)
     free(model->warnings);
     free(model->planes);
     free(model->triangle_plane);
+    free(model->vertex_section_cap);
     memset(model, 0, sizeof *model);
 }
 
@@ -497,7 +498,7 @@ static oit_status assign_vertex_components(oit_model *model, oit_error *err)
 }
 
 /* Bounds over every vertex (also unreferenced ones, which are rare). */
-static oit_status bounds_and_radius(oit_model *model, oit_error *err)
+oit_status oit_model_bounds_and_radius(oit_model *model, oit_error *err)
 {
     uint64_t n = model->vertex_count;
     const float *p = model->positions;
@@ -626,7 +627,7 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
     if (status == OIT_OK)
         status = weld_vertices(model, err);
     if (status == OIT_OK)
-        status = bounds_and_radius(model, err);
+        status = oit_model_bounds_and_radius(model, err);
     if (status == OIT_OK)
         status = edge_reach(model, err);
     if (status == OIT_OK)

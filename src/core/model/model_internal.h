@@ -50,6 +50,11 @@ void *oit_model_calloc_array(uint64_t count, size_t size);
 oit_status oit_model_join_identical_vertices(oit_model *model, float *texture_coordinates,
                                              const uint32_t *vertex_owner, oit_error *err);
 
+/* bounds_min/max over every vertex and the radius about the origin that
+ * holds them all (rounded up); OIT_E_INPUT if the extent overflows a float.
+ * oit_model_derive recomputes them for moved parts. */
+oit_status oit_model_bounds_and_radius(oit_model *model, oit_error *err);
+
 /* The coplanar planes (model_planes.c): fills planes, plane_count and
  * triangle_plane from the finished positions, bounds, radius and origin. */
 oit_status oit_model_find_planes(oit_model *model, oit_error *err);
