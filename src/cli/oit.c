@@ -418,9 +418,9 @@ static int command_info(int argc, char **argv)
             printf(", \"path\": ");
             json_string(stdout, path);
             printf(", \"colour\": [%.4g, %.4g, %.4g], \"opacity\": %.4g, \"triangles\": %u, "
-                   "\"longest_edge\": %.9g}",
+                   "\"longest_edge\": %.9g, \"closed\": %s}",
                    p->colour[0], p->colour[1], p->colour[2], p->opacity, p->triangle_count,
-                   p->longest_edge);
+                   p->longest_edge, p->closed ? "true" : "false");
         }
         printf("]}\n");
     } else {

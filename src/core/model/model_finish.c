@@ -533,7 +533,7 @@ oit_status oit_model_bounds_and_radius(oit_model *model, oit_error *err)
 /* Longest edges: per triangle (kept in triangle_reach for the moment), per
  * component, the model's; rounded up, as the radius: they are bounds. Then
  * each triangle's reach. */
-static oit_status edge_reach(oit_model *model, oit_error *err)
+oit_status oit_model_edge_reach(oit_model *model, oit_error *err)
 {
     const float *p = model->positions;
     free(model->triangle_reach);
@@ -586,6 +586,55 @@ static oit_status edge_reach(oit_model *model, oit_error *err)
     return OIT_OK;
 }
 
+static int edge_key_order(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : (x > y);
+}
+
+/* oit_component.closed: every edge of the part, keyed by its two welded ids
+ * (unordered), is used by an even number of the part's triangles; triangles
+ * with two equal welded ids (degenerate) do not count, and a part with no
+ * other triangle is open. Sorting the keys of each part in turn. */
+oit_status oit_model_closed_parts(oit_model *model, oit_error *err)
+{
+    uint32_t largest = 0;
+    for (uint32_t c = 0; c < model->component_count; ++c)
+        if (model->components[c].triangle_count > largest)
+            largest = model->components[c].triangle_count;
+    uint64_t *keys = oit_model_alloc_array((uint64_t)largest * 3, sizeof *keys);
+    if (!keys)
+        return oit_fail(err, OIT_E_RUNTIME, "out of memory for the edges of %u triangles", largest);
+    for (uint32_t c = 0; c < model->component_count; ++c) {
+        oit_component *comp = &model->components[c];
+        size_t count = 0;
+        for (uint64_t t = comp->first_triangle; t < (uint64_t)comp->first_triangle + comp->triangle_count;
+             ++t) {
+            uint32_t w[3];
+            for (int k = 0; k < 3; ++k)
+                w[k] = model->welded_ids[model->indices[t * 3 + k]];
+            if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0])
+                continue;
+            for (int k = 0; k < 3; ++k) {
+                uint32_t a = w[k], b = w[(k + 1) % 3];
+                keys[count++] = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+            }
+        }
+        qsort(keys, count, sizeof *keys, edge_key_order);
+        bool closed = count > 0;
+        for (size_t i = 0; closed && i < count;) {
+            size_t j = i;
+            while (j < count && keys[j] == keys[i])
+                ++j;
+            closed = (j - i) % 2 == 0;
+            i = j;
+        }
+        comp->closed = closed;
+    }
+    free(keys);
+    return OIT_OK;
+}
+
 oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *err)
 {
     if (!model)
@@ -629,7 +678,9 @@ oit_status oit_model_finish(oit_model *model, bool compute_normals, oit_error *e
     if (status == OIT_OK)
         status = oit_model_bounds_and_radius(model, err);
     if (status == OIT_OK)
-        status = edge_reach(model, err);
+        status = oit_model_edge_reach(model, err);
+    if (status == OIT_OK)
+        status = oit_model_closed_parts(model, err);
     if (status == OIT_OK)
         status = oit_model_find_planes(model, err);
     return status;

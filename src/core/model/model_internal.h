@@ -55,6 +55,14 @@ oit_status oit_model_join_identical_vertices(oit_model *model, float *texture_co
  * oit_model_derive recomputes them for moved parts. */
 oit_status oit_model_bounds_and_radius(oit_model *model, oit_error *err);
 
+/* Longest edges (per component and the model's) and every triangle's reach
+ * (oit_model.triangle_reach), from positions, indices, welded ids and the
+ * components; oit_model_derive recomputes them after adding caps. */
+oit_status oit_model_edge_reach(oit_model *model, oit_error *err);
+
+/* oit_component.closed for every component, from indices and welded ids. */
+oit_status oit_model_closed_parts(oit_model *model, oit_error *err);
+
 /* The coplanar planes (model_planes.c): fills planes, plane_count and
  * triangle_plane from the finished positions, bounds, radius and origin. */
 oit_status oit_model_find_planes(oit_model *model, oit_error *err);
