@@ -1,4 +1,4 @@
-/* caps_core.c SCENE.obj: the section caps as oit_model_derive makes them
+/* caps_core.c SCENE.obj [GEARBOX.obj]: the section caps as oit_model_derive makes them
  * (issue 28; docs/sections.md "Caps"), on tests/caps_scene.py's scene: only
  * closed parts get a cap and open ones are named in open_cut; each cap's area
  * is its part's analytic cross-section to 1e-5 (also for a plane that holds
@@ -99,12 +99,119 @@ static oit_status derive(const oit_model *in, oit_local_modulation *local, oit_m
     return oit_model_derive(in, NULL, 0, local, out, open, err);
 }
 
+/* The cross-section's area of part c of the (outward-wound, closed) input
+ * by Green's theorem: the cut segments, each oriented by its triangle's
+ * normal, summed as signed areas about the plane's normal; holes subtract. */
+static double green_area(const oit_model *m, uint32_t c, const double sec[4])
+{
+    double len = sqrt(sec[0] * sec[0] + sec[1] * sec[1] + sec[2] * sec[2]);
+    double n[3] = {sec[0] / len, sec[1] / len, sec[2] / len};
+    double d = sec[3] - (sec[0] * m->origin[0] + sec[1] * m->origin[1] + sec[2] * m->origin[2]);
+    const oit_component *comp = &m->components[c];
+    double sum = 0.0;
+    for (uint32_t t = comp->first_triangle; t < comp->first_triangle + comp->triangle_count; ++t) {
+        double p[3][3], s[3];
+        for (int k = 0; k < 3; ++k) {
+            const float *q = m->positions + (size_t)m->indices[(size_t)t * 3 + k] * 3;
+            for (int j = 0; j < 3; ++j)
+                p[k][j] = q[j];
+            s[k] = sec[0] * p[k][0] + sec[1] * p[k][1] + sec[2] * p[k][2] - d;
+        }
+        double cut[2][3];
+        int found = 0;
+        for (int k = 0; k < 3 && found < 2; ++k) {
+            int j = (k + 1) % 3;
+            if ((s[k] > 0) == (s[j] > 0))
+                continue;
+            double f = s[k] / (s[k] - s[j]);
+            for (int i = 0; i < 3; ++i)
+                cut[found][i] = p[k][i] + f * (p[j][i] - p[k][i]);
+            ++found;
+        }
+        if (found != 2)
+            continue;
+        double e1[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+        double e2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+        double N[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        /* the cap's boundary runs along N x n (counter-clockwise about n seen from +n) */
+        double dir[3] = {N[1] * n[2] - N[2] * n[1], N[2] * n[0] - N[0] * n[2], N[0] * n[1] - N[1] * n[0]};
+        double seg[3] = {cut[1][0] - cut[0][0], cut[1][1] - cut[0][1], cut[1][2] - cut[0][2]};
+        double *a = cut[0], *b = cut[1];
+        if (dir[0] * seg[0] + dir[1] * seg[1] + dir[2] * seg[2] < 0) {
+            a = cut[1];
+            b = cut[0];
+        }
+        double x[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+        sum += 0.5 * (x[0] * n[0] + x[1] * n[1] + x[2] * n[2]);
+    }
+    return fabs(sum);
+}
+
+/* The gearbox (oit gen gearbox): every part closed; two planes; each cap's
+ * area equals green_area. */
+static void gearbox(const char *path)
+{
+    oit_model in, m;
+    oit_error err = {{0}};
+    if (oit_model_load(path, &in, &err) != OIT_OK) {
+        CHECK(false, "%s", err.message);
+        return;
+    }
+    oit_local_modulation local;
+    memset(&local, 0, sizeof local);
+    double planes[2][4] = {{0.0, 0.0, 1.0, 0.05}, {1.0, 0.2, 0.0, 0.31}};
+    local.section_count = 2;
+    memcpy(local.sections, planes, sizeof planes);
+    uint8_t open[64] = {0};
+    if (in.component_count > 64 || oit_model_derive(&in, NULL, 0, &local, &m, open, &err) != OIT_OK) {
+        CHECK(false, "gearbox: %s", err.message);
+        oit_model_free(&in);
+        return;
+    }
+    uint32_t capped = 0;
+    for (uint32_t s = 0; s < 2; ++s) {
+        double *area = calloc(m.component_count, sizeof *area);
+        for (uint32_t c = 0; c < m.component_count; ++c) {
+            const oit_component *comp = &m.components[c];
+            for (uint32_t t = comp->first_triangle; t < comp->first_triangle + comp->triangle_count; ++t) {
+                const uint32_t *tri = m.indices + (size_t)t * 3;
+                if (m.vertex_section_cap[tri[0]] != s + 1)
+                    continue;
+                const float *a = m.positions + (size_t)tri[0] * 3, *b = m.positions + (size_t)tri[1] * 3,
+                            *p = m.positions + (size_t)tri[2] * 3;
+                double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+                double e2[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+                double x[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                               e1[0] * e2[1] - e1[1] * e2[0]};
+                const double *n = planes[s];
+                double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+                double facing = (x[0] * n[0] + x[1] * n[1] + x[2] * n[2]) / len;
+                CHECK(facing >= 0.0, "gearbox: %s's cap triangle %u faces away", comp->name, t);
+                area[c] += 0.5 * facing;
+            }
+            CHECK(!open[c], "gearbox: %s named open", comp->name);
+            double want = green_area(&in, c, planes[s]);
+            CHECK(fabs(area[c] - want) <= 1e-5 * (want > 1e-3 ? want : 1e-3),
+                  "gearbox, section %u: %s's cap area %.9g, the cut's %.9g", s + 1, comp->name, area[c], want);
+            capped += area[c] > 0.0;
+        }
+        free(area);
+    }
+    CHECK(capped >= 6, "gearbox: only %u caps", capped);
+    printf("caps_core: gearbox %u caps on two planes, %u cap triangles\n", capped,
+           m.triangle_count - in.triangle_count);
+    oit_model_free(&m);
+    oit_model_free(&in);
+}
+
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fputs("usage: caps_core SCENE.obj (tests/caps_scene.py)\n", stderr);
+    if (argc != 2 && argc != 3) {
+        fputs("usage: caps_core SCENE.obj [GEARBOX.obj] (tests/caps_scene.py, oit gen gearbox)\n", stderr);
         return 2;
     }
+    if (argc == 3)
+        gearbox(argv[2]);
     oit_model in;
     oit_error err = {{0}};
     if (oit_model_load(argv[1], &in, &err) != OIT_OK) {
