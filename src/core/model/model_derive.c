@@ -27,6 +27,16 @@ static bool copy_array(void **out, const void *in, uint64_t count, size_t size)
 static oit_status copy_model(const oit_model *in, oit_model *out, oit_error *err)
 {
     *out = *in;
+    /* no array of out may alias in's while the copies are made: a failure
+     * part way frees out's arrays */
+    out->positions = out->normals = out->planes = NULL;
+    out->vertex_component = out->welded_ids = out->indices = out->component_node = NULL;
+    out->triangle_plane = NULL;
+    out->components = NULL;
+    out->nodes = NULL;
+    out->triangle_reach = NULL;
+    out->warnings = NULL;
+    out->vertex_section_cap = NULL;
     bool ok = copy_array((void **)&out->positions, in->positions, (uint64_t)in->vertex_count * 3,
                          sizeof *in->positions) &&
               copy_array((void **)&out->normals, in->normals, (uint64_t)in->vertex_count * 3,
@@ -90,10 +100,57 @@ static int key_pair_order(const void *a, const void *b)
     return x->index < y->index ? -1 : (x->index > y->index);
 }
 
+static int offset_order(const void *a, const void *b, const float *offsets, uint32_t count)
+{
+    const float *x = part_offset(offsets, count, *(const uint32_t *)a);
+    const float *y = part_offset(offsets, count, *(const uint32_t *)b);
+    for (int k = 0; k < 3; ++k)
+        if (x[k] != y[k])
+            return x[k] < y[k] ? -1 : 1;
+    return 0;
+}
+
+/* per part, the lowest-numbered part with the same offset: parts that move
+ * together still meet where they met */
+static uint32_t *offset_classes(const float *offsets, uint32_t count, uint32_t parts)
+{
+    uint32_t *order = oit_model_alloc_array(parts, sizeof *order);
+    uint32_t *classes = oit_model_alloc_array(parts, sizeof *classes);
+    if (!order || !classes) {
+        free(order);
+        free(classes);
+        return NULL;
+    }
+    for (uint32_t c = 0; c < parts; ++c)
+        order[c] = c;
+    /* a bottom-up merge sort by offset, stable, so each class's first part is
+     * its lowest-numbered (classes is the merge's scratch until the end) */
+    for (uint32_t width = 1; width < parts; width *= 2) {
+        for (uint32_t lo = 0; lo < parts; lo += 2 * width) {
+            uint32_t mid = lo + width < parts ? lo + width : parts;
+            uint32_t hi = lo + 2 * width < parts ? lo + 2 * width : parts;
+            uint32_t i = lo, j = mid, o = lo;
+            while (i < mid || j < hi)
+                classes[o++] = (j >= hi || (i < mid && offset_order(&order[i], &order[j], offsets, count) <= 0))
+                                   ? order[i++]
+                                   : order[j++];
+            for (uint32_t t = lo; t < hi; ++t)
+                order[t] = classes[t];
+        }
+    }
+    for (uint32_t i = 0; i < parts; ++i) {
+        uint32_t c = order[i];
+        classes[c] = i > 0 && offset_order(&order[i - 1], &c, offsets, count) == 0 ? classes[order[i - 1]] : c;
+    }
+    free(order);
+    return classes;
+}
+
 /* Moves every vertex by its part's offset. Then what parts shared before
- * they moved apart is split: a welded id that two parts used becomes one per
- * part (they no longer meet), and so does a coplanar cluster's plane, which
- * moves with its part (n . p + d = 0 becomes d - n . offset). */
+ * they moved apart is split: a welded id that two parts with different
+ * offsets used becomes one per offset (they no longer meet), and so does a
+ * coplanar cluster's plane, which moves with its parts (n . p + d = 0 becomes
+ * d - n . offset). Parts with the same offset keep what they shared. */
 static oit_status apply_offsets(oit_model *model, const float *offsets, uint32_t count, oit_error *err)
 {
     for (uint32_t v = 0; v < model->vertex_count; ++v) {
@@ -105,12 +162,16 @@ static oit_status apply_offsets(oit_model *model, const float *offsets, uint32_t
     uint64_t n = model->vertex_count > model->triangle_count ? model->vertex_count
                                                              : model->triangle_count;
     key_pair *pairs = oit_model_alloc_array(n, sizeof *pairs);
-    if (!pairs)
+    uint32_t *classes = offset_classes(offsets, count, model->component_count);
+    if (!pairs || !classes) {
+        free(pairs);
+        free(classes);
         return oit_fail(err, OIT_E_RUNTIME, "out of memory moving the parts apart");
+    }
 
     if (model->welded_ids) {
         for (uint32_t v = 0; v < model->vertex_count; ++v) {
-            pairs[v].key = (uint64_t)model->welded_ids[v] << 32 | model->vertex_component[v];
+            pairs[v].key = (uint64_t)model->welded_ids[v] << 32 | classes[model->vertex_component[v]];
             pairs[v].index = v;
         }
         qsort(pairs, model->vertex_count, sizeof *pairs, key_pair_order);
@@ -126,7 +187,7 @@ static oit_status apply_offsets(oit_model *model, const float *offsets, uint32_t
     if (model->planes && model->triangle_plane) {
         for (uint32_t t = 0; t < model->triangle_count; ++t) {
             uint32_t component = model->vertex_component[model->indices[(size_t)t * 3 + 2]];
-            pairs[t].key = (uint64_t)model->triangle_plane[t] << 32 | component;
+            pairs[t].key = (uint64_t)model->triangle_plane[t] << 32 | classes[component];
             pairs[t].index = t;
         }
         qsort(pairs, model->triangle_count, sizeof *pairs, key_pair_order);
@@ -137,6 +198,7 @@ static oit_status apply_offsets(oit_model *model, const float *offsets, uint32_t
         float *planes = oit_model_alloc_array((uint64_t)distinct * 4, sizeof *planes);
         if (!planes) {
             free(pairs);
+            free(classes);
             return oit_fail(err, OIT_E_RUNTIME, "out of memory moving the parts' planes");
         }
         uint32_t next = 0;
@@ -159,6 +221,7 @@ static oit_status apply_offsets(oit_model *model, const float *offsets, uint32_t
         model->plane_count = distinct;
     }
     free(pairs);
+    free(classes);
     return oit_model_bounds_and_radius(model, err);
 }
 
