@@ -13,6 +13,7 @@
 #include "oit.h"
 
 static int failures;
+static bool exploded; /* the parts moved: cap_areas does not compare positions */
 #define CHECK(cond, ...)                                                                           \
     do {                                                                                           \
         if (!(cond)) {                                                                             \
@@ -52,7 +53,7 @@ static void cap_areas(const oit_model *in, const oit_model *m, uint32_t s, const
             if (cap == 0) {
                 CHECK(!in_caps, "%s: its own triangle %u after a cap", comp->name, t);
                 uint32_t own = t - comp->first_triangle + in->components[c].first_triangle;
-                for (int k = 0; k < 3; ++k)
+                for (int k = 0; k < 3 && !exploded; ++k)
                     CHECK(memcmp(m->positions + (size_t)tri[k] * 3,
                                  in->positions + (size_t)in->indices[(size_t)own * 3 + k] * 3,
                                  3 * sizeof(float)) == 0,
@@ -254,6 +255,24 @@ int main(int argc, char **argv)
           "the section's plane (%g %g %g %g)", pl[0], pl[1], pl[2], pl[3]);
     CHECK(m.welded_count > in.welded_count && m.triangle_reach && m.longest_edge >= in.longest_edge,
           "welded ids, reach");
+    oit_model_free(&m);
+
+    /* the exploded parts (every part's centre has z = 0, so they move in x
+     * and y only): the same caps, on the moved parts */
+    float offsets[PARTS * 3];
+    if (oit_explode_offsets(&in, 0.5, offsets, &err) != OIT_OK ||
+        oit_model_derive(&in, offsets, PARTS, &local, &m, open, &err) != OIT_OK) {
+        fprintf(stderr, "caps_core: exploded: %s\n", err.message);
+        return 1;
+    }
+    CHECK(offsets[BAR * 3] != 0.0f, "the bar did not move");
+    exploded = true;
+    cap_areas(&in, &m, 1, z, area);
+    exploded = false;
+    expect_area("exploded", "block", area[BLOCK], 4.0);
+    expect_area("exploded", "inner", area[INNER], 0.64);
+    expect_area("exploded", "bar", area[BAR], 0.8);
+    CHECK(open[TRAY] == 1, "exploded: the tray is not named");
     oit_model_free(&m);
 
     /* a plane that holds two of the block's and the inner's edges: y + z = 0 */
