@@ -24,4 +24,7 @@ layout(std140, binding = OIT_UBO_FRAME) uniform oit_frame_block {
     int u_distance_mode;             // -1: off
     int u_distance_skip;
     float u_distance_norm;
+    int u_section_count;             // section planes (common/local_modulation.glsl)
+    int u_section_all_parts;         // 1: they cut every part
+    vec4 u_section_planes[OIT_SECTIONS_MAX]; // eye space: removed where dot(xyz, e) + w > 0
 };

@@ -5,6 +5,9 @@
 //   alpha' = alpha * component_alpha[component] * saturate(d / focus_region)
 // with d the distance, in model coordinates, to the focus point, to the focus
 // plane, or to the focus box (0 inside it). alpha' == 0: the fragment is never stored.
+// Section planes (docs/sections.md): alpha' = 0 where a plane removes the
+// fragment (dot(q.xyz, eye) + q.w > 0 for an eye-space plane q of a part it
+// cuts), except a cap on its own plane.
 //   material rgb' = mix(rgb, highlight rgb, highlight weight[component])  (0: unchanged)
 //   rgb' = saturate((rgb - 0.5) * contrast + 0.5)  (contrast 0 or 1: unchanged)
 #ifndef OIT_LOCAL_MODULATION_GLSL
@@ -18,6 +21,9 @@ layout(binding = OIT_TEXUNIT_LOCAL_PART_ALPHA) uniform samplerBuffer u_local_par
 // Selection highlight: per part (highlight rgb, weight), weight 0 for a part
 // not highlighted (oit_local_modulation.component_highlight).
 layout(binding = OIT_TEXUNIT_LOCAL_PART_TINT) uniform samplerBuffer u_local_part_tint;
+// Which parts the section planes cut (1), read only when u_section_all_parts
+// is 0 (oit_local_modulation.section_parts); parts past its end are not cut.
+layout(binding = OIT_TEXUNIT_LOCAL_PART_SECTION) uniform usamplerBuffer u_local_part_section;
 
 
 // The pixel's ray in eye space: its points at NDC depth -1 and +1, where the
@@ -57,9 +63,32 @@ float oit_focus_distance(vec3 p)
     return length(outside);
 }
 
-// alpha (already clamped to [0, 1]) times the component's opacity and the
-// focus factor at eye_position (eye space; the shapes are in model space).
-float oit_local_alpha(float alpha, uint component, vec3 eye_position)
+// Whether a section plane removes the fragment of part component at
+// eye_position (eye space). section_cap is 0, or 1 + the section whose cap the
+// fragment is: a cap lies on its own plane, so that plane keeps it (the other
+// planes cut it as any surface). The reference's twin: reference_raster.c,
+// section_removes.
+bool oit_section_removed(uint component, uint section_cap, vec3 eye_position)
+{
+    if (u_section_count == 0)
+        return false;
+    if (u_section_all_parts == 0 &&
+        (component >= uint(textureSize(u_local_part_section)) ||
+         texelFetch(u_local_part_section, int(component)).x == 0u))
+        return false;
+    for (int i = 0; i < u_section_count; ++i) {
+        vec4 q = u_section_planes[i];
+        precise float side = dot(q.xyz, eye_position) + q.w;
+        if (uint(i) + 1u != section_cap && side > 0.0)
+            return true;
+    }
+    return false;
+}
+
+// alpha times the component's opacity and the focus factor, without the
+// section planes: for a fragment already kept (ib's compose: its fill removed
+// what the planes remove).
+float oit_local_alpha_kept(float alpha, uint component, vec3 eye_position)
 {
     if (component < uint(textureSize(u_local_part_alpha))) // past the end texelFetch gives 0
         alpha *= texelFetch(u_local_part_alpha, int(component)).x;
@@ -68,6 +97,16 @@ float oit_local_alpha(float alpha, uint component, vec3 eye_position)
         alpha *= clamp(oit_focus_distance(p) / u_local_focus_region, 0.0, 1.0);
     }
     return alpha;
+}
+
+// alpha (already clamped to [0, 1]) times the component's opacity and the
+// focus factor at eye_position (eye space; the shapes are in model space);
+// 0 where a section plane removes the fragment.
+float oit_local_alpha(float alpha, uint component, uint section_cap, vec3 eye_position)
+{
+    if (oit_section_removed(component, section_cap, eye_position))
+        return 0.0;
+    return oit_local_alpha_kept(alpha, component, eye_position);
 }
 
 // The material colour of a highlighted part: mix(rgb, highlight, weight),

@@ -200,7 +200,15 @@
 #define OIT_FRAME_DISTANCE_MODE 440
 #define OIT_FRAME_DISTANCE_SKIP 444
 #define OIT_FRAME_DISTANCE_NORM 448
-#define OIT_FRAME_BLOCK_BYTES 464
+/* section planes (docs/sections.md): how many (0..OIT_SECTIONS_MAX), whether
+ * they cut every part (1) or only those the per-part buffer texture at
+ * OIT_TEXUNIT_LOCAL_PART_SECTION marks (0), and the planes in eye space:
+ * vec4 q per plane, a fragment at eye position e is removed where
+ * dot(q.xyz, e) + q.w > 0 (oit_section_eye_planes, sections.c) */
+#define OIT_FRAME_SECTION_COUNT 452
+#define OIT_FRAME_SECTION_ALL_PARTS 456
+#define OIT_FRAME_SECTION_PLANES 464
+#define OIT_FRAME_BLOCK_BYTES 560
 /* per-part opacity (oit_local_modulation.component_alpha): no uniform, a buffer
  * texture (samplerBuffer, r32f) with one float per part of the model, every
  * part (1 where the frame sets none), filled each frame by
@@ -211,6 +219,11 @@
  * weight (0: not highlighted), filled each frame by oit_gl_bind_part_alpha and
  * read by oit_local_tint: material rgb' = mix(rgb, highlight rgb, weight) */
 #define OIT_TEXUNIT_LOCAL_PART_TINT 28
+/* which parts the section planes cut (oit_local_modulation.section_parts): a
+ * buffer texture (usamplerBuffer, r8ui), per part 1 (cut) or 0, filled each
+ * frame by oit_gl_bind_part_alpha when the frame names parts, read by
+ * oit_section_removed (common/local_modulation.glsl) */
+#define OIT_TEXUNIT_LOCAL_PART_SECTION 29
 /* the highlight's defaults (oit_local_highlight): an orange, mixed in at 60% */
 #define OIT_HIGHLIGHT_COLOUR_R_PERCENT 100
 #define OIT_HIGHLIGHT_COLOUR_G_PERCENT 55

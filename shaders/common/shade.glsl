@@ -6,6 +6,7 @@
 in vec3 v_eye_position;
 in vec3 v_eye_normal;
 flat in uint v_component;
+flat in uint v_section_cap; // 0, or 1 + the section whose cap the fragment is
 
 // vec4 per component: rgb material colour, a material opacity
 layout(std430, binding = OIT_SSBO_COMPONENTS) readonly buffer oit_component_table {
@@ -30,12 +31,12 @@ vec3 oit_shade_rgb(vec3 colour, vec3 eye_normal, vec3 eye_position)
 }
 
 // The current fragment's opacity, local modulation applied (per-component
-// opacity, focus shapes: common/local_modulation.glsl); passes that only ask
+// opacity, focus shapes, section planes: common/local_modulation.glsl); passes that only ask
 // whether a fragment is stored need no more (0: hidden, never a layer).
 float oit_fragment_alpha()
 {
     return oit_local_alpha(clamp(u_alpha * oit_components[v_component].a, 0.0, 1.0), v_component,
-                           v_eye_position);
+                           v_section_cap, v_eye_position);
 }
 
 // The shaded colour and opacity of the current fragment (highlight and contrast too).

@@ -36,7 +36,7 @@ void main()
     out_back = vec4(0.0);
     vec4 premultiplied = vec4(colour.rgb * colour.a, colour.a);
     if (u_distance_mode >= 0) // distance modulation: straight colour and the local factor
-        premultiplied = vec4(colour.rgb, oit_local_alpha(1.0, v_component, v_eye_position));
+        premultiplied = vec4(colour.rgb, oit_local_alpha(1.0, v_component, v_section_cap, v_eye_position));
     if (z == near) {
         out_front = premultiplied;
     } else if (z == far) {

@@ -47,11 +47,11 @@ void main()
     out_tie = uint(gl_PrimitiveID);
 #ifdef DP_NEIGHBOURS
     // curvature sets the opacity later: straight colour and the local factor
-    out_layer = vec4(colour.rgb, oit_local_alpha(1.0, v_component, v_eye_position));
+    out_layer = vec4(colour.rgb, oit_local_alpha(1.0, v_component, v_section_cap, v_eye_position));
     out_normal = uvec4(oit_pack_normal(v_eye_normal), v_component + 1u, 0u, 0u);
 #else
     if (u_distance_mode >= 0) // distance modulation: straight colour and the local factor
-        out_layer = vec4(colour.rgb, oit_local_alpha(1.0, v_component, v_eye_position));
+        out_layer = vec4(colour.rgb, oit_local_alpha(1.0, v_component, v_section_cap, v_eye_position));
     else
         out_layer = vec4(colour.rgb * colour.a, colour.a);
 #endif

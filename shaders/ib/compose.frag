@@ -126,7 +126,7 @@ void main()
             alpha = 1.0;
 #endif
         // local modulation (per-part opacity, focus shapes) scales whatever the mode chose
-        alpha = oit_local_alpha(alpha, component, eye_position);
+        alpha = oit_local_alpha_kept(alpha, component, eye_position); // sections: ib/fill.frag
         bool last = ib_last_layer_opaque != 0 && i + 1u == run_length;
 
 #if OIT_VARIANT_IB_MODES

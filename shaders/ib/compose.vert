@@ -4,6 +4,7 @@
 out vec3 v_eye_position;
 out vec3 v_eye_normal;
 flat out uint v_component;
+flat out uint v_section_cap;
 
 void main()
 {
@@ -12,4 +13,5 @@ void main()
     v_eye_position = vec3(0.0);
     v_eye_normal = vec3(0.0);
     v_component = 0u;
+    v_section_cap = 0u;
 }

@@ -20,7 +20,9 @@ void main()
         return;
     uvec3 v = ib_triangle_vertices(triangle);
     uvec3 ids = ib_search == OIT_IB_SEARCH_WELDED ? uvec3(ib_welded[v.x], ib_welded[v.y], ib_welded[v.z]) : v;
-    uint component = ib_vertex_components[v.z]; // the provoking (last) vertex, as v_component
+    // the provoking (last) vertex, as v_component: a cap's section bits split off
+    // (geometry.vert), so cap and part share their component everywhere
+    uint component = ib_vertex_components[v.z] & ((1u << OIT_COMPONENT_CAP_SHIFT) - 1u);
     vec3 a = ib_vertex_eye(v.x), b = ib_vertex_eye(v.y), c = ib_vertex_eye(v.z);
     vec3 plane_normal = cross(b - a, c - a);
     float plane_offset = dot(plane_normal, a);

@@ -20,7 +20,7 @@ void main()
         return; // hidden parts (opacity 0) are not stored
 #if OIT_VARIANT_DISTANCE
     if (u_distance_mode >= 0) // distance modulation: compose sets alpha; keep the local factor
-        colour.a = oit_local_alpha(1.0, v_component, v_eye_position);
+        colour.a = oit_local_alpha(1.0, v_component, v_section_cap, v_eye_position);
 #endif
     uint node = atomicAdd(ll_counters[OIT_FRAME_COUNTER_FRAGMENTS], 1u);
     if (node == 0xFFFFFFFFu) // the counter wrapped to 0: its high word, so the C side sees

@@ -1,12 +1,14 @@
 /* local_options.c: the flags of the local opacity modulations every algorithm
  * supports (docs/modulation.md): --component-alpha, --hide, --focus-point,
- * --focus-plane, --focus-box, --contrast, --highlight, --highlight-colour. Component names, indices and
+ * --focus-plane, --focus-box, --contrast, --highlight, --highlight-colour, and the
+ * section planes (docs/sections.md): --section, --section-parts, --caps. Component names, indices and
  * assembly paths are kept as given and resolved against the model once it is
  * loaded (oit_model_match_parts). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "json_output.h"
 #include "local_options.h"
 
 /* The largest magnitude accepted for a coordinate: keeps float arithmetic finite. */
@@ -34,6 +36,11 @@ static struct {
     float *resolved_highlight;
     bool has_highlight_colour;
     float highlight_colour[3];
+    uint32_t section_count;
+    double sections[OIT_SECTION_PLANES_MAX][4]; /* n, d: keep n . p <= d */
+    char *section_parts; /* --section-parts as given (comma-separated names), or NULL: all */
+    uint8_t *resolved_section_parts;
+    bool no_caps;
     bool registered_free;
 } options;
 
@@ -44,6 +51,8 @@ void oit_cli_local_options_free(void)
     free(options.settings);
     free(options.resolved_alpha);
     free(options.resolved_highlight);
+    free(options.section_parts);
+    free(options.resolved_section_parts);
     bool registered = options.registered_free;
     memset(&options, 0, sizeof options);
     options.registered_free = registered;
@@ -141,7 +150,8 @@ int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oi
 {
     static const char *const flags[] = {"--component-alpha", "--hide", "--focus-point",
                                         "--focus-plane", "--focus-box", "--contrast",
-                                        "--highlight", "--highlight-colour"};
+                                        "--highlight", "--highlight-colour", "--section",
+                                        "--section-parts", "--caps"};
     const char *flag = NULL;
     for (size_t k = 0; k < sizeof flags / sizeof flags[0]; ++k)
         if (strcmp(argv[*i], flags[k]) == 0)
@@ -202,6 +212,42 @@ int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oi
             options.highlight_colour[k] = (float)rgb[k];
         return 1;
     }
+    if (strcmp(flag, "--section") == 0) {
+        double s[4];
+        if (!parse_numbers(value, 4, s))
+            BAD("--section must be NX,NY,NZ,D (keeps the points p with n.p <= D; four finite numbers, each "
+                "within +-1e9), got '%s'",
+                value);
+        if (s[0] == 0.0 && s[1] == 0.0 && s[2] == 0.0)
+            BAD("--section %s: the normal (NX,NY,NZ) must not be zero", value);
+        if (options.section_count >= OIT_SECTION_PLANES_MAX)
+            BAD("--section %s: at most %d section planes", value, OIT_SECTION_PLANES_MAX);
+        memcpy(options.sections[options.section_count++], s, sizeof s);
+        return 1;
+    }
+    if (strcmp(flag, "--section-parts") == 0) {
+        size_t length = strlen(value);
+        if (length == 0 || value[0] == ',' || value[length - 1] == ',' || strstr(value, ",,"))
+            BAD("--section-parts needs NAME[,NAME...] (component names, indices or assembly paths), got '%s'",
+                value);
+        char *copy = malloc(length + 1);
+        if (!copy)
+            BAD("out of memory for --section-parts");
+        memcpy(copy, value, length + 1);
+        register_free();
+        free(options.section_parts);
+        options.section_parts = copy;
+        return 1;
+    }
+    if (strcmp(flag, "--caps") == 0) {
+        if (strcmp(value, "on") == 0)
+            options.no_caps = false;
+        else if (strcmp(value, "off") == 0)
+            options.no_caps = true;
+        else
+            BAD("--caps must be on or off, got '%s'", value);
+        return 1;
+    }
     if (strcmp(flag, "--focus-point") == 0) {
         double p[3];
         if (!parse_numbers(value, 3, p))
@@ -236,6 +282,75 @@ int oit_cli_parse_local_option(int argc, char **argv, int *i, oit_error *err, oi
 #undef BAD
 }
 
+/* "FLAG: no component 'NAME' (the model has ...)": the one message for a name
+ * no part matches. */
+static oit_status unknown_component(const oit_model *model, const char *flag, const char *name, oit_error *err)
+{
+    char known[OIT_ERROR_MESSAGE_SIZE / 2] = "";
+    size_t used = 0;
+    for (uint32_t k = 0; k < model->component_count && k < NAMES_LISTED && used < sizeof known; ++k)
+        used += (size_t)snprintf(known + used, sizeof known - used, "%s'%s'", k ? ", " : "",
+                                 model->components[k].name);
+    /* a model with a tree: one part's path shows what a path looks like */
+    char example[OIT_ERROR_MESSAGE_SIZE / 4] = "";
+    for (uint32_t k = 0; model->component_node && k < model->component_count; ++k)
+        if (model->component_node[k] != OIT_NO_NODE) {
+            char path[OIT_ERROR_MESSAGE_SIZE / 4 - 32];
+            if (oit_model_component_path(model, k, path, sizeof path) < (int)sizeof path)
+                snprintf(example, sizeof example, " or an assembly path such as '%s'", path);
+            break;
+        }
+    return oit_fail(err, OIT_E_INPUT, "%s: no component '%s' (the model has %u: %s%s; or give an index 0..%u%s)",
+                    flag, name, model->component_count, known, model->component_count > NAMES_LISTED ? ", ..." : "",
+                    model->component_count ? model->component_count - 1 : 0, example);
+}
+
+/* --section, --section-parts, --caps into local (docs/sections.md). */
+static oit_status resolve_sections(const oit_model *model, oit_local_modulation *local, oit_error *err)
+{
+    free(options.resolved_section_parts);
+    options.resolved_section_parts = NULL;
+    local->section_count = options.section_count;
+    memcpy(local->sections, options.sections, sizeof local->sections);
+    local->no_caps = options.no_caps;
+    if (!options.section_parts)
+        return OIT_OK;
+    if (model->component_count == 0)
+        return oit_fail(err, OIT_E_INPUT, "--section-parts: the model has no components");
+    uint8_t *cut = calloc(model->component_count, 1);
+    bool *selected = malloc(model->component_count * sizeof *selected);
+    char *names = malloc(strlen(options.section_parts) + 1);
+    if (!cut || !selected || !names) {
+        free(cut);
+        free(selected);
+        free(names);
+        return oit_fail(err, OIT_E_RUNTIME, "out of memory for --section-parts");
+    }
+    strcpy(names, options.section_parts);
+    oit_status status = OIT_OK;
+    for (char *name = names; name && status == OIT_OK;) {
+        char *comma = strchr(name, ',');
+        if (comma)
+            *comma = '\0';
+        if (oit_model_match_parts(model, name, selected) == 0)
+            status = unknown_component(model, "--section-parts", name, err);
+        for (uint32_t c = 0; status == OIT_OK && c < model->component_count; ++c)
+            if (selected[c])
+                cut[c] = 1;
+        name = comma ? comma + 1 : NULL;
+    }
+    free(selected);
+    free(names);
+    if (status != OIT_OK) {
+        free(cut);
+        return status;
+    }
+    options.resolved_section_parts = cut;
+    local->section_parts = cut;
+    local->section_parts_count = model->component_count;
+    return OIT_OK;
+}
+
 oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modulation *local,
                                          oit_error *err)
 {
@@ -254,8 +369,9 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
     options.resolved_alpha = NULL;
     free(options.resolved_highlight);
     options.resolved_highlight = NULL;
-    if (options.count == 0)
-        return OIT_OK;
+    oit_status status = resolve_sections(model, local, err);
+    if (status != OIT_OK || options.count == 0)
+        return status;
     if (model->component_count == 0)
         return oit_fail(err, OIT_E_INPUT, "%s: the model has no components",
                         options.settings[0].flag);
@@ -349,7 +465,15 @@ void oit_cli_print_local_help(FILE *out)
           "                         (one shape; model coordinates, each within +-1e9; R is\n"
           "                         --focus-region in model units, auto: 1/4 of the bounding radius)\n"
           "  --contrast C           colour = saturate((colour - 0.5) C + 0.5) per fragment,\n"
-          "                         C in [0.1, 10] (default 1: unchanged)\n",
+          "                         C in [0.1, 10] (default 1: unchanged)\n"
+          "Section planes (every algorithm, the reference and the pick; docs/sections.md):\n"
+          "  --section NX,NY,NZ,D   keep the points p with NX x + NY y + NZ z <= D (model\n"
+          "                         coordinates of the model as drawn), remove the rest;\n"
+          "                         the normal must not be zero; repeatable, up to 6 (a point\n"
+          "                         is kept only if every plane keeps it)\n"
+          "  --section-parts NAMES  cut only these parts (comma-separated names, indices or\n"
+          "                         assembly paths, as --component-alpha; default: every part)\n"
+          "  --caps on|off          draw the cut faces of closed parts (default on)\n",
           out);
     /* the highlight's defaults as the core resolves them (oit_local_highlight) */
     const float one = 1.0f;
@@ -362,4 +486,27 @@ void oit_cli_print_local_help(FILE *out)
             "                         reference too); names as --component-alpha; repeatable\n"
             "  --highlight-colour R,G,B  the highlight colour, each in [0, 1] (default %g,%g,%g)\n",
             100.0 * strength, colour[0], colour[1], colour[2]);
+}
+
+void oit_cli_print_sections_json(FILE *out, const oit_model *model, const oit_local_modulation *local)
+{
+    fputs(", \"sections\": [", out);
+    for (uint32_t i = 0; i < local->section_count; ++i)
+        fprintf(out, "%s{\"normal\": [%.17g, %.17g, %.17g], \"d\": %.17g}", i ? ", " : "",
+                local->sections[i][0], local->sections[i][1], local->sections[i][2], local->sections[i][3]);
+    fputs("], \"section_parts\": ", out);
+    if (!local->section_parts) {
+        fputs("\"all\"", out);
+    } else {
+        fputc('[', out);
+        bool first = true;
+        for (uint32_t c = 0; c < local->section_parts_count && c < model->component_count; ++c)
+            if (local->section_parts[c]) {
+                fputs(first ? "" : ", ", out);
+                json_string(out, model->components[c].name);
+                first = false;
+            }
+        fputc(']', out);
+    }
+    fprintf(out, ", \"caps\": %s", local->no_caps ? "false" : "true");
 }

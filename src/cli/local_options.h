@@ -18,5 +18,7 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
                                          oit_error *err);
 void oit_cli_local_options_free(void);
 void oit_cli_print_local_help(FILE *out);
+/* --json: ", \"sections\": [{normal, d}...], \"section_parts\": \"all\" | [names], \"caps\": bool" */
+void oit_cli_print_sections_json(FILE *out, const oit_model *model, const oit_local_modulation *local);
 
 #endif

@@ -62,6 +62,7 @@ static void print_render_json(FILE *out, const render_options *o, const session 
         json_matrix_rows(out, frame.modelview);
         fprintf(out, ", \"projection\": ");
         json_matrix_rows(out, frame.projection);
+        oit_cli_print_sections_json(out, &s->model, &frame.local);
     }
     fprintf(out, ", \"gpu_ms\": %.4f, \"cpu_ms\": %.4f", stages_total(st), st->cpu_ms);
     fprintf(out, ", \"stages\": [");

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "oit.h"
+#include "sections.h"
 
 /* Each algorithm's table (alg_<name>.c): one line here and one in the registry. */
 extern const oit_algorithm_ops oit_algorithm_blend, oit_algorithm_dp, oit_algorithm_ddp, oit_algorithm_ll,
@@ -99,7 +100,18 @@ oit_status oit_frame_relative(const oit_model *model, const oit_frame_settings *
     }
     for (int k = 0; k < 6; ++k)
         local->focus[k] = as_float(local->focus[k]);
-    return OIT_OK;
+    /* section planes: n . (origin + r) <= d  <=>  n . r <= d - n . origin, in
+     * double; then once in eye space, as every algorithm, the reference and
+     * the pick test them (sections.h) */
+    oit_status status = oit_sections_check(local, err);
+    if (status != OIT_OK)
+        return status;
+    for (uint32_t i = 0; i < local->section_count; ++i)
+        local->sections[i][3] -= local->sections[i][0] * origin[0] + local->sections[i][1] * origin[1] +
+                                 local->sections[i][2] * origin[2];
+    float planes[OIT_SECTION_PLANES_MAX][4];
+    uint32_t count = 0;
+    return oit_section_eye_planes(relative, planes, &count, err);
 }
 
 oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg, const oit_scene *scene,

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "gl_util.h"
+#include "sections.h"
 
 /* ------------------------------------------------------------- geometry */
 
@@ -59,7 +60,14 @@ void oit_gl_frame_block(const oit_frame_settings *frame, oit_frame_block *out)
     out->distance_skip = m->distance_skip > 0 ? m->distance_skip : 2;
     /* auto (0): the algorithm writes the frame's largest distance once it knows it */
     out->distance_norm = m->focus_region > 0.0f ? m->focus_region : 1.0f;
-    /* per-part opacity is no parameter: oit_gl_bind_part_alpha */
+    /* section planes in eye space (sections.h; oit_frame_relative checked them:
+     * a frame that fails here draws no planes) */
+    uint32_t section_count = 0;
+    if (oit_section_eye_planes(frame, out->section_planes, &section_count, NULL) != OIT_OK)
+        section_count = 0;
+    out->section_count = (int32_t)section_count;
+    out->section_all_parts = local->section_parts == NULL;
+    /* per-part opacity and the parts the sections cut are no parameters: oit_gl_bind_part_alpha */
 }
 
 oit_status oit_gl_check_frame_block(GLuint program, const char *description, oit_error *err)
@@ -88,6 +96,9 @@ oit_status oit_gl_check_frame_block(GLuint program, const char *description, oit
         {"u_distance_mode", OIT_FRAME_DISTANCE_MODE},
         {"u_distance_skip", OIT_FRAME_DISTANCE_SKIP},
         {"u_distance_norm", OIT_FRAME_DISTANCE_NORM},
+        {"u_section_count", OIT_FRAME_SECTION_COUNT},
+        {"u_section_all_parts", OIT_FRAME_SECTION_ALL_PARTS},
+        {"u_section_planes", OIT_FRAME_SECTION_PLANES},
     };
     for (size_t i = 0; i < sizeof members / sizeof members[0]; ++i) {
         GLuint index = GL_INVALID_INDEX;
@@ -111,6 +122,8 @@ static void bind_part_alpha_texture(const oit_scene *scene)
     glBindTexture(GL_TEXTURE_BUFFER, scene->part_alpha_texture);
     glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_LOCAL_PART_TINT);
     glBindTexture(GL_TEXTURE_BUFFER, scene->part_tint_texture);
+    glActiveTexture(GL_TEXTURE0 + OIT_TEXUNIT_LOCAL_PART_SECTION);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->part_section_texture);
     glActiveTexture(GL_TEXTURE0);
 }
 
@@ -149,6 +162,24 @@ static void write_part_tint(const oit_scene *scene, const oit_local_modulation *
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
 }
 
+/* Which parts the sections cut (oit_local_modulation.section_parts): written
+ * only when the frame names parts and has planes (the shaders read it only
+ * then, u_section_all_parts 0); parts past the flags the frame gives are not cut. */
+static void write_part_sections(const oit_scene *scene, const oit_local_modulation *local)
+{
+    if (!scene->part_section_buffer || !local->section_parts || local->section_count == 0)
+        return;
+    glBindBuffer(GL_TEXTURE_BUFFER, scene->part_section_buffer);
+    uint8_t flags[1024];
+    for (uint32_t first = 0; first < scene->part_count; first += 1024) {
+        const uint32_t n = scene->part_count - first < 1024 ? scene->part_count - first : 1024;
+        for (uint32_t i = 0; i < n; ++i)
+            flags[i] = oit_section_cuts_part(local, first + i) ? 1 : 0;
+        glBufferSubData(GL_TEXTURE_BUFFER, (GLintptr)first, (GLsizeiptr)n, flags);
+    }
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+}
+
 /* The one place C hands per-part opacity (and the selection highlight) to the GPU. The buffer is the
  * scene's (allocated once at upload, part_count floats, counted in
  * oit_scene.gpu_bytes), so every algorithm drawing the scene shares it and
@@ -173,6 +204,7 @@ void oit_gl_bind_part_alpha(const oit_scene *scene, const oit_frame_settings *fr
                              GL_RED, GL_FLOAT, &one);
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
     write_part_tint(scene, local);
+    write_part_sections(scene, local);
     bind_part_alpha_texture(scene);
 }
 

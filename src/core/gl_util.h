@@ -175,7 +175,9 @@ typedef struct oit_frame_block {
     int32_t viewport[2], shading, focus_shape;
     float focus_region, contrast;
     int32_t distance_mode, distance_skip;
-    float distance_norm, padding[3];
+    float distance_norm;
+    int32_t section_count, section_all_parts, padding;
+    float section_planes[OIT_SECTIONS_MAX][4];
 } oit_frame_block;
 _Static_assert(offsetof(oit_frame_block, projection) == OIT_FRAME_PROJECTION &&
                    offsetof(oit_frame_block, plane_to_eye) == OIT_FRAME_PLANE_TO_EYE &&
@@ -194,6 +196,9 @@ _Static_assert(offsetof(oit_frame_block, projection) == OIT_FRAME_PROJECTION &&
                    offsetof(oit_frame_block, distance_mode) == OIT_FRAME_DISTANCE_MODE &&
                    offsetof(oit_frame_block, distance_skip) == OIT_FRAME_DISTANCE_SKIP &&
                    offsetof(oit_frame_block, distance_norm) == OIT_FRAME_DISTANCE_NORM &&
+                   offsetof(oit_frame_block, section_count) == OIT_FRAME_SECTION_COUNT &&
+                   offsetof(oit_frame_block, section_all_parts) == OIT_FRAME_SECTION_ALL_PARTS &&
+                   offsetof(oit_frame_block, section_planes) == OIT_FRAME_SECTION_PLANES &&
                    sizeof(oit_frame_block) == OIT_FRAME_BLOCK_BYTES,
                "oit_frame_block differs from oit_shared.h's OIT_FRAME_* offsets");
 /* The block of a frame: its matrices rounded to float once, the inverses and

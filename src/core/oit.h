@@ -803,6 +803,11 @@ typedef struct oit_scene {
      * oit_local_modulation.component_highlight by oit_gl_bind_part_alpha, read
      * through the buffer texture at OIT_TEXUNIT_LOCAL_PART_TINT */
     unsigned part_tint_buffer, part_tint_texture;
+    /* which parts the section planes cut: part_count bytes (1: cut),
+     * rewritten by oit_gl_bind_part_alpha when a frame names parts
+     * (oit_local_modulation.section_parts), read through the buffer texture at
+     * OIT_TEXUNIT_LOCAL_PART_SECTION */
+    unsigned part_section_buffer, part_section_texture;
     uint32_t part_count;
     unsigned triangle_reach_buffer; /* oit_model.triangle_reach, one float per triangle */
     /* oit_model.planes and .triangle_plane, and buffer textures over them

@@ -69,6 +69,13 @@ typedef struct raster_context {
     double inverse_projection[16];
     double eye_plane[4];
     bool use_plane;
+    /* section planes (docs/sections.md): the eye-space planes the GPU gets
+     * (sections.h), the current triangle's cap section (0, or 1 + the
+     * section its provoking vertex caps) and whether they cut its part */
+    float section_planes[OIT_SECTION_PLANES_MAX][4];
+    uint32_t section_count;
+    uint32_t section_cap;
+    bool section_cut;
 } raster_context;
 
 /* The inverse of a column-major 4x4, in double, by Gauss-Jordan elimination

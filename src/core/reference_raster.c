@@ -11,6 +11,7 @@
 
 #include "oit_shared.h" /* constants shared with the shaders: definitions */
 #include "reference_internal.h"
+#include "sections.h"
 
 /* llvmpipe's subpixel precision: 8 bits. */
 #define SUBPIXEL_BITS 8
@@ -218,6 +219,9 @@ oit_status oit_reference_raster_begin(raster_context *ctx, const oit_frame_setti
         return oit_fail(err, OIT_E_INPUT,
                         "reference: the modelview is singular, so focus shapes (model coordinates) "
                         "cannot be placed");
+    oit_status status = oit_section_eye_planes(frame, ctx->section_planes, &ctx->section_count, err);
+    if (status != OIT_OK)
+        return status;
     if (modelview_regular)
         memcpy(ctx->plane_to_eye, ctx->inverse_modelview, sizeof ctx->plane_to_eye);
     else
@@ -316,8 +320,27 @@ static void interpolation_setup(const window_vertex v[3], int64_t snapped_area2,
     }
 }
 
+/* Whether a section plane removes the current triangle's fragment at eye
+ * position eye (float, as the shaders interpolate it): the planes cut its
+ * part and q . (eye, 1) > 0 for a plane q that is not the triangle's own cap
+ * section (common/local_modulation.glsl, oit_section_removed; evaluated here
+ * in double). */
+static bool section_removes(const raster_context *ctx, const float eye[3])
+{
+    if (!ctx->section_cut)
+        return false;
+    for (uint32_t i = 0; i < ctx->section_count; ++i) {
+        const float *q = ctx->section_planes[i];
+        double side = (double)q[0] * eye[0] + (double)q[1] * eye[1] + (double)q[2] * eye[2] + (double)q[3];
+        if (i + 1 != ctx->section_cap && side > 0.0)
+            return true;
+    }
+    return false;
+}
+
 /* Interpolates the eye position and eye normal at pixel (x, y); returns the
- * fragment's opacity after local modulation. (Its depth is canonical_depth's.) */
+ * fragment's opacity after local modulation, 0 where a section plane removes
+ * it. (Its depth is canonical_depth's.) */
 static float fragment_inputs(const raster_context *ctx, int64_t x, int64_t y,
                              const window_vertex v[3], const interpolation_plane *plane,
                              const int64_t edge[3], float eye[3], float normal[3])
@@ -344,6 +367,8 @@ static float fragment_inputs(const raster_context *ctx, int64_t x, int64_t y,
         eye[i] = (float)(p0 * a0->eye[i] + p1 * a1->eye[i] + p2 * a2->eye[i]);
         normal[i] = (float)(p0 * a0->normal[i] + p1 * a1->normal[i] + p2 * a2->normal[i]);
     }
+    if (section_removes(ctx, eye))
+        return 0.0f;
     if (!ctx->per_fragment_alpha)
         return ctx->alpha;
     /* the model position from the (float) eye position, as the shaders do */
@@ -607,6 +632,10 @@ static void rasterize_model_triangle(raster_context *ctx, const oit_model *model
     if (local->component_alpha && ctx->component < local->component_count)
         ctx->part_alpha *= local->component_alpha[ctx->component];
     ctx->alpha = (float)ctx->part_alpha;
+    /* section planes: whether they cut the part, and the cap exemption of
+     * the provoking vertex (oit_model.vertex_section_cap, the GPU's attribute bits) */
+    ctx->section_cut = ctx->section_count > 0 && oit_section_cuts_part(local, ctx->component);
+    ctx->section_cap = model->vertex_section_cap ? model->vertex_section_cap[index[2]] : 0;
     ctx->colour = component->colour;
     /* selection highlight: the material colour mixed towards the highlight
      * colour before shading, as oit_local_tint (common/local_modulation.glsl) */

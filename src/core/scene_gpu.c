@@ -51,6 +51,11 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
                         "model.component_count %u is more than the %d parts whose opacity this GL "
                         "holds in one buffer texture (GL_MAX_TEXTURE_BUFFER_SIZE)",
                         model->component_count, max_texels);
+    if (model->vertex_section_cap && model->component_count > (1u << OIT_COMPONENT_CAP_SHIFT))
+        return oit_fail(err, OIT_E_INPUT,
+                        "model.component_count %u is more than the %u parts a model with section caps "
+                        "can number (the component attribute's low %d bits)",
+                        model->component_count, 1u << OIT_COMPONENT_CAP_SHIFT, OIT_COMPONENT_CAP_SHIFT);
     const size_t vertices = model->vertex_count;
 
     /* Models built in memory may lack welded ids: then every vertex is its own. */
@@ -76,6 +81,22 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
         component_data[i * 4 + 3] = model->components[i].opacity;
     }
 
+    /* Section caps: the component attribute carries 1 + the cap's section
+     * above OIT_COMPONENT_CAP_SHIFT (geometry.vert splits it off), so a cap
+     * fragment is not removed by its own plane (docs/sections.md). */
+    uint32_t *cap_components = NULL;
+    if (model->vertex_section_cap) {
+        cap_components = malloc((vertices ? vertices : 1) * sizeof *cap_components);
+        if (!cap_components) {
+            free(component_data);
+            free(identity_ids);
+            return oit_fail(err, OIT_E_RUNTIME, "out of memory uploading the model");
+        }
+        for (size_t v = 0; v < vertices; ++v)
+            cap_components[v] = model->vertex_component[v] |
+                                (uint32_t)model->vertex_section_cap[v] << OIT_COMPONENT_CAP_SHIFT;
+    }
+
     glGenVertexArrays(1, &scene->vertex_array);
     glBindVertexArray(scene->vertex_array);
     uint64_t bytes = 0;
@@ -83,7 +104,8 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
                                                 vertices * 3 * sizeof(float), 3, false, &bytes);
     scene->vertex_buffers[1] = upload_attribute(OIT_ATTRIB_NORMAL, model->normals,
                                                 vertices * 3 * sizeof(float), 3, false, &bytes);
-    scene->vertex_buffers[2] = upload_attribute(OIT_ATTRIB_COMPONENT, model->vertex_component,
+    scene->vertex_buffers[2] = upload_attribute(OIT_ATTRIB_COMPONENT,
+                                                cap_components ? cap_components : model->vertex_component,
                                                 vertices * sizeof(uint32_t), 1, true, &bytes);
     scene->vertex_buffers[3] = upload_attribute(OIT_ATTRIB_WELDED_ID, welded_ids,
                                                 vertices * sizeof(uint32_t), 1, true, &bytes);
@@ -132,6 +154,19 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
     glBindTexture(GL_TEXTURE_BUFFER, scene->part_tint_texture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, scene->part_tint_buffer);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
+    /* which parts the sections cut, a byte per part, all until a frame names
+     * some (oit_gl_bind_part_alpha) */
+    const uint8_t cut = 1;
+    glGenBuffers(1, &scene->part_section_buffer);
+    glBindBuffer(GL_TEXTURE_BUFFER, scene->part_section_buffer);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)scene->part_count, NULL, GL_DYNAMIC_DRAW);
+    glClearBufferData(GL_TEXTURE_BUFFER, GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &cut);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    bytes += scene->part_count;
+    glGenTextures(1, &scene->part_section_texture);
+    glBindTexture(GL_TEXTURE_BUFFER, scene->part_section_texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, scene->part_section_buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
     /* per triangle its reach (ib's neighbour search), read as a buffer texture */
     glGenBuffers(1, &scene->triangle_reach_buffer);
     glBindBuffer(GL_TEXTURE_BUFFER, scene->triangle_reach_buffer);
@@ -164,6 +199,7 @@ oit_status oit_scene_upload(oit_scene *scene, const oit_model *model, oit_error 
     glBindTexture(GL_TEXTURE_BUFFER, 0);
     free(component_data);
     free(identity_ids);
+    free(cap_components);
 
     scene->has_gpu = true;
     scene->index_count = model->triangle_count * 3;
@@ -185,6 +221,8 @@ void oit_scene_release(oit_scene *scene)
         glDeleteBuffers(1, &scene->part_alpha_buffer);
         glDeleteTextures(1, &scene->part_tint_texture);
         glDeleteBuffers(1, &scene->part_tint_buffer);
+        glDeleteTextures(1, &scene->part_section_texture);
+        glDeleteBuffers(1, &scene->part_section_buffer);
         glDeleteBuffers(1, &scene->triangle_reach_buffer);
         glDeleteTextures(1, &scene->plane_texture);
         glDeleteTextures(1, &scene->triangle_plane_texture);
