@@ -64,6 +64,28 @@ static void print_render_json(FILE *out, const render_options *o, const session 
         json_matrix_rows(out, frame.projection);
         oit_cli_print_sections_json(out, &s->model, &frame.local);
     }
+    /* --explode: the factor, and each part's offset in model units */
+    fprintf(out, ", \"explode\": %.9g", o->explode);
+    if (o->explode != 0.0 && s->offsets) {
+        fputs(", \"parts\": [", out);
+        for (uint32_t c = 0; c < s->model.component_count; ++c) {
+            const float *v = s->offsets + (size_t)c * 3;
+            fprintf(out, "%s{\"name\": ", c ? ", " : "");
+            json_string(out, s->model.components[c].name);
+            fprintf(out, ", \"offset\": [%.9g, %.9g, %.9g]}", v[0], v[1], v[2]);
+        }
+        fputc(']', out);
+    }
+    /* sections: the open parts a section cuts (no cap) */
+    if (s->has_sections) {
+        fputs(", \"open_cut_parts\": [", out);
+        for (uint32_t c = 0, n = 0; s->open_cut && c < s->model.component_count; ++c)
+            if (s->open_cut[c]) {
+                fputs(n++ ? ", " : "", out);
+                json_string(out, s->model.components[c].name);
+            }
+        fputc(']', out);
+    }
     fprintf(out, ", \"gpu_ms\": %.4f, \"cpu_ms\": %.4f", stages_total(st), st->cpu_ms);
     fprintf(out, ", \"stages\": [");
     for (int i = 0; i < st->stage_count; ++i) {
@@ -122,6 +144,10 @@ static void print_render_help(FILE *out)
             "  --shading MODE         flat | headlight (default headlight: two-sided diffuse from the eye)\n"
             "  --background R,G,B     each in [0, 1] (default 1,1,1)\n"
             "  --backend NAME         egl | osmesa (default egl)\n"
+            "  --explode F            exploded view, F in [0, 10] (default 0: the assembly as built): each\n"
+            "                         part moves away from its parent's centre (the model's, or its node's\n"
+            "                         in an assembly tree) by F times its centre's distance from it;\n"
+            "                         --json adds each part's \"offset\"\n"
             "  --tessellation T       STEP and IGES: coarse | normal | fine (linear deflection 1/250,\n"
             "                         1/1000, 1/4000 of the model's diagonal; default normal) or a\n"
             "                         linear deflection in millimetres\n",
@@ -419,9 +445,29 @@ static int command_info(int argc, char **argv)
             printf(", \"path\": ");
             json_string(stdout, path);
             printf(", \"colour\": [%.4g, %.4g, %.4g], \"opacity\": %.4g, \"triangles\": %u, "
-                   "\"longest_edge\": %.9g, \"closed\": %s}",
+                   "\"longest_edge\": %.9g, \"closed\": %s",
                    p->colour[0], p->colour[1], p->colour[2], p->opacity, p->triangle_count,
                    p->longest_edge, p->closed ? "true" : "false");
+            /* its bounds over the vertices of its triangles, in file coordinates
+             * and relative to the centre ("centre" above), as the model keeps
+             * them and the exploded view measures them */
+            float part_lo[3] = {INFINITY, INFINITY, INFINITY}, part_hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+            for (uint64_t i = (uint64_t)p->first_triangle * 3;
+                 i < ((uint64_t)p->first_triangle + p->triangle_count) * 3 && i < (uint64_t)m.triangle_count * 3;
+                 ++i)
+                for (int k = 0; k < 3; ++k) {
+                    float v = m.positions[(size_t)m.indices[i] * 3 + k];
+                    part_lo[k] = v < part_lo[k] ? v : part_lo[k];
+                    part_hi[k] = v > part_hi[k] ? v : part_hi[k];
+                }
+            if (p->triangle_count)
+                printf(", \"bounds_min\": [%.9g, %.9g, %.9g], \"bounds_max\": [%.9g, %.9g, %.9g]",
+                       m.origin[0] + part_lo[0], m.origin[1] + part_lo[1], m.origin[2] + part_lo[2],
+                       m.origin[0] + part_hi[0], m.origin[1] + part_hi[1], m.origin[2] + part_hi[2]);
+            if (p->triangle_count)
+                printf(", \"relative_bounds_min\": [%.9g, %.9g, %.9g], \"relative_bounds_max\": [%.9g, %.9g, %.9g]",
+                       part_lo[0], part_lo[1], part_lo[2], part_hi[0], part_hi[1], part_hi[2]);
+            putchar('}');
         }
         printf("]}\n");
     } else {

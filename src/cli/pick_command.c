@@ -26,7 +26,8 @@ static void print_pick_help(FILE *out)
           "  --json                 print {\"part\", \"path\", \"index\", \"contribution\", \"depth\", \"point\", ...}\n"
           "The camera and opacity options are oit render's: --size, --modelview, --projection, --orbit,\n"
           "--alpha, --component-alpha, --hide, --focus-*, --section, --section-parts, --caps,\n"
-          "--tessellation (oit render --help); a fragment a section plane removes is never picked. A part's\n"
+          "--tessellation, --explode (oit render --help): the pick is on the model as drawn, its parts\n"
+          "moved by --explode; a fragment a section plane removes is never picked. A part's\n"
           "contribution is the sum over its fragments at the pixel centre of alpha * T (T: the\n"
           "transmittance in front), in the reference's exact order; depth is the canonical depth of its\n"
           "nearest fragment there (0 near plane .. 1 far plane), point that fragment's position in the\n"
@@ -129,6 +130,9 @@ int command_pick(int argc, char **argv)
     status = session_open_import(&s, o.model_path, o.backend, o.config.debug, &o.import, &err);
     oit_frame_settings frame;
     oit_pick pick = {0};
+    /* the model as drawn: picking follows the exploded parts (and the caps) */
+    if (status == OIT_OK)
+        status = session_prepare_model(&s, &o, &err);
     if (status == OIT_OK)
         status = render_frame_settings(&s, &o, &frame, &err);
     double start = wall_ms();

@@ -319,6 +319,15 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
             return -1;
         }
         o->frames = (int)frames;
+    } else if (strcmp(flag, "--explode") == 0) {
+        NEED_VALUE();
+        double factor;
+        if (!parse_double(value, &factor) || !(factor >= 0.0 && factor <= OIT_EXPLODE_MAX)) {
+            *status = oit_fail(err, OIT_E_INPUT, "--explode must be a number in [0, %g], got '%s'",
+                               OIT_EXPLODE_MAX, value);
+            return -1;
+        }
+        o->explode = factor;
     } else if (strcmp(flag, "--json") == 0) {
         o->json = true;
     } else if (strcmp(flag, "--debug") == 0) {
@@ -373,8 +382,98 @@ oit_status session_need_gl(session *s, oit_error *err)
     return status;
 }
 
+/* Back to the model as loaded: the derived model, offsets and open parts go. */
+static void session_drop_derived(session *s)
+{
+    if (s->derived) {
+        if (s->gpu_scene_uploaded) {
+            oit_scene_release(&s->gpu_scene);
+            s->gpu_scene_uploaded = false;
+        }
+        oit_model_free(&s->model);
+        s->model = s->source_model;
+        memset(&s->source_model, 0, sizeof s->source_model);
+        s->derived = false;
+        oit_scene_cpu(&s->cpu_scene, &s->model);
+    }
+    free(s->offsets);
+    s->offsets = NULL;
+    free(s->open_cut);
+    s->open_cut = NULL;
+    s->has_sections = false;
+    s->prepared = false;
+}
+
+oit_status session_prepare_model(session *s, const render_options *o, oit_error *err)
+{
+    if (s->prepared && s->prepared_explode == o->explode)
+        return OIT_OK;
+    session_drop_derived(s);
+    const oit_model *model = &s->model;
+    uint32_t parts = model->component_count;
+    oit_status status = OIT_OK;
+    if (o->explode != 0.0 && parts) {
+        s->offsets = malloc((size_t)parts * 3 * sizeof *s->offsets);
+        if (!s->offsets)
+            return oit_fail(err, OIT_E_RUNTIME, "out of memory for %u parts' offsets", parts);
+        status = oit_explode_offsets(model, o->explode, s->offsets, err);
+    }
+    /* the sections and caps, as the frame will have them (names resolve the
+     * same on the derived model: it keeps the parts) */
+    oit_local_modulation local;
+    if (status == OIT_OK)
+        status = oit_cli_resolve_local_options(model, &local, err);
+    if (status != OIT_OK) {
+        session_drop_derived(s);
+        return status;
+    }
+    s->has_sections = local.section_count > 0;
+    bool needed = oit_model_derive_needed(model, s->offsets, s->offsets ? parts : 0, &local);
+    /* open parts a section cuts are named even when no cap is made */
+    bool open_part = false;
+    for (uint32_t c = 0; local.section_count > 0 && !local.no_caps && c < parts; ++c)
+        open_part = open_part || !model->components[c].closed;
+    if (needed || open_part) {
+        oit_model derived;
+        s->open_cut = calloc(parts ? parts : 1, 1);
+        status = s->open_cut ? oit_model_derive(model, s->offsets, s->offsets ? parts : 0, &local, &derived,
+                                                s->open_cut, err)
+                             : oit_fail(err, OIT_E_RUNTIME, "out of memory for %u parts", parts);
+        if (status != OIT_OK) {
+            session_drop_derived(s);
+            return status;
+        }
+        if (needed) {
+            if (s->gpu_scene_uploaded) {
+                oit_scene_release(&s->gpu_scene);
+                s->gpu_scene_uploaded = false;
+            }
+            s->source_model = s->model;
+            s->model = derived;
+            s->derived = true;
+            oit_scene_cpu(&s->cpu_scene, &s->model);
+        } else
+            oit_model_free(&derived);
+        /* one line naming the open parts a section cuts */
+        bool named = false;
+        for (uint32_t c = 0; c < parts; ++c) {
+            if (!s->open_cut[c])
+                continue;
+            fprintf(stderr, "%s%s", named ? ", " : "oit: warning: section cuts open parts (no cap): ",
+                    s->model.components[c].name);
+            named = true;
+        }
+        if (named)
+            fputc('\n', stderr);
+    }
+    s->prepared = true;
+    s->prepared_explode = o->explode;
+    return OIT_OK;
+}
+
 oit_status session_set_model(session *s, const char *model_path, oit_error *err)
 {
+    session_drop_derived(s);
     if (s->gpu_scene_uploaded) {
         oit_scene_release(&s->gpu_scene);
         s->gpu_scene_uploaded = false;
@@ -403,6 +502,10 @@ void session_close(session *s)
         oit_gl_context_destroy(s->gl);
     if (s->model_loaded)
         oit_model_free(&s->model);
+    if (s->derived)
+        oit_model_free(&s->source_model);
+    free(s->offsets);
+    free(s->open_cut);
     memset(s, 0, sizeof *s);
 }
 
@@ -476,7 +579,9 @@ oit_status render_setup_create(session *s, const render_options *o, render_setup
 {
     const oit_algorithm_ops *ops = o->algorithm;
     memset(setup, 0, sizeof *setup);
-    oit_status status = OIT_OK;
+    oit_status status = session_prepare_model(s, o, err);
+    if (status != OIT_OK)
+        return status;
     if (ops->uses_gl) {
         status = session_need_gl(s, err);
         if (status != OIT_OK)
@@ -504,8 +609,8 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
     /* --json: what GL holds before the algorithm exists (the scene), to
      * count what the algorithm allocated independently of its figures */
     int64_t gl_bytes_before = -1;
-    oit_status status = OIT_OK;
-    if (o->json && ops->uses_gl) {
+    oit_status status = session_prepare_model(s, o, err);
+    if (status == OIT_OK && o->json && ops->uses_gl) {
         status = session_need_gl(s, err);
         if (status == OIT_OK)
             gl_bytes_before = oit_gl_enumerate_allocated_bytes();

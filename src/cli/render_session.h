@@ -54,6 +54,7 @@ typedef struct render_options {
     int frames;
     bool json;
     oit_import_options import; /* --tessellation (STEP, IGES) */
+    double explode;            /* --explode F, 0..OIT_EXPLODE_MAX (0: the assembly as built) */
 } render_options;
 
 void render_options_defaults(render_options *o);
@@ -76,6 +77,16 @@ typedef struct session {
     oit_scene cpu_scene;
     char shader_dir[4096];
     oit_import_options import; /* how session_set_model imports */
+    /* The model as drawn (session_prepare_model): with --explode or section
+     * caps, model is oit_model_derive's and source_model the model as loaded;
+     * otherwise model is the model as loaded and source_model unused. */
+    oit_model source_model;
+    bool derived;
+    bool prepared;
+    double prepared_explode;
+    float *offsets;    /* 3 per part (--explode), NULL when 0 */
+    uint8_t *open_cut; /* 1 per part a section cuts that is open (no cap), NULL when none */
+    bool has_sections; /* the frame had sections: --json lists open_cut_parts */
 } session;
 
 oit_status session_open(session *s, const char *model_path, oit_backend backend, bool debug,
@@ -87,6 +98,13 @@ oit_status session_open_import(session *s, const char *model_path, oit_backend b
  * each model uploaded once). */
 oit_status session_set_model(session *s, const char *model_path, oit_error *err);
 oit_status session_need_gl(session *s, oit_error *err);
+/* Makes s->model the model as drawn for o (--explode's offsets, then the
+ * sections' caps through oit_model_derive, when oit_model_derive_needed says
+ * so; the model as loaded otherwise, byte for byte), before the GPU gets it.
+ * Prints one warning naming the open parts a section cuts (no cap). Called
+ * by render_setup_create and render_frames; again with another --explode,
+ * it starts from the model as loaded. */
+oit_status session_prepare_model(session *s, const render_options *o, oit_error *err);
 void session_close(session *s);
 
 double median(double *values, int count); /* sorts values */
