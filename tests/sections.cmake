@@ -49,3 +49,12 @@ endforeach()
 add_test(NAME sections_checks
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sections_checks.sh ${OIT} ${MODEL_gearbox} ${WORK}/sections_checks)
 set_tests_properties(sections_checks PROPERTIES FIXTURES_REQUIRED scenes)
+# The caps' exemption from their own plane, through the core (tests/section_cap_rule.c):
+# a square marked a cap of the plane that would remove it stays, in dp, ll, ib,
+# the reference and the pick alike, and another plane still removes it.
+file(WRITE ${WORK}/section_cap.obj
+  "o front\nv -1 -1 0.01\nv 1 -1 0.01\nv 1 1 0.01\nv -1 1 0.01\nf 1 2 3\nf 1 3 4\n"
+  "o back\nv -1.5 -1.5 -0.5\nv 1.5 -1.5 -0.5\nv 1.5 1.5 -0.5\nv -1.5 1.5 -0.5\nf 5 6 7\nf 5 7 8\n")
+add_executable(section_cap_rule ${CMAKE_CURRENT_SOURCE_DIR}/section_cap_rule.c)
+target_link_libraries(section_cap_rule PRIVATE oit_core)
+add_test(NAME sections_cap_rule COMMAND $<TARGET_FILE:section_cap_rule> ${WORK}/section_cap.obj)

@@ -222,6 +222,9 @@ oit_status oit_reference_raster_begin(raster_context *ctx, const oit_frame_setti
     oit_status status = oit_section_eye_planes(frame, ctx->section_planes, &ctx->section_count, err);
     if (status != OIT_OK)
         return status;
+    /* sections make the opacity per fragment too: the counting pass must skip
+     * what they remove, as the storing pass does */
+    ctx->per_fragment_alpha |= ctx->section_count > 0;
     if (modelview_regular)
         memcpy(ctx->plane_to_eye, ctx->inverse_modelview, sizeof ctx->plane_to_eye);
     else
@@ -369,7 +372,7 @@ static float fragment_inputs(const raster_context *ctx, int64_t x, int64_t y,
     }
     if (section_removes(ctx, eye))
         return 0.0f;
-    if (!ctx->per_fragment_alpha)
+    if (ctx->frame->local.focus_shape == OIT_FOCUS_NONE)
         return ctx->alpha;
     /* the model position from the (float) eye position, as the shaders do */
     const double *m = ctx->inverse_modelview;
