@@ -92,7 +92,8 @@ oit_status scene_add(scene_list *list, const render_options *base, int token_cou
                             scene->name, tokens[t]);
         /* the local modulation flags keep process-wide state: they would pile up across scenes */
         static const char *const process_wide[] = {"--component-alpha", "--hide", "--focus-point",
-                                                   "--focus-plane", "--focus-box", "--contrast"};
+                                                   "--focus-plane", "--focus-box", "--contrast",
+                                                   "--section", "--section-parts", "--caps"};
         for (size_t k = 0; k < sizeof process_wide / sizeof process_wide[0]; ++k)
             if (strcmp(tokens[t], process_wide[k]) == 0)
                 return oit_fail(err, OIT_E_INPUT,
