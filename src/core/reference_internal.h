@@ -70,7 +70,7 @@ typedef struct raster_context {
     double eye_plane[4];
     bool use_plane;
     /* section planes (docs/sections.md): the eye-space planes the GPU gets
-     * (sections.h), the current triangle's cap section (0, or 1 + the
+     * (section_eye_planes), the current triangle's cap section (0, or 1 + the
      * section its provoking vertex caps) and whether they cut its part */
     float section_planes[OIT_SECTION_PLANES_MAX][4];
     uint32_t section_count;

@@ -11,7 +11,6 @@
 
 #include "oit_shared.h" /* constants shared with the shaders: definitions */
 #include "reference_internal.h"
-#include "sections.h"
 
 /* llvmpipe's subpixel precision: 8 bits. */
 #define SUBPIXEL_BITS 8
@@ -123,6 +122,50 @@ static double focus_alpha(const raster_context *ctx, const double model_position
     return ctx->part_alpha * (x > 1.0 ? 1.0 : (x > 0.0 ? x : 0.0));
 }
 
+/* The sections as eye-space planes q (fragment at eye position e removed
+ * where q . (e, 1) > 0): q = (n, -d) times the inverse modelview, with the
+ * oracle's own inverse, in double, rounded to float once as the GPU's are
+ * (docs/sections.md). frame is relative: its sections were moved to the
+ * model's origin and checked by oit_frame_relative. */
+static oit_status section_eye_planes(const oit_frame_settings *frame, bool modelview_regular,
+                                     raster_context *ctx, oit_error *err)
+{
+    const oit_local_modulation *local = &frame->local;
+    ctx->section_count = 0;
+    if (local->section_count == 0)
+        return OIT_OK;
+    if (!modelview_regular)
+        return oit_fail(err, OIT_E_INPUT,
+                        "reference: the modelview is singular, so section planes (model "
+                        "coordinates) cannot be placed");
+    uint32_t count = local->section_count < OIT_SECTION_PLANES_MAX ? local->section_count
+                                                                   : OIT_SECTION_PLANES_MAX;
+    for (uint32_t i = 0; i < count; ++i) {
+        const double *s = local->sections[i];
+        const double row[4] = {s[0], s[1], s[2], -s[3]};
+        for (int col = 0; col < 4; ++col) {
+            double q = 0.0;
+            for (int k = 0; k < 4; ++k)
+                q += row[k] * ctx->inverse_modelview[col * 4 + k];
+            ctx->section_planes[i][col] = (float)q;
+            if (!isfinite(ctx->section_planes[i][col]))
+                return oit_fail(err, OIT_E_INPUT,
+                                "reference: section plane %u is too large for single precision in eye space",
+                                i + 1);
+        }
+    }
+    ctx->section_count = count;
+    return OIT_OK;
+}
+
+/* Whether the sections cut part component (section_parts; NULL: every part). */
+static bool section_cuts_part(const oit_local_modulation *local, uint32_t component)
+{
+    if (!local->section_parts)
+        return true;
+    return component < local->section_parts_count && local->section_parts[component] != 0;
+}
+
 /* The shaded, contrasted colour (docs/cli.md, --shading; docs/modulation.md,
  * --contrast): flat is the material colour; headlight is colour * (ambient +
  * (1 - ambient) |n . v|) with n the normalised eye normal and v the unit vector
@@ -219,7 +262,7 @@ oit_status oit_reference_raster_begin(raster_context *ctx, const oit_frame_setti
         return oit_fail(err, OIT_E_INPUT,
                         "reference: the modelview is singular, so focus shapes (model coordinates) "
                         "cannot be placed");
-    oit_status status = oit_section_eye_planes(frame, ctx->section_planes, &ctx->section_count, err);
+    oit_status status = section_eye_planes(frame, modelview_regular, ctx, err);
     if (status != OIT_OK)
         return status;
     /* sections make the opacity per fragment too: the counting pass must skip
@@ -637,7 +680,7 @@ static void rasterize_model_triangle(raster_context *ctx, const oit_model *model
     ctx->alpha = (float)ctx->part_alpha;
     /* section planes: whether they cut the part, and the cap exemption of
      * the provoking vertex (oit_model.vertex_section_cap, the GPU's attribute bits) */
-    ctx->section_cut = ctx->section_count > 0 && oit_section_cuts_part(local, ctx->component);
+    ctx->section_cut = ctx->section_count > 0 && section_cuts_part(local, ctx->component);
     ctx->section_cap = model->vertex_section_cap ? model->vertex_section_cap[index[2]] : 0;
     ctx->colour = component->colour;
     /* selection highlight: the material colour mixed towards the highlight
