@@ -222,7 +222,7 @@ QTabWidget *MainWindow::build_tabs()
     connect(view_, &RenderView::wipe_moved, compare_panel_, [this] { compare_panel_->sync(); });
 
     tabs_ = new QTabWidget;
-    tabs_->setTabPosition(QTabWidget::West); // seven tabs fit the narrow panel's height, not its width
+    tabs_->setTabPosition(QTabWidget::West); // eight tabs fit the narrow panel's height, not its width
     tabs_->addTab(scrolled(algorithm_panel_), "Algorithm");
     tabs_->addTab(scrolled(opacity_panel_), "Opacity");
     tabs_->addTab(parts_panel_, "Parts");
