@@ -73,3 +73,9 @@ if(TARGET wm_ping)
             $<TARGET_FILE:wm_ping> ${PROJECT_SOURCE_DIR}/shaders ${APP_WORK}/startup)
   set_tests_properties(app_startup PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 300)
 endif()
+
+# Sections and the exploded view (issue 28; tests/app/test_sections.cpp): add,
+# flip, slide, align, caps, parts, explode against the frame and Copy as
+# command; presets; the view's drag handle as one undo step; a few seconds.
+add_test(NAME app_sections COMMAND ${APP_XVFB} $<TARGET_FILE:test_sections>)
+set_tests_properties(app_sections PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)

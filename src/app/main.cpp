@@ -64,7 +64,7 @@ int main(int argc, char **argv)
                                         "MS");
     QCommandLineOption fresh("fresh", "ignore the saved settings and last model (implied by --screenshot)");
     QCommandLineOption tab("tab",
-                           "show this tab of the settings panel: algorithm, opacity, parts, camera, views, "
+                           "show this tab of the settings panel: algorithm, opacity, parts, camera, views, sections, "
                            "stats, compare",
                            "NAME");
     QCommandLineOption select("select",
@@ -146,7 +146,7 @@ int main(int argc, char **argv)
     if (parser.isSet(algorithm))
         window.set_algorithm(parser.value(algorithm));
     if (parser.isSet(tab) && !window.show_tab(parser.value(tab)))
-        return fail("--tab must be algorithm, opacity, parts, camera, views, stats or compare, got '" +
+        return fail("--tab must be algorithm, opacity, parts, camera, views, sections, stats or compare, got '" +
                     parser.value(tab) + "'");
     window.show();
     if (view_size.isValid()) {

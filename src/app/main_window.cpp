@@ -8,6 +8,8 @@
 #include "parts_panel.h"
 #include "pick.h"
 #include "screen_fit.h"
+#include "section_overlay.h"
+#include "sections_panel.h"
 #include "stats_panel.h"
 #include "views_panel.h"
 
@@ -182,6 +184,14 @@ QTabWidget *MainWindow::build_tabs()
     views_panel_ = new ViewsPanel(*settings_, capabilities_);
     stats_panel_ = new StatsPanel;
     compare_panel_ = new ComparePanel(settings_->render_settings());
+    // sections and the exploded view (issue 28): the model as drawn frames new
+    // planes and the offset slider; "cut only the selected parts" takes the Parts tab's selection
+    sections_panel_ = new SectionsPanel(*settings_);
+    sections_panel_->drawn_model = [this] { return view_ ? view_->drawn_model() : nullptr; };
+    sections_panel_->selected_parts = [this] { return parts_panel_->selected_parts(); };
+    connect(sections_panel_, &SectionsPanel::active_changed, view_, &RenderView::set_active_section);
+    connect(view_, &RenderView::section_dragged, sections_panel_, [this] { sections_panel_->sync(); });
+    connect(view_, &RenderView::open_cut_changed, this, &MainWindow::say_open_cut);
 
     for (SettingsPanel *panel : settings_panels()) {
         connect(panel, &SettingsPanel::edited, this, &MainWindow::render_now);
@@ -212,20 +222,21 @@ QTabWidget *MainWindow::build_tabs()
     connect(view_, &RenderView::wipe_moved, compare_panel_, [this] { compare_panel_->sync(); });
 
     tabs_ = new QTabWidget;
-    tabs_->setTabPosition(QTabWidget::West); // seven tabs fit the narrow panel's height, not its width
+    tabs_->setTabPosition(QTabWidget::West); // eight tabs fit the narrow panel's height, not its width
     tabs_->addTab(scrolled(algorithm_panel_), "Algorithm");
     tabs_->addTab(scrolled(opacity_panel_), "Opacity");
     tabs_->addTab(parts_panel_, "Parts");
     tabs_->addTab(scrolled(camera_panel_), "Camera");
     tabs_->addTab(scrolled(views_panel_), "Views");
+    tabs_->addTab(scrolled(sections_panel_), "Sections");
     tabs_->addTab(stats_panel_, "Stats");
     tabs_->addTab(scrolled(compare_panel_), "Compare");
     return tabs_;
 }
 
-std::array<SettingsPanel *, 4> MainWindow::settings_panels() const
+std::array<SettingsPanel *, 5> MainWindow::settings_panels() const
 {
-    return {algorithm_panel_, opacity_panel_, camera_panel_, views_panel_};
+    return {algorithm_panel_, opacity_panel_, camera_panel_, views_panel_, sections_panel_};
 }
 
 void MainWindow::closeEvent(QCloseEvent *event)
@@ -472,6 +483,10 @@ void MainWindow::pick_at(const QPoint &pixel, bool next_contributor)
 {
     if (!model_)
         return;
+    if (sections_panel_->picking_face()) {
+        pick_section_face(pixel);
+        return;
+    }
     std::vector<float> storage;
     oit_frame_settings frame = view_->current_frame(storage);
     const RenderSettings &s = settings_->render_settings();
@@ -491,7 +506,9 @@ void MainWindow::pick_at(const QPoint &pixel, bool next_contributor)
     int rank = again ? last_pick_rank_ + 1 : next_contributor ? 2 : 1;
     last_pick_camera_ = camera;
     std::string error;
-    ContributorPick hit = pick_contributor(*model_, frame, at.x(), at.y(), rank, error);
+    // the model as drawn: a click picks a part where it was moved to, never where the sections removed it
+    std::shared_ptr<const oit_model> drawn = view_->drawn_model_pointer();
+    ContributorPick hit = pick_contributor(*drawn, frame, at.x(), at.y(), rank, error);
     last_pick_pixel_ = at;
     last_pick_rank_ = hit.rank;
     if (!error.empty()) {
@@ -513,6 +530,66 @@ void MainWindow::pick_at(const QPoint &pixel, bool next_contributor)
                                .arg(hit.rank)
                                .arg(hit.parts)
                                .arg(hit.parts > 1 ? " (click again: the next)" : ""));
+}
+
+// ------------------------------------------------------- sections (issue 28)
+
+void MainWindow::pick_section_face(const QPoint &pixel)
+{
+    sections_panel_->stop_picking_face();
+    std::vector<float> storage;
+    oit_frame_settings frame = view_->current_frame(storage);
+    const RenderSettings &s = settings_->render_settings();
+    bool right_half = s.split == SplitMode::SideBySide && pixel.x() >= frame.width;
+    QPoint at(right_half ? pixel.x() - frame.width : pixel.x(), pixel.y());
+    std::shared_ptr<const oit_model> drawn = view_->drawn_model_pointer();
+    std::string error;
+    ContributorPick hit = pick_contributor(*drawn, frame, at.x(), at.y(), 1, error);
+    if (!error.empty() || hit.component < 0 || hit.triangle < 0 || uint32_t(hit.triangle) >= drawn->triangle_count) {
+        status_label_->setText(error.empty() ? QString("pick face: nothing under the pointer")
+                                             : QString::fromStdString("pick face: " + error));
+        return;
+    }
+    // the face's normal (its triangle's), turned towards the eye: the plane removes what is in front of it
+    const uint32_t *index = drawn->indices + size_t(hit.triangle) * 3;
+    glm::dvec3 v[3];
+    for (int k = 0; k < 3; ++k) {
+        const float *p = drawn->positions + size_t(index[k]) * 3;
+        v[k] = glm::dvec3(p[0], p[1], p[2]);
+    }
+    glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+    if (!(glm::length(n) > 0.0)) {
+        status_label_->setText("pick face: the triangle under the pointer has no area");
+        return;
+    }
+    n = glm::normalize(n);
+    glm::dvec3 point(hit.point[0], hit.point[1], hit.point[2]);
+    if (glm::dot(n, settings_->camera().eye - point) < 0.0)
+        n = -n;
+    const double normal[3] = {n.x, n.y, n.z}, where[3] = {point.x, point.y, point.z};
+    sections_panel_->set_plane(where, normal);
+    char path[1024];
+    oit_model_component_path(drawn.get(), uint32_t(hit.component), path, sizeof path);
+    status_label_->setText(QString("section plane on a face of %1").arg(QString::fromUtf8(path)));
+}
+
+void MainWindow::say_open_cut(const std::vector<uint32_t> &parts)
+{
+    if (parts.empty() || !model_)
+        return;
+    QStringList names;
+    char path[1024];
+    for (uint32_t part : parts) {
+        if (part >= model_->component_count)
+            continue;
+        if (names.size() == 20) {
+            names << QString("and %1 more").arg(parts.size() - 20);
+            break;
+        }
+        oit_model_component_path(model_.get(), part, path, sizeof path);
+        names << QString::fromUtf8(path);
+    }
+    log_message("sections", "section cuts open parts (no cap): " + names.join(", "));
 }
 
 // ----------------------------------------------- status, progress, messages
@@ -658,6 +735,7 @@ void MainWindow::load_finished(ModelPointer model, const QString &path)
                              model_.get(), preset_error)) {
             settings.part_alpha = s.part_alpha;
             settings.part_visible = s.part_visible;
+            settings.section_parts = s.section_parts; // names, matched against this model
             // a camera saved with another model would show nothing useful
             if (has_camera && pending_preset_name_ != "saved settings")
                 camera = preset_camera;

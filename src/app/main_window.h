@@ -38,6 +38,7 @@ class CameraPanel;
 class ComparePanel;
 class OpacityPanel;
 class PartsPanel;
+class SectionsPanel;
 class SettingsPanel;
 class StatsPanel;
 class ViewsPanel;
@@ -117,6 +118,8 @@ public:
     void set_part_visible(int index, bool visible);
     void set_part_alpha(int index, float alpha);
     PartsPanel *parts_panel() const { return parts_panel_; }
+    // The Sections tab (issue 28): planes, caps, the parts cut, the explode factor.
+    SectionsPanel *sections_panel() const { return sections_panel_; }
     // Turn the camera's target to these parts' bounds and fit them in the view.
     void frame_parts(const std::vector<int> &parts);
     // Select the part that adds most to a view pixel's colour (a click in the
@@ -179,7 +182,12 @@ private:
     // The settings panel's tabs, wired to the settings model.
     QTabWidget *build_tabs();
     // The tabs whose controls are bound to the settings (settings_panel.h).
-    std::array<SettingsPanel *, 4> settings_panels() const;
+    std::array<SettingsPanel *, 5> settings_panels() const;
+    // Sections (issue 28): a click in the view while the Sections tab's "Pick
+    // face" is on puts the active plane on the face under it, facing the eye.
+    void pick_section_face(const QPoint &pixel);
+    // The Messages name the open parts the sections cut (they get no cap).
+    void say_open_cut(const std::vector<uint32_t> &parts);
     void update_stats();
     void load_finished(ModelPointer model, const QString &path);
     void load_failed(const QString &message);
@@ -229,6 +237,7 @@ private:
     ViewsPanel *views_panel_ = nullptr;
     StatsPanel *stats_panel_ = nullptr;
     ComparePanel *compare_panel_ = nullptr;
+    SectionsPanel *sections_panel_ = nullptr;
 
     QProgressBar *progress_ = nullptr;
     QLabel *progress_label_ = nullptr;

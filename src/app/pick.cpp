@@ -158,6 +158,7 @@ ContributorPick pick_contributor(const oit_model &model, const oit_frame_setting
         result.component = int(part.component);
         result.contribution = part.contribution;
         result.depth = part.depth;
+        result.triangle = int(part.triangle);
         for (int k = 0; k < 3; ++k)
             result.point[k] = part.point[k];
     }

@@ -44,6 +44,7 @@ struct ContributorPick {
     double contribution = 0.0;
     double depth = 0.0;
     double point[3] = {0.0, 0.0, 0.0}; // file coordinates
+    int triangle = -1; // that fragment's triangle
 };
 ContributorPick pick_contributor(const oit_model &model, const oit_frame_settings &frame, int x, int y, int rank,
                                  std::string &error);

@@ -2,17 +2,20 @@
 #include "render_view.h"
 #include "error_legend.h"
 #include "heatmap_legend.h"
+#include "section_overlay.h"
 #include "split_view.h"
 
 #include <QCoreApplication>
 #include <QEventLoop>
 #include <QKeyEvent>
+#include <QLineF>
 #include <QMouseEvent>
 #include <QPainter>
 #include <QTimer>
 #include <QWheelEvent>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace {
@@ -128,6 +131,8 @@ RenderView::~RenderView()
 void RenderView::set_model(std::shared_ptr<const oit_model> model)
 {
     model_ = std::move(model);
+    drawn_model_.reset(); // the last model's
+    open_cut_.clear();
     highlight_.clear(); // the parts were the last model's
     last_full_ms_ = -1.0; // a new model: its cost is unknown
     full_ms_.clear();
@@ -257,6 +262,11 @@ FrameJob RenderView::make_job(int width, int height, int coarse_scale) const
     if (settings().split != SplitMode::Off)
         job.algorithm_b = settings().split_algorithm;
     job.error_view = settings().error_view;
+    job.explode = settings().explode; // the model as drawn (render_worker.h)
+    if (job.frame.local.section_parts)
+        job.section_parts.assign(job.frame.local.section_parts,
+                                 job.frame.local.section_parts + job.frame.local.section_parts_count);
+    job.frame.local.section_parts = nullptr; // the worker points it at its copy
     return job;
 }
 
@@ -282,6 +292,7 @@ void RenderView::request_frame(bool interactive)
     FrameJob full = make_job(size.width(), size.height(), 1);
     full.frame.local.component_alpha = full.component_alpha.empty() ? nullptr : full.component_alpha.data();
     std::string view_key = frame_key(full.frame);
+    view_key += "|explode " + std::to_string(full.explode); // the model as drawn changes the view
     std::string key = full.algorithm + "|" + full.algorithm_b + "|" + char('0' + full.error_view) + "|" +
                       config_key(full.config) + view_key;
     if (interactive && key == requested_key_) {
@@ -384,6 +395,12 @@ void RenderView::frame_done(FrameResultPointer result)
     last_result_ = result;
     shown_ = result->image;
     shown_result_ = result;
+    if (result->drawn_model)
+        drawn_model_ = result->drawn_model;
+    if (result->open_cut != open_cut_) {
+        open_cut_ = result->open_cut;
+        emit open_cut_changed(open_cut_);
+    }
     update_overlays();
     QStringList left_out;
     for (const QString &message : result->left_out)
@@ -535,6 +552,7 @@ void RenderView::paintEvent(QPaintEvent *)
             painter.drawImage(rect(), shown);
         }
     }
+    paint_section(painter);
     QString text;
     if (!startup_error_.empty())
         text = QString::fromStdString(startup_error_);
@@ -577,6 +595,15 @@ void RenderView::mousePressEvent(QMouseEvent *event)
     dragged_ = false;
     buttons_ = event->buttons();
     setFocus();
+    QPointF handle;
+    if (event->button() == Qt::LeftButton && section_handle(handle) &&
+        QLineF(handle, QPointF(event->pos())).length() <= 10.0) {
+        // the active section's handle: the drag moves the plane, one undo step
+        dragging_section_ = true;
+        section_press_ = event->pos();
+        section_press_d_ = settings().sections[size_t(active_section_)].d;
+        settings_.close_step();
+    }
 }
 
 void RenderView::mouseMoveEvent(QMouseEvent *event)
@@ -598,6 +625,31 @@ void RenderView::mouseMoveEvent(QMouseEvent *event)
     }
     if (!model_ || buttons_ == Qt::NoButton)
         return;
+    if (dragging_section_) {
+        double mv[16], proj[16];
+        QSize size;
+        std::vector<SectionPlane> &sections = settings_.render_settings().sections;
+        if (active_section_ < 0 || size_t(active_section_) >= sections.size() || !view_matrices(mv, proj, size))
+            return;
+        SectionPlane &plane = sections[size_t(active_section_)];
+        double box_min[3], box_max[3];
+        section_overlay::model_box(*drawn_model(), box_min, box_max);
+        glm::dvec3 centre = glm::dvec3(box_min[0] + box_max[0], box_min[1] + box_max[1], box_min[2] + box_max[2]) * 0.5;
+        centre = section_overlay::nearest_on_plane(plane.normal, section_press_d_, centre);
+        double scale = glm::length(glm::dvec3(box_max[0] - box_min[0], box_max[1] - box_min[1],
+                                              box_max[2] - box_min[2])) * 0.25;
+        qreal ratio = devicePixelRatioF();
+        QPointF delta = QPointF(event->pos() - section_press_) * ratio;
+        double low, high;
+        section_overlay::offset_range(plane.normal, box_min, box_max, low, high);
+        double d = section_overlay::dragged_offset(mv, proj, size.width(), size.height(), plane.normal,
+                                                   section_press_d_, centre, scale, delta);
+        plane.d = std::min(high, std::max(low, d));
+        dragged_ = true;
+        emit section_dragged();
+        request_frame(true);
+        return;
+    }
     if (!dragged_ && (event->pos() - press_position_).manhattanLength() < 3)
         return; // a click that trembles is still a click
     dragged_ = true;
@@ -627,6 +679,14 @@ void RenderView::mouseReleaseEvent(QMouseEvent *event)
     }
     bool click = !dragged_ && (buttons_ & Qt::LeftButton) && !(event->buttons() & Qt::LeftButton);
     buttons_ = event->buttons();
+    if (dragging_section_ && !(event->buttons() & Qt::LeftButton)) {
+        dragging_section_ = false;
+        settings_.record_change(); // the whole drag: one undo step
+        settings_.close_step();
+        request_frame(true); // the input rests: the full frame follows
+        if (!dragged_)
+            return; // a press on the handle is not a pick
+    }
     if (click) {
         qreal ratio = devicePixelRatioF();
         emit clicked(QPoint(int(event->pos().x() * ratio), int(event->pos().y() * ratio)),
@@ -696,4 +756,99 @@ void RenderView::camera_moved()
 {
     settings_.camera_edited();
     request_frame(true);
+}
+
+// ------------------------------------------------------- sections (issue 28)
+
+void RenderView::set_active_section(int index)
+{
+    if (index == active_section_)
+        return;
+    active_section_ = index;
+    update();
+}
+
+bool RenderView::view_matrices(double modelview[16], double projection[16], QSize &size) const
+{
+    if (!model_ || settings().split == SplitMode::SideBySide)
+        return false; // two half views: no single outline
+    size = pixel_size();
+    camera().matrices(size.width(), size.height(), modelview, projection);
+    return true;
+}
+
+bool RenderView::section_handle(QPointF &centre) const
+{
+    const std::vector<SectionPlane> &sections = settings().sections;
+    double mv[16], proj[16];
+    QSize size;
+    if (active_section_ < 0 || size_t(active_section_) >= sections.size() ||
+        !sections[size_t(active_section_)].enabled || !view_matrices(mv, proj, size))
+        return false;
+    const SectionPlane &plane = sections[size_t(active_section_)];
+    double box_min[3], box_max[3];
+    section_overlay::model_box(*drawn_model(), box_min, box_max);
+    if (section_overlay::box_polygon(plane.normal, plane.d, box_min, box_max).empty())
+        return false;
+    glm::dvec3 c = glm::dvec3(box_min[0] + box_max[0], box_min[1] + box_max[1], box_min[2] + box_max[2]) * 0.5;
+    QPointF at;
+    if (!section_overlay::project(mv, proj, size.width(), size.height(),
+                                  section_overlay::nearest_on_plane(plane.normal, plane.d, c), at))
+        return false;
+    centre = at / devicePixelRatioF();
+    return true;
+}
+
+void RenderView::paint_section(QPainter &painter) const
+{
+    const std::vector<SectionPlane> &sections = settings().sections;
+    double mv[16], proj[16];
+    QSize size;
+    if (active_section_ < 0 || size_t(active_section_) >= sections.size() ||
+        !sections[size_t(active_section_)].enabled || !view_matrices(mv, proj, size))
+        return;
+    const SectionPlane &plane = sections[size_t(active_section_)];
+    double box_min[3], box_max[3];
+    section_overlay::model_box(*drawn_model(), box_min, box_max);
+    std::vector<glm::dvec3> polygon = section_overlay::box_polygon(plane.normal, plane.d, box_min, box_max);
+    if (polygon.empty())
+        return;
+    const qreal ratio = devicePixelRatioF();
+    QPolygonF outline;
+    for (const glm::dvec3 &p : polygon) {
+        QPointF at;
+        if (!section_overlay::project(mv, proj, size.width(), size.height(), p, at))
+            return; // a corner behind the eye: no outline rather than a wrong one
+        outline << at / ratio;
+    }
+    painter.save();
+    painter.setRenderHint(QPainter::Antialiasing);
+    painter.setPen(QPen(QColor(255, 140, 0, 230), 2.0));
+    painter.setBrush(QColor(255, 140, 0, 28));
+    painter.drawPolygon(outline);
+    // the handle: a disc at the plane's centre and an arrow along its normal
+    // (towards the side it removes)
+    glm::dvec3 c = glm::dvec3(box_min[0] + box_max[0], box_min[1] + box_max[1], box_min[2] + box_max[2]) * 0.5;
+    c = section_overlay::nearest_on_plane(plane.normal, plane.d, c);
+    glm::dvec3 n(plane.normal[0], plane.normal[1], plane.normal[2]);
+    double extent = glm::length(glm::dvec3(box_max[0] - box_min[0], box_max[1] - box_min[1], box_max[2] - box_min[2]));
+    QPointF from, to;
+    if (section_overlay::project(mv, proj, size.width(), size.height(), c, from) &&
+        section_overlay::project(mv, proj, size.width(), size.height(), c + glm::normalize(n) * extent * 0.12, to)) {
+        from /= ratio;
+        to /= ratio;
+        painter.setPen(QPen(QColor(255, 140, 0), 2.0));
+        painter.drawLine(from, to);
+        QPointF along = to - from;
+        double length = std::hypot(along.x(), along.y());
+        if (length > 6.0) {
+            QPointF unit = along / length, side(-unit.y(), unit.x());
+            painter.setBrush(QColor(255, 140, 0));
+            painter.drawPolygon(QPolygonF() << to << to - unit * 9.0 + side * 4.5 << to - unit * 9.0 - side * 4.5);
+        }
+        painter.setBrush(dragging_section_ ? QColor(255, 200, 80) : QColor(255, 255, 255));
+        painter.setPen(QPen(QColor(255, 140, 0), 2.0));
+        painter.drawEllipse(from, 6.0, 6.0);
+    }
+    painter.restore();
 }

@@ -35,6 +35,7 @@
 #include "settings.h"
 #include "settings_model.h"
 
+class QPainter;
 class QTimer;
 class ErrorLegend;
 class HeatmapLegend;
@@ -119,6 +120,19 @@ public:
     // Full frames slower than this go coarse first while interacting (tests set 0).
     void set_slow_frame_ms(double ms) { slow_frame_ms_ = ms; }
 
+    // --- sections and the exploded view (issue 28; section_overlay.h) ---
+    // The model the shown frame drew (exploded, capped: render_worker.h), or
+    // model() before one came back: what a click picks and the outline frames.
+    const oit_model *drawn_model() const { return drawn_model_ ? drawn_model_.get() : model_.get(); }
+    std::shared_ptr<const oit_model> drawn_model_pointer() const { return drawn_model_ ? drawn_model_ : model_; }
+    // The section plane whose outline and drag handle the view draws (-1: none).
+    void set_active_section(int index);
+    int active_section() const { return active_section_; }
+    // The handle's centre in widget coordinates; false when not drawn.
+    bool section_handle(QPointF &centre) const;
+    // The open parts the shown frame's sections cut (no cap), as the worker found them.
+    const std::vector<uint32_t> &open_cut() const { return open_cut_; }
+
     void set_continuous(bool on);
     void set_progressive(bool on);
     bool progressive() const { return progressive_; }
@@ -138,6 +152,10 @@ signals:
     // frame_status() changed while the full frame is not on screen (after
     // frame_rendered when a newer frame is on its way)
     void status_changed(const QString &text);
+    // the active section's handle was dragged (the plane moved; the panel follows)
+    void section_dragged();
+    // the open parts the sections cut changed (component indices)
+    void open_cut_changed(const std::vector<uint32_t> &parts);
 
 protected:
     void paintEvent(QPaintEvent *event) override;
@@ -210,4 +228,14 @@ private:
     QSet<int> walk_keys_;
     QTimer *walk_timer_ = nullptr;
     std::vector<float> highlight_; // per part: 1 highlighted; empty: no highlight
+    // sections (issue 28)
+    std::shared_ptr<const oit_model> drawn_model_; // the shown frame's
+    std::vector<uint32_t> open_cut_;
+    int active_section_ = -1;
+    bool dragging_section_ = false;
+    QPoint section_press_;
+    double section_press_d_ = 0.0;
+    void paint_section(QPainter &painter) const;
+    // the view's matrices at its pixel size (the outline's projection); false side by side
+    bool view_matrices(double modelview[16], double projection[16], QSize &size) const;
 };

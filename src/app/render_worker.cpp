@@ -103,6 +103,12 @@ std::string frame_key(const oit_frame_settings &f)
     for (uint32_t i = 0; l.component_highlight && i < l.component_highlight_count; ++i)
         k << l.component_highlight[i];
     k << l.has_highlight_colour << l.highlight_colour << l.highlight_strength;
+    k << l.section_count << l.no_caps;
+    for (uint32_t i = 0; i < l.section_count && i < OIT_SECTION_PLANES_MAX; ++i)
+        k << l.sections[i];
+    k << l.section_parts_count;
+    for (uint32_t i = 0; l.section_parts && i < l.section_parts_count; ++i)
+        k << l.section_parts[i];
     return k.str();
 }
 
@@ -351,6 +357,103 @@ void RenderWorker::release_gl()
     uploaded_model_.reset();
 }
 
+namespace {
+
+// Open parts (not closed) that a section cuts: vertices on both sides of a
+// plane, in the parts the sections cut. For a model oit_model_derive did not
+// run on (it says them itself when it does).
+std::vector<uint32_t> open_parts_cut(const oit_model &model, const oit_local_modulation &local)
+{
+    std::vector<uint32_t> out;
+    if (local.section_count == 0 || local.no_caps)
+        return out;
+    for (uint32_t c = 0; c < model.component_count; ++c) {
+        const oit_component &part = model.components[c];
+        if (part.closed || part.triangle_count == 0 ||
+            (local.section_parts && (c >= local.section_parts_count || !local.section_parts[c])))
+            continue;
+        bool cut = false;
+        for (uint32_t i = 0; i < local.section_count && i < OIT_SECTION_PLANES_MAX && !cut; ++i) {
+            const double *s = local.sections[i];
+            bool kept = false, removed = false;
+            for (uint64_t t = part.first_triangle; t < uint64_t(part.first_triangle) + part.triangle_count && !cut;
+                 ++t)
+                for (int k = 0; k < 3; ++k) {
+                    const float *p = model.positions + size_t(model.indices[t * 3 + size_t(k)]) * 3;
+                    double side = s[0] * (model.origin[0] + p[0]) + s[1] * (model.origin[1] + p[1]) +
+                                  s[2] * (model.origin[2] + p[2]) - s[3];
+                    (side > 0.0 ? removed : kept) = true;
+                }
+            cut = kept && removed;
+        }
+        if (cut)
+            out.push_back(c);
+    }
+    return out;
+}
+
+} // namespace
+
+oit_status RenderWorker::drawn_model(const FrameJob &job, const oit_local_modulation &local,
+                                     std::shared_ptr<const oit_model> &out, std::vector<uint32_t> &open_cut,
+                                     double &ms, oit_error &err)
+{
+    const oit_model &base = *job.model;
+    double start = now_ms();
+    ms = 0.0;
+    if (job.model != offsets_model_ || job.explode != offsets_factor_) {
+        offsets_.assign(size_t(base.component_count) * 3, 0.0f);
+        offsets_model_.reset();
+        if (job.explode != 0.0 && oit_explode_offsets(&base, job.explode, offsets_.data(), &err) != OIT_OK)
+            return OIT_E_INPUT;
+        offsets_model_ = job.model;
+        offsets_factor_ = job.explode;
+    }
+    const float *offsets = job.explode != 0.0 ? offsets_.data() : nullptr;
+    const uint32_t offset_count = offsets ? base.component_count : 0;
+    // what the drawn model depends on: the factor, and the sections when they make caps
+    KeyWriter k;
+    k << job.explode;
+    if (local.section_count > 0 && !local.no_caps) {
+        for (uint32_t i = 0; i < local.section_count && i < OIT_SECTION_PLANES_MAX; ++i)
+            k << local.sections[i];
+        k << local.section_parts_count;
+        for (uint32_t i = 0; local.section_parts && i < local.section_parts_count; ++i)
+            k << local.section_parts[i];
+    }
+    std::string key = k.str();
+    if (derived_base_ == job.model && derived_key_ == key && derived_) {
+        out = derived_;
+        open_cut = derived_open_cut_;
+        return OIT_OK;
+    }
+    derived_.reset(); // the old one goes before a new one is made (memory)
+    derived_base_.reset();
+    if (!oit_model_derive_needed(&base, offsets, offset_count, &local)) {
+        out = job.model;
+        open_cut = open_parts_cut(base, local);
+    } else {
+        std::unique_ptr<oit_model> made(new oit_model());
+        std::vector<uint8_t> cut(base.component_count, 0);
+        if (oit_model_derive(&base, offsets, offset_count, &local, made.get(), cut.data(), &err) != OIT_OK)
+            return OIT_E_INPUT;
+        out = std::shared_ptr<const oit_model>(made.release(), [](const oit_model *m) {
+            oit_model_free(const_cast<oit_model *>(m));
+            delete m;
+        });
+        open_cut.clear();
+        for (uint32_t c = 0; c < base.component_count; ++c)
+            if (cut[c])
+                open_cut.push_back(c);
+    }
+    derived_base_ = job.model;
+    derived_key_ = key;
+    derived_ = out;
+    derived_open_cut_ = open_cut;
+    ms = now_ms() - start;
+    return OIT_OK;
+}
+
 void RenderWorker::render_job(FrameJob &job)
 {
     auto result = std::make_shared<FrameResult>();
@@ -376,23 +479,31 @@ void RenderWorker::render_job(FrameJob &job)
         return finish(OIT_CANCELLED, "the frame was cancelled before it started");
 
     oit_error err{};
-    if (job.model != uploaded_model_) {
-        // algorithms may keep buffers sized for the last scene
-        release_gl();
-        emit progress(job.id, "upload", 0, 0.0);
-        if (oit_scene_upload(&gpu_scene_, job.model.get(), &err) != OIT_OK)
-            return finish(OIT_E_RUNTIME, QString("cannot upload the model: ") + err.message);
-        scene_uploaded_ = true;
-        oit_scene_cpu(&cpu_scene_, job.model.get());
-        uploaded_model_ = job.model;
-        result->uploaded = true;
-    }
-
     oit_frame_settings frame = job.frame;
     frame.local.component_alpha = job.component_alpha.empty() ? nullptr : job.component_alpha.data();
     frame.local.component_count = uint32_t(job.component_alpha.size());
     frame.local.component_highlight = job.component_highlight.empty() ? nullptr : job.component_highlight.data();
     frame.local.component_highlight_count = uint32_t(job.component_highlight.size());
+    frame.local.section_parts = job.section_parts.empty() ? nullptr : job.section_parts.data();
+    frame.local.section_parts_count = uint32_t(job.section_parts.size());
+
+    // the model as drawn: exploded, with caps (kept while they stay the same)
+    std::shared_ptr<const oit_model> drawn;
+    if (drawn_model(job, frame.local, drawn, result->open_cut, result->derive_ms, err) != OIT_OK)
+        return finish(OIT_E_INPUT, QString::fromUtf8(err.message));
+    result->drawn_model = drawn;
+    if (drawn != uploaded_model_) {
+        // algorithms may keep buffers sized for the last scene
+        release_gl();
+        emit progress(job.id, "upload", 0, 0.0);
+        if (oit_scene_upload(&gpu_scene_, drawn.get(), &err) != OIT_OK)
+            return finish(OIT_E_RUNTIME, QString("cannot upload the model: ") + err.message);
+        scene_uploaded_ = true;
+        oit_scene_cpu(&cpu_scene_, drawn.get());
+        uploaded_model_ = drawn;
+        result->uploaded = true;
+    }
+
     frame.progress.report = &RenderWorker::progress_callback;
     frame.progress.user = &running;
     const oit_frame_settings requested = frame;

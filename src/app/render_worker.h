@@ -52,6 +52,17 @@
 //   passes like any frame, or taken from a small cache keyed by the frame's
 //   camera, size and settings) and the error map and figures against it.
 //   Coarse frames skip the reference (docs/workbench.md says why).
+//
+// The model as drawn (issue 28, docs/sections.md): a job names the loaded
+// model, the explode factor (FrameJob::explode) and the sections in its
+// frame; this thread turns them into the model every algorithm draws
+// (oit_explode_offsets, then oit_model_derive when oit_model_derive_needed:
+// the parts moved, the caps appended), kept while the factor, and with caps
+// the sections, stay the same, and uploads it like a new model. Previews and
+// full frames draw the same model, so an explode slider or a section drag
+// previews with the stand-in like any other setting and the GUI thread never
+// derives. FrameResult::drawn_model hands it back for the pick and the
+// plane's outline; FrameResult::open_cut names the open parts a section cuts.
 #pragma once
 
 #include <QImage>
@@ -86,6 +97,8 @@ struct FrameJob {
     bool refinement = false;        // the full frame of the coarse one before it: waits for it
     std::string algorithm_b;        // split view: the second algorithm, same frame (empty: none)
     bool error_view = false;        // full frames: the error map against the reference too
+    double explode = 0.0;           // --explode: the model as drawn (the rule above)
+    std::vector<uint8_t> section_parts; // frame.local.section_parts points here (empty: every part)
 };
 
 // One side's image against the CPU reference's image of the same frame.
@@ -130,6 +143,10 @@ struct FrameResult {
     ErrorResult error_map;   // the error view (job.error_view, full frames)
     bool split = false;      // job.algorithm_b was set: b is the second side
     SideResult b;
+    // the model the frame drew: job.model, or it exploded and capped (null when none was made)
+    std::shared_ptr<const oit_model> drawn_model;
+    std::vector<uint32_t> open_cut; // parts a section cuts that are open (no cap), with caps on
+    double derive_ms = 0.0;         // making the drawn model (0: kept from before)
 };
 using FrameResultPointer = std::shared_ptr<const FrameResult>;
 Q_DECLARE_METATYPE(FrameResultPointer)
@@ -203,6 +220,10 @@ private:
     CachedAlgorithm *algorithm_for(const std::string &name, const FrameJob &job, const oit_algorithm_ops *ops,
                                    oit_error *err);
     void release_gl();
+    // The model job draws (the rule above), made or kept; open_cut as FrameResult's.
+    oit_status drawn_model(const FrameJob &job, const oit_local_modulation &local,
+                           std::shared_ptr<const oit_model> &out, std::vector<uint32_t> &open_cut, double &ms,
+                           oit_error &err);
 
     oit_backend backend_;
     std::string shader_dir_;
@@ -242,4 +263,11 @@ private:
     };
     std::deque<CachedReference> references_;
     Running *running_job_ = nullptr; // the job render_job is working on
+    // the model as drawn, kept while its key (factor, sections with caps) stays
+    std::shared_ptr<const oit_model> derived_base_, derived_;
+    std::string derived_key_;
+    std::vector<uint32_t> derived_open_cut_;
+    std::shared_ptr<const oit_model> offsets_model_; // the explode offsets' model and factor
+    double offsets_factor_ = -1.0;
+    std::vector<float> offsets_;
 };

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cctype>
 #include <cstring>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -23,6 +24,7 @@ void RenderSettings::reset_parts(const oit_model &model)
 {
     part_alpha.assign(model.component_count, 1.0f);
     part_visible.assign(model.component_count, 1);
+    section_parts.clear(); // every part: the flags were another model's
 }
 
 bool RenderSettings::parts_modified() const
@@ -58,7 +60,27 @@ oit_frame_settings make_frame(const RenderSettings &s, const oit_model &model, c
     std::copy(s.focus, s.focus + 6, frame.local.focus);
     frame.local.contrast = s.contrast;
     frame.local.focus_default_region = model.radius / 4.0f; // as the command line
+    apply_sections(s, model, frame.local);
     return frame;
+}
+
+void apply_sections(const RenderSettings &s, const oit_model &model, oit_local_modulation &local)
+{
+    local.section_count = 0;
+    for (const SectionPlane &plane : s.sections) {
+        if (!plane.enabled || local.section_count >= OIT_SECTION_PLANES_MAX)
+            continue;
+        double *out = local.sections[local.section_count++];
+        std::copy(plane.normal, plane.normal + 3, out);
+        out[3] = plane.d;
+    }
+    local.section_parts = nullptr;
+    local.section_parts_count = 0;
+    if (local.section_count > 0 && s.section_parts.size() == model.component_count) {
+        local.section_parts = reinterpret_cast<const uint8_t *>(s.section_parts.data());
+        local.section_parts_count = model.component_count;
+    }
+    local.no_caps = !s.caps;
 }
 
 namespace {
@@ -84,6 +106,19 @@ std::string exact_number(double value)
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.17g", value);
     return buffer;
+}
+
+// The shortest text that reads back as the same double ("0.1", not
+// "0.10000000000000001"): sections and the explode factor are typed or slid.
+std::string short_exact(double value)
+{
+    char buffer[64];
+    for (int digits = 6; digits < 17; ++digits) {
+        std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+        if (std::strtod(buffer, nullptr) == value)
+            return buffer;
+    }
+    return exact_number(value);
 }
 
 std::string shell_quote(const std::string &text)
@@ -273,6 +308,32 @@ std::string render_command(const std::string &oit_program, const std::string &mo
     }
     if (s.import.tessellation != OIT_TESSELLATION_NORMAL || s.import.linear_deflection_mm > 0)
         c << " --tessellation " << tessellation_name(s.import);
+    // sections and the exploded view (issue 28): the enabled planes, the
+    // parts they cut by index (as --highlight), caps only when off
+    const oit_local_modulation &l = frame.local;
+    bool cuts_some = l.section_count > 0;
+    if (cuts_some && l.section_parts) {
+        cuts_some = false;
+        for (uint32_t i = 0; i < l.section_parts_count; ++i)
+            cuts_some = cuts_some || l.section_parts[i];
+    }
+    if (cuts_some) { // planes that cut no part change nothing and are left out
+        for (uint32_t i = 0; i < l.section_count; ++i)
+            c << " --section " << short_exact(l.sections[i][0]) << "," << short_exact(l.sections[i][1]) << ","
+              << short_exact(l.sections[i][2]) << "," << short_exact(l.sections[i][3]);
+        if (l.section_parts) {
+            const char *separator = " --section-parts ";
+            for (uint32_t i = 0; i < l.section_parts_count; ++i)
+                if (l.section_parts[i]) {
+                    c << separator << i;
+                    separator = ",";
+                }
+        }
+        if (l.no_caps)
+            c << " --caps off";
+    }
+    if (s.explode > 0.0)
+        c << " --explode " << short_exact(s.explode);
     if (s.error_view) {
         // the same frame with the CPU reference: the figures, and the map beside the image
         std::string map = out_path.empty() ? "error.png" : out_path;
@@ -496,6 +557,30 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
         add(d, "component-alpha", std::move(alphas), a);
         add(d, "hide", std::move(hidden), a);
     }
+    // sections and the exploded view (issue 28)
+    Value sections(rapidjson::kArrayType);
+    for (const SectionPlane &plane : s.sections) {
+        Value item(rapidjson::kObjectType);
+        const double values[4] = {plane.normal[0], plane.normal[1], plane.normal[2], plane.d};
+        add(item, "plane", array_value(values, 4, a), a);
+        add(item, "enabled", Value(plane.enabled), a);
+        sections.PushBack(std::move(item), a);
+    }
+    add(d, "section", std::move(sections), a);
+    if (model && !s.section_parts.empty() && s.section_parts.size() == model->component_count) {
+        Value parts(rapidjson::kArrayType); // by path: names repeat across assemblies
+        char path[1024];
+        for (uint32_t i = 0; i < model->component_count; ++i)
+            if (s.section_parts[i]) {
+                oit_model_component_path(model, i, path, sizeof path);
+                parts.PushBack(Value(path, a), a);
+            }
+        add(d, "section-parts", std::move(parts), a);
+    } else {
+        add(d, "section-parts", Value(rapidjson::StringRef("all")), a);
+    }
+    add(d, "caps", Value(rapidjson::StringRef(s.caps ? "on" : "off")), a);
+    add(d, "explode", Value(s.explode), a);
     add(d, "camera", camera_value(camera, a), a);
 
     rapidjson::StringBuffer buffer;
@@ -520,6 +605,7 @@ RenderSettings preset_defaults(const RenderSettings &current)
     // the parts are matched by name against a model; without one they stay
     s.part_alpha = current.part_alpha;
     s.part_visible = current.part_visible;
+    s.section_parts = current.section_parts;
     return s;
 }
 
@@ -542,7 +628,9 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         // the workbench's comparisons (the first is `oit render`'s flag too)
         "error-vs-reference", "split", "split-algorithm", "wipe",
         // the workbench's interaction: what renders while moving
-        "preview-algorithm"};
+        "preview-algorithm",
+        // sections and the exploded view (issue 28)
+        "section", "section-parts", "caps", "explode"};
     for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
         std::string key = it->name.GetString();
         if (std::find(std::begin(known), std::end(known), key) == std::end(known))
@@ -698,8 +786,83 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
             return r.fail("tessellation", "must be coarse, normal, fine or a linear deflection in millimetres "
                                           "greater than 0");
     }
+    if (d.HasMember("section")) {
+        const Value &list = d["section"];
+        const char *shape = "must be an array of planes, each {\"plane\": [nx, ny, nz, d], \"enabled\": "
+                            "true|false} or [nx, ny, nz, d]";
+        if (!list.IsArray())
+            return r.fail("section", shape);
+        if (list.Size() > OIT_SECTION_PLANES_MAX)
+            return r.fail("section", "at most " + std::to_string(OIT_SECTION_PLANES_MAX) + " planes");
+        for (const Value &item : list.GetArray()) {
+            SectionPlane plane;
+            const Value *values = &item;
+            if (item.IsObject()) {
+                for (auto it = item.MemberBegin(); it != item.MemberEnd(); ++it)
+                    if (std::strcmp(it->name.GetString(), "plane") != 0 &&
+                        std::strcmp(it->name.GetString(), "enabled") != 0)
+                        return r.fail("section", shape);
+                if (!item.HasMember("plane"))
+                    return r.fail("section", shape);
+                values = &item["plane"];
+                if (item.HasMember("enabled")) {
+                    if (!item["enabled"].IsBool())
+                        return r.fail("section", shape);
+                    plane.enabled = item["enabled"].GetBool();
+                }
+            }
+            if (!values->IsArray() || values->Size() != 4)
+                return r.fail("section", shape);
+            double v[4];
+            for (int k = 0; k < 4; ++k) {
+                if (!(*values)[k].IsNumber() || !std::isfinite((*values)[k].GetDouble()))
+                    return r.fail("section", "a plane's element " + std::to_string(k) + " is not a finite number");
+                v[k] = (*values)[k].GetDouble();
+            }
+            if (v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
+                return r.fail("section", "a plane's normal is zero");
+            std::copy(v, v + 3, plane.normal);
+            plane.d = v[3];
+            s.sections.push_back(plane);
+        }
+    }
+    if (d.HasMember("caps")) {
+        const Value &caps = d["caps"];
+        if (!caps.IsString() || (caps.GetString() != std::string("on") && caps.GetString() != std::string("off")))
+            return r.fail("caps", "must be \"on\" or \"off\"");
+        s.caps = caps.GetString() == std::string("on");
+    }
+    if (d.HasMember("explode")) {
+        const Value &explode = d["explode"];
+        if (!explode.IsNumber() || !(explode.GetDouble() >= 0.0 && explode.GetDouble() <= OIT_EXPLODE_MAX))
+            return r.fail("explode", "must be a number in [0, " + ::number(OIT_EXPLODE_MAX) + "]");
+        s.explode = explode.GetDouble();
+    }
+    if (d.HasMember("section-parts")) {
+        const Value &parts = d["section-parts"];
+        bool all = parts.IsString() && parts.GetString() == std::string("all");
+        if (!all && !parts.IsArray())
+            return r.fail("section-parts", "must be \"all\" or an array of part names or assembly paths");
+        if (parts.IsArray())
+            for (const Value &name : parts.GetArray())
+                if (!name.IsString())
+                    return r.fail("section-parts", "must be \"all\" or an array of part names or assembly paths");
+    }
     if (model) {
         s.reset_parts(*model);
+        // the parts the sections cut, by name or path (oit_model_match_parts,
+        // as the command line matches them); unknown ones are ignored, as for "hide"
+        if (d.HasMember("section-parts") && d["section-parts"].IsArray()) {
+            s.section_parts.assign(model->component_count, 0);
+            std::unique_ptr<bool[]> flags(new bool[model->component_count ? model->component_count : 1]);
+            for (const Value &name : d["section-parts"].GetArray()) {
+                std::fill(flags.get(), flags.get() + model->component_count, false);
+                oit_model_match_parts(model, name.GetString(), flags.get());
+                for (uint32_t i = 0; i < model->component_count; ++i)
+                    if (flags[i])
+                        s.section_parts[i] = 1;
+            }
+        }
         auto find_part = [&](const char *name) -> int {
             for (uint32_t i = 0; i < model->component_count; ++i)
                 if (std::strcmp(model->components[i].name, name) == 0)

@@ -17,6 +17,21 @@ enum class SplitMode { Off = 0, Wipe = 1, SideBySide = 2 };
 const char *split_mode_name(SplitMode mode); // "off", "wipe", "side-by-side"
 bool parse_split_mode(const std::string &text, SplitMode &mode);
 
+// A section plane (--section NX,NY,NZ,D; docs/sections.md): keeps the points p
+// with dot(normal, p) <= d, model (file) coordinates of the model as drawn
+// (exploded where it is). A disabled plane stays in the list (the Sections
+// tab) but cuts nothing and is not in the command.
+struct SectionPlane {
+    double normal[3] = {1.0, 0.0, 0.0}; // never zero
+    double d = 0.0;
+    bool enabled = true;
+    bool operator==(const SectionPlane &o) const
+    {
+        return normal[0] == o.normal[0] && normal[1] == o.normal[1] && normal[2] == o.normal[2] && d == o.d &&
+               enabled == o.enabled;
+    }
+};
+
 struct RenderSettings {
     std::string algorithm = "ll";
     oit_algorithm_config config{}; // shader_dir is set by the view
@@ -45,6 +60,14 @@ struct RenderSettings {
     // how STEP and IGES files are tessellated (--tessellation; applies when a
     // model is loaded)
     oit_import_options import{};
+    // issue 28: sections and the exploded view (the Sections tab; preset keys
+    // "section", "section-parts", "caps", "explode", the command line's flags)
+    std::vector<SectionPlane> sections; // at most OIT_SECTION_PLANES_MAX
+    // per component of the loaded model, nonzero where the sections cut it;
+    // empty: every part (presets say "all", or the parts' names)
+    std::vector<char> section_parts;
+    bool caps = true;    // --caps on|off
+    double explode = 0.0; // --explode F, 0..OIT_EXPLODE_MAX
 
     RenderSettings();
     void reset_parts(const oit_model &model);
@@ -52,9 +75,15 @@ struct RenderSettings {
 };
 
 // The frame for width x height with the camera's matrices; component_alpha
-// points into storage, which must outlive the frame.
+// points into storage, which must outlive the frame; local.section_parts into
+// settings.section_parts (the settings must outlive it too). The enabled
+// sections, in order, are local.sections (apply_sections).
 oit_frame_settings make_frame(const RenderSettings &settings, const oit_model &model, const Camera &camera,
                               int width, int height, std::vector<float> &storage);
+
+// The enabled section planes (the first OIT_SECTION_PLANES_MAX), which parts
+// they cut and the caps into local; section_parts points into settings.
+void apply_sections(const RenderSettings &settings, const oit_model &model, oit_local_modulation &local);
 
 // --tessellation's value: "normal", "coarse", "fine" or the millimetres.
 std::string tessellation_name(const oit_import_options &import);

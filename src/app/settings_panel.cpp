@@ -390,6 +390,11 @@ static const RowTip kRowTips[] = {
                        "views the algorithm cannot show are hidden"},
     {"N / layer L", "--view peel-limit:N, layer:L", "the peel limit or layer the view shows"},
     {"edge view", "--modulation edges", "opaque where a fragment has fewer than four surface neighbours"},
+    {"normal", "--section NX,NY,NZ,D", "the section plane's normal: it keeps the points p with n·p <= d"},
+    {"offset", "--section NX,NY,NZ,D", "the section plane's offset d along its normal; the slider spans the model"},
+    {"align", "--section NX,NY,NZ,D", "the plane's normal along an axis, towards the eye, or on a picked face"},
+    {"explode", "--explode", "move every part away from the assembly's centre, along the direction to its own "
+                             "centre, scaled by the factor (0: as built); the parts follow the slider"},
     {"mode", nullptr, "orbit turns about the target; walk moves with W/A/S/D, Q/E"},
     {"projection", nullptr, "perspective or orthographic"},
     {"field of view", nullptr, "vertical field of view of the perspective camera"},

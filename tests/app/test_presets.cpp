@@ -19,7 +19,7 @@
 static_assert(sizeof(oit_modulation) == 84, "oit_modulation changed: presets (settings.cpp) and this test");
 static_assert(sizeof(oit_algorithm_config) == 64, "oit_algorithm_config changed: presets (settings.cpp) and this test");
 static_assert(sizeof(oit_import_options) == 16, "oit_import_options changed: presets (settings.cpp) and this test");
-static_assert(sizeof(RenderSettings) == 408, "RenderSettings changed: presets (settings.cpp) and this test");
+static_assert(sizeof(RenderSettings) == 472, "RenderSettings changed: presets (settings.cpp) and this test");
 static_assert(sizeof(Camera) == 136, "Camera changed: presets (settings.cpp) and this test");
 
 namespace {
@@ -74,6 +74,18 @@ void every_field_changed(RenderSettings &s, Camera &c)
     // the tessellation is a level or a deflection in mm (one setting; the level
     // round trip is app_workbench's tessellation test)
     s.import.linear_deflection_mm = 0.25;
+    // sections and the exploded view (issue 28): a disabled plane is kept too
+    SectionPlane a, b;
+    a.normal[0] = 0.0;
+    a.normal[2] = -1.0;
+    a.d = 0.375;
+    b.normal[1] = 2.0;
+    b.d = -0.1;
+    b.enabled = false;
+    s.sections = {a, b};
+    s.section_parts = {0, 1, 1};
+    s.caps = false;
+    s.explode = 1.5;
     c.set_mode(Camera::Mode::Walk);
     c.orthographic = true;
     c.fov_degrees = 55.0f;
@@ -106,6 +118,7 @@ QStringList differences(const RenderSettings &a, const RenderSettings &b)
     SAME_ARRAY(modulation.halo_colour, 3) SAME(modulation.last_layer_opaque) SAME(modulation.epsilon_max)
     SAME(focus_shape) SAME_ARRAY(focus, 6) SAME(contrast) SAME(part_alpha) SAME(part_visible) SAME(error_view)
     SAME(split) SAME(split_algorithm) SAME(wipe) SAME(preview_algorithm) SAME(import.tessellation) SAME(import.linear_deflection_mm)
+    SAME(sections) SAME(section_parts) SAME(caps) SAME(explode)
     return out;
 }
 
@@ -148,9 +161,9 @@ private slots:
         Camera default_camera;
         // every field really is away from its default (else the test proves nothing for it)
         QStringList changed_fields = differences(changed, defaults);
-        // 48 comparisons (arrays element by element), all but import.tessellation
+        // 52 comparisons (arrays element by element), all but import.tessellation
         // (the deflection stands for it)
-        QVERIFY2(changed_fields.size() == 48 && !changed_fields.contains("import.tessellation"),
+        QVERIFY2(changed_fields.size() == 52 && !changed_fields.contains("import.tessellation"),
                  qPrintable(changed_fields.join(", ")));
         QCOMPARE(camera_differences(camera, default_camera).size(), 8);
 
