@@ -35,9 +35,11 @@
 #include "settings.h"
 #include "settings_model.h"
 
+class QPainter;
 class QTimer;
 class ErrorLegend;
 class HeatmapLegend;
+class MeasureTool;
 
 class RenderView : public QWidget {
     Q_OBJECT
@@ -76,6 +78,8 @@ public:
     // The selection highlight (oit_local_modulation.component_highlight): these
     // parts tinted in every frame of the view, none when empty; a new frame if it changed.
     void set_highlight(const std::vector<int> &parts);
+    // The measurement drawn over the image (measure_tool.h; the window's), null: none.
+    void set_measure(const MeasureTool *measure);
     const std::vector<float> &highlight() const { return highlight_; } // per part 0 / 1, or empty
     // The size each side renders at: the view's, or half its width side by side.
     QSize side_pixel_size() const;
@@ -162,6 +166,7 @@ private:
     void walk_tick();
     bool interacting() const;
     void update_overlays();
+    void paint_measure(QPainter &painter) const; // the measurement over the image
 
     SettingsModel &settings_; // the window's
     std::shared_ptr<const oit_model> model_;
@@ -210,4 +215,5 @@ private:
     QSet<int> walk_keys_;
     QTimer *walk_timer_ = nullptr;
     std::vector<float> highlight_; // per part: 1 highlighted; empty: no highlight
+    const MeasureTool *measure_ = nullptr; // drawn over the image, reprojected each paint
 };
