@@ -227,6 +227,7 @@ private slots:
     void hidden_part_is_not_measured()
     {
         front_view();
+        window->set_measuring(false); // a fresh start, whatever the test before left
         window->set_measuring(true);
         window->set_part_visible(0, false);
         const double centre_a[3] = {0.5, 0.5, 1.0};
