@@ -41,6 +41,11 @@ set_tests_properties(app_saved_state PROPERTIES TIMEOUT 180)
 # view and not in exports, ghosting, bulk opacity, picks revealing and stepping deeper.
 add_test(NAME app_selection COMMAND ${APP_XVFB} $<TARGET_FILE:test_selection>)
 set_tests_properties(app_selection PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 300)
+# Measure ▸ Measure distance (tests/app/test_measure.cpp): two cubes' faces a
+# known distance apart, background and hidden parts set nothing, the overlay,
+# the clipboard, a STEP file in mm.
+add_test(NAME app_measure COMMAND ${APP_XVFB} $<TARGET_FILE:test_measure>)
+set_tests_properties(app_measure PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
 
 # The layout: the view's share of the window, the settings panel's options
 # per algorithm, the window on screen, the generated help, the algorithm switcher

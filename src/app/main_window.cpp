@@ -4,6 +4,7 @@
 #include "camera_panel.h"
 #include "compare_panel.h"
 #include "file_io.h"
+#include "measure_tool.h"
 #include "opacity_panel.h"
 #include "parts_panel.h"
 #include "pick.h"
@@ -504,6 +505,8 @@ void MainWindow::pick_at(const QPoint &pixel, bool next_contributor)
     camera.insert(camera.end(), storage.begin(), storage.end()); // the parts' opacities
     const bool again = at == last_pick_pixel_ && camera == last_pick_camera_;
     int rank = again ? last_pick_rank_ + 1 : next_contributor ? 2 : 1;
+    if (measuring())
+        rank = next_contributor ? 2 : 1; // each click a new point, never the one behind the last
     last_pick_camera_ = camera;
     std::string error;
     // the model as drawn: a click picks a part where it was moved to, never where the sections removed it
@@ -511,6 +514,10 @@ void MainWindow::pick_at(const QPoint &pixel, bool next_contributor)
     ContributorPick hit = pick_contributor(*drawn, frame, at.x(), at.y(), rank, error);
     last_pick_pixel_ = at;
     last_pick_rank_ = hit.rank;
+    if (measuring()) {
+        measure_pick(hit, error); // the same pick, a measured point instead of a selection
+        return;
+    }
     if (!error.empty()) {
         status_label_->setText(QString::fromStdString("pick: " + error));
         return;

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,8 @@ class QTabWidget;
 class AlgorithmPanel;
 class AlgorithmSwitcher;
 class CameraPanel;
+class MeasureTool;
+struct ContributorPick;
 class ComparePanel;
 class OpacityPanel;
 class PartsPanel;
@@ -137,6 +140,17 @@ public:
     // and --component-alpha match them: oit_model_match_parts); false, with the
     // name that matches nothing in error, when one does not match.
     bool select_parts_named(const QStringList &names, QString &error);
+    // Measure ▸ Measure distance (main_window_measure.cpp, measure_tool.h): in
+    // measure mode a click picks a point as a click picks a part (pick_at: the
+    // part adding most to the pixel, its point), A, then B, then A again; the
+    // distance is drawn in the view, said in the status bar and the Messages.
+    // Esc (View ▸ Cancel frame) leaves the mode and drops the markers; Ctrl+C
+    // copies the line while A and B are set.
+    void set_measuring(bool on);
+    bool measuring() const;
+    const MeasureTool &measure_tool() const { return *measure_; }
+    // Measure ▸ Copy measurement: the line on the clipboard (empty without B).
+    QString copy_measurement();
     QSlider *alpha_slider() const;
     ComparePanel *compare_panel() const { return compare_panel_; }
     // View ▸ Error against reference, Split view, Side by side (and the Compare tab)
@@ -179,6 +193,10 @@ private:
     void build_help_menu();
     void build_parts_menu(); // main_window_selection.cpp
     void update_highlight(); // the view's highlight from the selection and the action
+    void build_measure_menu(); // main_window_measure.cpp
+    void measuring_toggled(bool on); // the cursor, the status; off: the markers go
+    // A click's pick in measure mode: a point, or why not (the status bar).
+    void measure_pick(const ContributorPick &hit, const std::string &error);
     // The settings panel's tabs, wired to the settings model.
     QTabWidget *build_tabs();
     // The tabs whose controls are bound to the settings (settings_panel.h).
@@ -220,6 +238,9 @@ private:
     std::vector<double> last_pick_camera_; // the frame's matrices and opacities then: a repeated click steps deeper only in it
     QAction *highlight_action_ = nullptr;
     QAction *fade_action_ = nullptr;
+    std::unique_ptr<MeasureTool> measure_; // main_window_measure.cpp
+    QAction *measure_action_ = nullptr;
+    QAction *copy_measure_action_ = nullptr;
     QString model_path_;
     QString loading_path_;
     QString last_error_;

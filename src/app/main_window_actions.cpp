@@ -78,6 +78,7 @@ void MainWindow::build_menus()
 
     build_view_menu();
     build_parts_menu();
+    build_measure_menu();
     build_help_menu();
 }
 
@@ -241,7 +242,10 @@ void MainWindow::build_view_menu()
                             "and refine it when the input rests");
     connect(progressive, &QAction::toggled, view_, &RenderView::set_progressive);
     menu_action(view, "&Render full frame", QKeySequence("F5"), this, [this] { view_->request_frame(false); });
-    menu_action(view, "&Cancel frame", QKeySequence("Esc"), this, [this] { view_->cancel_frame(); });
+    menu_action(view, "&Cancel frame", QKeySequence("Esc"), this, [this] {
+        set_measuring(false); // Esc also leaves measure mode
+        view_->cancel_frame();
+    });
     view->addSeparator();
     QMenu *algorithms = view->addMenu("&Algorithm");
     // every algorithm of the core's list, filtered as you type (the ten first also have Ctrl+1..9, Ctrl+0)

@@ -3,6 +3,7 @@
 #include "error_legend.h"
 #include "heatmap_legend.h"
 #include "section_overlay.h"
+#include "measure_tool.h"
 #include "split_view.h"
 
 #include <QCoreApplication>
@@ -553,6 +554,7 @@ void RenderView::paintEvent(QPaintEvent *)
         }
     }
     paint_section(painter);
+    paint_measure(painter);
     QString text;
     if (!startup_error_.empty())
         text = QString::fromStdString(startup_error_);
@@ -573,6 +575,26 @@ void RenderView::paintEvent(QPaintEvent *)
         painter.setPen(Qt::white);
         painter.drawText(box, Qt::TextWordWrap, text);
     }
+}
+
+// The measurement (measure_tool.h) over the image with the current camera, so
+// it follows the camera before the frame does; side by side, over each half.
+void RenderView::set_measure(const MeasureTool *measure)
+{
+    measure_ = measure;
+    update();
+}
+
+void RenderView::paint_measure(QPainter &painter) const
+{
+    if (!measure_ || measure_->empty() || !model_)
+        return;
+    std::vector<float> storage;
+    const oit_frame_settings frame = current_frame(storage);
+    const double ratio = devicePixelRatioF();
+    measure_->paint(painter, frame, ratio, QPointF(0.0, 0.0));
+    if (settings().split == SplitMode::SideBySide)
+        measure_->paint(painter, frame, ratio, QPointF(frame.width / ratio, 0.0));
 }
 
 void RenderView::resizeEvent(QResizeEvent *event)

@@ -39,6 +39,7 @@ class QPainter;
 class QTimer;
 class ErrorLegend;
 class HeatmapLegend;
+class MeasureTool;
 
 class RenderView : public QWidget {
     Q_OBJECT
@@ -77,6 +78,8 @@ public:
     // The selection highlight (oit_local_modulation.component_highlight): these
     // parts tinted in every frame of the view, none when empty; a new frame if it changed.
     void set_highlight(const std::vector<int> &parts);
+    // The measurement drawn over the image (measure_tool.h; the window's), null: none.
+    void set_measure(const MeasureTool *measure);
     const std::vector<float> &highlight() const { return highlight_; } // per part 0 / 1, or empty
     // The size each side renders at: the view's, or half its width side by side.
     QSize side_pixel_size() const;
@@ -180,6 +183,7 @@ private:
     void walk_tick();
     bool interacting() const;
     void update_overlays();
+    void paint_measure(QPainter &painter) const; // the measurement over the image
 
     SettingsModel &settings_; // the window's
     std::shared_ptr<const oit_model> model_;
@@ -238,4 +242,5 @@ private:
     void paint_section(QPainter &painter) const;
     // the view's matrices at its pixel size (the outline's projection); false side by side
     bool view_matrices(double modelview[16], double projection[16], QSize &size) const;
+    const MeasureTool *measure_ = nullptr; // drawn over the image, reprojected each paint
 };
