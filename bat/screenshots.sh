@@ -36,6 +36,11 @@ JSON
 cat > "$presets/gearbox-ib.json" <<'JSON'
 {"alpha": 0.8, "modulation": "curvature", "curvature-effect": 6}
 JSON
+# issue 28: the gearbox cut open by a plane (front 0.35 removed; caps on its closed
+# parts) and exploded by 0.5, beside the plain gearbox (gearbox-window.png)
+cat > "$presets/gearbox-sectioned.json" <<'JSON'
+{"alpha": 0.6, "section": [{"plane": [0, 0, 1, -0.1], "enabled": true}], "explode": 0.5}
+JSON
 # the split view (the workbench's own keys): ll left of the wipe line, blend right
 cat > "$presets/gearbox-split.json" <<'JSON'
 {"alpha": 0.6, "split": "wipe", "split-algorithm": "blend", "wipe": 0.5}
@@ -72,6 +77,7 @@ run gearbox-split-wipe "$gearbox" --algorithm ll --preset "$presets/gearbox-spli
 run gearbox-blend-error "$gearbox" --algorithm blend --preset "$presets/gearbox-error.json" --tab compare
 run engine-ll-heatmap "$engine" --algorithm ll --preset "$presets/engine-heatmap.json" --tab views
 run engine-wboit-focus "$engine" --algorithm wboit --preset "$presets/engine-focus.json" --tab opacity
+run gearbox-sectioned "$gearbox" --algorithm ll --preset "$presets/gearbox-sectioned.json" --tab sections
 # a long frame in progress: the stand-in's preview, the status naming both, the peel count, Cancel
 run spheres-dp-progress "$presets/spheres.obj" --algorithm dp --screenshot-after 4000
 echo "wrote $(ls "$out"/*.png | wc -l) screenshots to $out"
