@@ -393,30 +393,10 @@ oit_status oit_cli_resolve_local_options(const oit_model *model, oit_local_modul
     for (size_t s = 0; s < options.count; ++s) {
         const component_setting *setting = &options.settings[s];
         if (oit_model_match_parts(model, setting->name, selected) == 0) {
-            char known[OIT_ERROR_MESSAGE_SIZE / 2] = "";
-            size_t used = 0;
-            for (uint32_t k = 0; k < model->component_count && k < NAMES_LISTED &&
-                                 used < sizeof known;
-                 ++k)
-                used += (size_t)snprintf(known + used, sizeof known - used, "%s'%s'", k ? ", " : "",
-                                         model->components[k].name);
-            /* a model with a tree: one part's path shows what a path looks like */
-            char example[OIT_ERROR_MESSAGE_SIZE / 4] = "";
-            for (uint32_t k = 0; model->component_node && k < model->component_count; ++k)
-                if (model->component_node[k] != OIT_NO_NODE) {
-                    char path[OIT_ERROR_MESSAGE_SIZE / 4 - 32];
-                    if (oit_model_component_path(model, k, path, sizeof path) < (int)sizeof path)
-                        snprintf(example, sizeof example, " or an assembly path such as '%s'", path);
-                    break;
-                }
             free(selected);
             free(highlight);
             free(alpha);
-            return oit_fail(err, OIT_E_INPUT,
-                            "%s: no component '%s' (the model has %u: %s%s; or give an index 0..%u%s)",
-                            setting->flag, setting->name, model->component_count, known,
-                            model->component_count > NAMES_LISTED ? ", ..." : "",
-                            model->component_count - 1, example);
+            return unknown_component(model, setting->flag, setting->name, err);
         }
         /* later flags win; a subassembly sets every part under it; any part
          * of the model (no GPU limit) */
