@@ -113,8 +113,20 @@ if "3DGraphics" in categories and "Graphics" not in categories:
     fail("3DGraphics without Graphics")
 
 mime_dir = "/usr/share/mime"
+# the types the prefix declares itself (share/mime/packages/*.xml: sessions' application/x-oit-session)
+ns = "{http://www.freedesktop.org/standards/shared-mime-info}"
+own = {}
+packages = os.path.join(prefix, "share", "mime", "packages")
+for name in sorted(os.listdir(packages)) if os.path.isdir(packages) else []:
+    root = ET.parse(os.path.join(packages, name)).getroot()
+    if root.tag != ns + "mime-info":
+        fail(f"{packages}/{name} is not a shared-mime-info package")
+    for mime in root.findall(ns + "mime-type"):
+        own[mime.get("type")] = [g.get("pattern") for g in mime.findall(ns + "glob")]
+if "application/x-oit-session" in entry["MimeType"].split(";") and own.get("application/x-oit-session") != ["*.oitsession"]:
+    fail("MimeType lists application/x-oit-session but no installed share/mime/packages/*.xml declares it with *.oitsession")
 if os.path.isfile(f"{mime_dir}/types"):
-    known = set(open(f"{mime_dir}/types").read().split())
+    known = set(open(f"{mime_dir}/types").read().split()) | set(own)
     if os.path.isfile(f"{mime_dir}/aliases"):
         known |= {line.split()[0] for line in open(f"{mime_dir}/aliases") if line.strip()}
     for mime in entry["MimeType"].rstrip(";").split(";"):

@@ -1,12 +1,13 @@
 // main.cpp: oit-workbench, the interactive shell over the core.
 //
-//   oit-workbench [MODEL] [--algorithm NAME] [--preset FILE] [--size WxH]
+//   oit-workbench [MODEL | SESSION.oitsession] [--algorithm NAME] [--preset FILE] [--size WxH]
 //                 [--screenshot FILE [--screenshot-after MS]] [--help]
 #include <QApplication>
 #include <QBuffer>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
 #include <QFileInfo>
+#include <QMessageBox>
 #include <QRegularExpression>
 #include <QScreen>
 #include <QTimer>
@@ -53,7 +54,8 @@ int main(int argc, char **argv)
         "Without MODEL it opens the last model, or the bundled gearbox.");
     parser.addHelpOption();
     parser.addVersionOption();
-    parser.addPositionalArgument("model", "model file (any format Assimp reads)", "[MODEL]");
+    parser.addPositionalArgument("model", "model file (any format Assimp reads), or a session (.oitsession)",
+                                 "[MODEL | SESSION]");
     QCommandLineOption algorithm({"a", "algorithm"}, "algorithm: blend, dp, ddp, ll, ib, wboit, reference", "NAME");
     QCommandLineOption preset("preset", "settings preset (JSON, keys as `oit render`'s flags)", "FILE");
     QCommandLineOption size("size", "size of the render view in pixels", "WxH");
@@ -179,7 +181,19 @@ int main(int argc, char **argv)
             }
         }, Qt::DirectConnection);
     }
-    window.load_model(model_path);
+    // a session (docs/sessions.md): its model, settings, camera and views
+    if (model_path.endsWith(".oitsession", Qt::CaseInsensitive)) {
+        QString error;
+        if (!window.open_session(model_path, error)) {
+            if (automated)
+                return fail(error);
+            fail(error);
+            window.load_model(MainWindow::default_model_path());
+            QMessageBox::warning(&window, "Open session", error);
+        }
+    } else {
+        window.load_model(model_path);
+    }
 
     int exit_code = 0;
     if (automated) {

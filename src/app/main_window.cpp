@@ -159,6 +159,9 @@ MainWindow::MainWindow(Start start, QWidget *parent)
     for (const std::string &path : saved_.recent)
         recent_ << QString::fromStdString(path);
     rebuild_recent_menu();
+    for (const std::string &path : saved_.recent_sessions)
+        recent_sessions_ << QString::fromStdString(path);
+    rebuild_recent_sessions_menu();
     if (start_ == Start::Restore)
         restore_saved_settings();
     // before the first sync, which takes out the rows the algorithm does not use
@@ -282,6 +285,9 @@ void MainWindow::save_state(bool closing)
     saved_.recent.clear();
     for (const QString &path : recent_)
         saved_.recent.push_back(path.toStdString());
+    saved_.recent_sessions.clear();
+    for (const QString &path : recent_sessions_)
+        saved_.recent_sessions.push_back(path.toStdString());
     if (!model_path_.isEmpty())
         saved_.last_model = model_path_.toStdString();
     saved_.export_folder = export_folder_.toStdString();
@@ -713,6 +719,11 @@ void MainWindow::load_failed(const QString &message)
 {
     progress_->hide();
     progress_label_->hide();
+    if (pending_session_) { // the session's parts, camera and views wait for no model
+        pending_session_ = false;
+        pending_views_.clear();
+        pending_preset_.clear();
+    }
     show_error("Cannot open model", message);
     emit model_failed(message);
 }
@@ -755,6 +766,13 @@ void MainWindow::load_finished(ModelPointer model, const QString &path)
     // the views saved with this model (by its file name) come back
     auto views = saved_.views.find(model_path_.toStdString());
     camera_panel_->set_saved_views(views != saved_.views.end() ? views->second : std::vector<SavedView>());
+    if (pending_session_) {
+        // a session's views: the model's saved views from now on
+        camera_panel_->set_saved_views(pending_views_);
+        saved_.views[model_path_.toStdString()] = pending_views_;
+        pending_views_.clear();
+        pending_session_ = false;
+    }
     setWindowTitle(QString("%1 — oit-workbench").arg(QFileInfo(model_path_).fileName()));
     add_recent(model_path_);
     // one write of the settings file: each is synced to disk on this thread,
@@ -794,7 +812,11 @@ void MainWindow::dropEvent(QDropEvent *event)
     const QList<QUrl> urls = event->mimeData()->urls();
     if (!urls.isEmpty() && urls.first().isLocalFile()) {
         QString path = urls.first().toLocalFile();
-        if (path.endsWith(".json", Qt::CaseInsensitive)) {
+        if (path.endsWith(".oitsession", Qt::CaseInsensitive)) {
+            QString error;
+            if (!open_session(path, error))
+                show_error("Open session", error);
+        } else if (path.endsWith(".json", Qt::CaseInsensitive)) {
             QString error;
             if (!load_preset(path, error))
                 show_error("Load preset", error);

@@ -95,6 +95,18 @@ public:
     // Apply a preset file now (and its parts again when the next model arrives).
     bool load_preset(const QString &path, QString &error);
     bool save_preset(const QString &path, QString &error);
+    // File > Save session… and Open session… (session.h, docs/sessions.md): the
+    // model (relative to the session file), the settings, the camera, the saved
+    // views and Export PNG's frame. Opening checks the whole file first (false
+    // with a one-line error, nothing changed), applies the settings, then loads
+    // the model off the GUI thread; its parts, camera and views follow when it
+    // is in (model_loaded). Unknown fields are said in the Messages.
+    bool save_session(const QString &path, QString &error);
+    bool open_session(const QString &path, QString &error);
+    // File > Open recent session, newest first.
+    const QStringList &recent_sessions() const { return recent_sessions_; }
+    // The Camera tab (its saved views).
+    CameraPanel *camera_panel() const { return camera_panel_; }
     // Renders off the view, then encodes the PNG off the GUI thread (a local
     // event loop waits, so the window keeps answering); clears the progress.
     // with_highlight: the selection highlight as the view shows it (Export PNG's
@@ -218,6 +230,8 @@ private:
     void save_state(bool closing);
     void restore_saved_settings();
     void rebuild_recent_menu();
+    void add_recent_session(const QString &path);
+    void rebuild_recent_sessions_menu();
     void show_error(const QString &title, const QString &message);
     // A notice that does not block (window-modal, the event loop goes on).
     void show_notice(QMessageBox *box);
@@ -270,6 +284,11 @@ private:
     bool last_truncated_ = false;
     QMenu *recent_menu_ = nullptr;
     QStringList recent_;
+    QMenu *recent_sessions_menu_ = nullptr;
+    QStringList recent_sessions_;
+    // a session's saved views, given to the Camera tab once its model is in
+    std::vector<SavedView> pending_views_;
+    bool pending_session_ = false;
     SettingsFile settings_file_;
     SavedStateText saved_; // as read, updated by each save
     Start start_ = Start::Restore;

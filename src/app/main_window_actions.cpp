@@ -103,6 +103,28 @@ void MainWindow::build_file_menu()
         action->setToolTip(path);
         action->setEnabled(QFileInfo::exists(path));
     }
+    // sessions (main_window_session.cpp, docs/sessions.md)
+    file->addSeparator();
+    menu_action(file, "Open s&ession…", QKeySequence("Ctrl+Shift+O"), this, [this] {
+        QString path = QFileDialog::getOpenFileName(this, "Open session", QFileInfo(model_path_).absolutePath(),
+                                                    "Sessions (*.oitsession);;All files (*)");
+        QString error;
+        if (!path.isEmpty() && !open_session(path, error))
+            show_error("Open session", error);
+    });
+    recent_sessions_menu_ = file->addMenu("Open recent sess&ion");
+    menu_action(file, "Sa&ve session…", QKeySequence("Ctrl+Shift+S"), this, [this] {
+        QString suggested = QFileInfo(model_path_).absolutePath() + "/" + QFileInfo(model_path_).completeBaseName() +
+                            ".oitsession";
+        QString path = QFileDialog::getSaveFileName(this, "Save session", suggested, "Sessions (*.oitsession)");
+        if (path.isEmpty())
+            return;
+        if (!path.endsWith(".oitsession", Qt::CaseInsensitive))
+            path += ".oitsession";
+        QString error;
+        if (!save_session(path, error))
+            show_error("Save session", error);
+    });
     file->addSeparator();
     file->addAction("&Export PNG…", this, &MainWindow::export_dialog, QKeySequence("Ctrl+E"));
     file->addAction("&Copy as command", this, &MainWindow::copy_command, QKeySequence("Ctrl+Shift+C"));

@@ -355,7 +355,8 @@ namespace {
 // JSON with comments and trailing commas; a syntax error becomes "FILE:LINE: what".
 bool parse_json(const std::string &file, const std::string &text, rapidjson::Document &d, std::string &error)
 {
-    d.Parse<rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag>(text.c_str(), text.size());
+    d.Parse<rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag | rapidjson::kParseFullPrecisionFlag>(
+        text.c_str(), text.size()); // full precision: every double comes back bit for bit (sessions, saved views)
     if (!d.HasParseError())
         return true;
     size_t offset = std::min(d.GetErrorOffset(), text.size());
@@ -980,12 +981,13 @@ bool saved_state_from_json(const std::string &file, const std::string &text, Sav
     PresetReader r{file, text, error};
     SavedStateText state;
     static const char *const known[] = {"settings", "last-model", "recent",        "geometry",
-                                        "window",   "views",      "export-folder", "export-size"};
+                                        "window",   "views",      "export-folder", "export-size",
+                                        "recent-sessions"};
     for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
         std::string key = it->name.GetString();
         if (std::find(std::begin(known), std::end(known), key) == std::end(known))
             return r.fail(key.c_str(), "unknown key (the keys are settings, last-model, recent, geometry, window, "
-                                       "views, export-folder, export-size)");
+                                       "views, export-folder, export-size, recent-sessions)");
     }
     if (d.HasMember("views")) {
         const Value &views = d["views"];
@@ -1056,6 +1058,16 @@ bool saved_state_from_json(const std::string &file, const std::string &text, Sav
             state.recent.push_back(name.GetString());
         }
     }
+    if (d.HasMember("recent-sessions")) { // File > Open recent session (docs/sessions.md)
+        const Value &recent = d["recent-sessions"];
+        if (!recent.IsArray())
+            return r.fail("recent-sessions", "must be an array of file names");
+        for (const Value &name : recent.GetArray()) {
+            if (!name.IsString())
+                return r.fail("recent-sessions", "must be an array of file names");
+            state.recent_sessions.push_back(name.GetString());
+        }
+    }
     for (const char *key : {"geometry", "window"}) {
         if (!d.HasMember(key))
             continue;
@@ -1073,7 +1085,7 @@ std::string saved_state_to_json(const SavedStateText &state)
     auto &a = d.GetAllocator();
     if (!state.settings.empty()) {
         rapidjson::Document settings(&a);
-        settings.Parse(state.settings.c_str(), state.settings.size());
+        settings.Parse<rapidjson::kParseFullPrecisionFlag>(state.settings.c_str(), state.settings.size());
         if (!settings.HasParseError() && settings.IsObject())
             add(d, "settings", Value(settings, a), a);
     }
@@ -1083,6 +1095,12 @@ std::string saved_state_to_json(const SavedStateText &state)
     for (const std::string &name : state.recent)
         recent.PushBack(string_value(name, a), a);
     add(d, "recent", std::move(recent), a);
+    if (!state.recent_sessions.empty()) {
+        Value sessions(rapidjson::kArrayType);
+        for (const std::string &name : state.recent_sessions)
+            sessions.PushBack(string_value(name, a), a);
+        add(d, "recent-sessions", std::move(sessions), a);
+    }
     if (!state.geometry.empty())
         add(d, "geometry", string_value(state.geometry, a), a);
     if (!state.window.empty())

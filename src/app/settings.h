@@ -144,6 +144,8 @@ struct SavedStateText {
     // chosen size (0 x 0: the view's size)
     std::string export_folder;
     int export_width = 0, export_height = 0;
+    // "recent-sessions": File > Open recent session, newest first (docs/sessions.md)
+    std::vector<std::string> recent_sessions;
 };
 bool saved_state_from_json(const std::string &file_name, const std::string &text, SavedStateText &out,
                            std::string &error);

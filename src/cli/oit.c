@@ -33,6 +33,7 @@
 #include "modulation_options.h"
 #include "pick_command.h"
 #include "render_session.h"
+#include "session_file.h"
 
 /* --------------------------------------------------------------- JSON */
 
@@ -134,6 +135,9 @@ static void print_render_help(FILE *out)
         used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", i ? ", " : "", list[i]->name);
     fprintf(out,
             "usage: oit render --model PATH [--out FILE.png] [options]\n"
+            "       oit render --session FILE.oitsession [--out FILE.png] [options that override it]\n"
+            "  --session FILE         a workbench session (docs/sessions.md): its model (relative to the\n"
+            "                         file), settings, export size and camera, as Export PNG renders them\n"
             "  --algorithm NAME       %s\n"
             "                         (default ll; oit algorithms says what each renders)\n"
             "  --size WxH             image size, 1..16384 per side (default 256x256)\n"
@@ -191,15 +195,68 @@ static void print_render_help(FILE *out)
           out);
 }
 
+static int render_with_options(int argc, char **argv, render_options *options, const session_flags *from_session,
+                               bool projection_given);
+
 static int command_render(int argc, char **argv)
 {
     render_options o;
     render_options_defaults(&o);
     oit_error err = {{0}};
     oit_status status = OIT_OK;
+    /* --session FILE (docs/sessions.md): the session's flags first, parsed by
+     * the same parser; the command line's own flags then override them */
+    const char *session_path = NULL;
+    bool model_given = false, projection_given = false;
+    for (int i = 0; i < argc; ++i) {
+        if (strcmp(argv[i], "--session") == 0) {
+            if (i + 1 >= argc)
+                return usage_error("--session needs a value%s", "");
+            session_path = argv[i + 1];
+        }
+        model_given = model_given || strcmp(argv[i], "--model") == 0;
+        projection_given = projection_given || strcmp(argv[i], "--projection") == 0;
+    }
+    session_flags from_session;
+    memset(&from_session, 0, sizeof from_session);
+    if (session_path) {
+        if ((status = session_file_read(session_path, model_given, &from_session, &err)) != OIT_OK)
+            return report(status, &err);
+        for (int k = 0; k < from_session.count; ++k) {
+            session_flag *flag = &from_session.flags[k];
+            char *pair[2] = {flag->flag, flag->value};
+            int at = 0, parsed = parse_render_option(flag->value ? 2 : 1, pair, &at, &o, &err, &status);
+            if (parsed < 0) {
+                char reason[OIT_ERROR_MESSAGE_SIZE];
+                snprintf(reason, sizeof reason, "%s", err.message);
+                status = oit_fail(&err, status, "%s: \"%s\": %s", session_path, flag->key, reason);
+                session_flags_free(&from_session);
+                return report(status, &err);
+            }
+            if (parsed == 0) /* a setting this oit has no flag for: said, then left out */
+                fprintf(stderr, "oit: warning: %s: \"%s\": unknown field ignored (no %s flag)\n", session_path,
+                        flag->key, flag->flag);
+        }
+    }
+    int code = render_with_options(argc, argv, &o, &from_session, projection_given);
+    session_flags_free(&from_session); /* o's strings pointed into it */
+    return code;
+}
+
+/* The render command's own flags (over the session's, already in *options), then the frame. */
+static int render_with_options(int argc, char **argv, render_options *options, const session_flags *from_session,
+                               bool projection_given)
+{
+    render_options o = *options;
+    oit_error err = {{0}};
+    oit_status status = OIT_OK;
     bool error_vs_reference = false;
     const char *error_map_path = NULL;
     for (int i = 0; i < argc; ++i) {
+        if (strcmp(argv[i], "--session") == 0) {
+            ++i;
+            continue;
+        }
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             print_render_help(stdout);
             oit_cli_print_local_help(stdout);
@@ -222,8 +279,13 @@ static int command_render(int argc, char **argv)
         if (parsed == 0)
             return usage_error("render: unknown option '%s'", argv[i]);
     }
+    /* another --size than the session's: its matrices keep the vertical
+     * field of view (the horizontal scale follows the new aspect) */
+    if (from_session->has_matrices && !projection_given &&
+        (long)o.width * from_session->height != (long)o.height * from_session->width)
+        o.projection[0] = o.projection[5] * o.height / o.width;
     if (!o.model_path)
-        return usage_error("render needs --model PATH%s", "");
+        return usage_error("render needs --model PATH (or --session FILE)%s", "");
     if (o.out_path && (status = check_output_path("--out", o.out_path, &err)) != OIT_OK)
         return report(status, &err);
     if (error_map_path && (status = check_output_path("--error-map", error_map_path, &err)) != OIT_OK)

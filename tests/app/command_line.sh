@@ -55,6 +55,11 @@ expect_error "bad-preset.json:2:" --preset "$work/bad-preset.json" --screenshot 
 expect_error "no part or assembly named 'nonesuch'" --select gear_1,nonesuch --screenshot "$work/never.png"
 expect_error "--fade-others '10' needs --select" --fade-others 10 --screenshot "$work/never.png"
 expect_error "--fade-others '150' needs --select and 0..100" --select gear_1 --fade-others 150 --screenshot "$work/never.png"
+# a session (docs/sessions.md) instead of a model; a newer one is refused in one line
+session=$(cd "$(dirname "$0")/../data/sessions" && pwd)/gearbox-v1.oitsession
+run "$session" --size 120x90 --screenshot "$work/session.png" > /dev/null || fail "the version-1 session did not open"
+sed 's/"version": 1/"version": 2/' "$session" > "$work/newer.oitsession"
+expect_error "newer.oitsession: version 2 is newer than this build reads" "$work/newer.oitsession" --screenshot "$work/never.png"
 [ ! -e "$work/never.png" ] || fail "a screenshot was written after an error"
 # an option the algorithm cannot express (dp has no heatmap) is left out, never a
 # grey view: the frame renders and one warning line names what was left out
