@@ -84,3 +84,8 @@ endif()
 # command; presets; the view's drag handle as one undo step; a few seconds.
 add_test(NAME app_sections COMMAND ${APP_XVFB} $<TARGET_FILE:test_sections>)
 set_tests_properties(app_sections PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
+# The orientation aids (issue 29; tests/app/test_aids.cpp): the triad shown by
+# default in its corner only; Export PNG with the aids equals the copied
+# command's image and the view; a few seconds.
+add_test(NAME app_aids COMMAND ${APP_XVFB} $<TARGET_FILE:test_aids>)
+set_tests_properties(app_aids PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)

@@ -190,6 +190,28 @@ QImage RenderView::shown_b() const
     return r->b.image;
 }
 
+QImage RenderView::displayed() const
+{
+    QImage shown = shown_a();
+    const oit_overlay_options aids = view_aids(settings());
+    if ((!aids.axes && !aids.scale_bar) || !model_ || shown.isNull())
+        return shown;
+    // the GUI thread draws them: a few corner masks, no render to wait for
+    const QSize size = pixel_size();
+    QImage image = (shown.size() == size ? shown : shown.scaled(size, Qt::IgnoreAspectRatio, Qt::SmoothTransformation))
+                       .convertToFormat(QImage::Format_RGBA8888);
+    image.detach();
+    std::vector<float> storage;
+    const oit_frame_settings frame = current_frame(storage);
+    oit_image target{image.width(), image.height(), image.bits()};
+    if (image.bytesPerLine() != image.width() * 4)
+        return shown; // never: RGBA8888 rows are width * 4 bytes
+    oit_error err{};
+    if (oit_overlay_draw(&target, &aids, frame.modelview, frame.projection, model_.get(), nullptr, &err) != OIT_OK)
+        return shown; // matrices the frame refuses too: the view says so already
+    return image;
+}
+
 void RenderView::update_overlays()
 {
     const FrameResult *r = shown_result_.get();
@@ -543,7 +565,7 @@ void RenderView::paintEvent(QPaintEvent *)
     } else if (shown_.isNull()) {
         painter.fillRect(rect(), QColor(89, 89, 97));
     } else {
-        QImage shown = shown_a();
+        QImage shown = displayed();
         if (shown.size() == pixel_size()) {
             shown.setDevicePixelRatio(devicePixelRatioF());
             painter.drawImage(QPoint(0, 0), shown);

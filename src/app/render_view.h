@@ -108,6 +108,11 @@ public:
     // What the view shows of the last result (before the overlays): side A's
     // image, or its error map; side B's in a split view (null otherwise).
     QImage shown_a() const;
+    // What the view paints when it is not split: shown_a() at the view's pixel
+    // size with the orientation aids the settings ask for (issue 29), drawn by
+    // the core's overlay (oit_overlay_draw, as `oit render --axes --scale-bar`)
+    // with the current camera on a copy; shown_a() itself when there are none.
+    QImage displayed() const;
     QImage shown_b() const;
     // The error view's legend (hidden when the view shows no error map).
     ErrorLegend *legend() const { return legend_; }
