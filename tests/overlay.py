@@ -2,7 +2,7 @@
 """overlay.py: the orientation aids of `oit render` (issue 29; docs/cli.md,
 --axes and --scale-bar), 128x128 images.
 
-usage: overlay.py OIT WORKDIR GEARBOX.obj
+usage: overlay.py OIT WORKDIR GEARBOX.obj STEP_FILE
 
 (a) the triad's arrows point where the modelview says: for the front, the top
     and a turned view, the red (X), green (Y) and blue (Z) pixels' weighted
@@ -16,7 +16,8 @@ usage: overlay.py OIT WORKDIR GEARBOX.obj
     times the projection's pixels per unit (to 1e-6), and the ink summed along
     the bar's fully covered row is that length within 1 px; the perspective
     bar says it is exact at the centre's depth; a centre behind the camera
-    gives a warning and "scale_bar": null, not a crash;
+    gives a warning and "scale_bar": null, not a crash; a STEP file's bar is
+    in millimetres ("1 mm");
 (c) EGL and OSMesa: where their frames agree, the frames with the aids agree
     byte for byte; without the flags the image equals the one with them outside
     the aids' boxes and --json has no "axes"/"scale_bar";
@@ -31,7 +32,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from ib_png import read_png  # noqa: E402
 
-OIT, WORK, GEARBOX = sys.argv[1], sys.argv[2], sys.argv[3]
+OIT, WORK, GEARBOX, STEP = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
 os.makedirs(WORK, exist_ok=True)
 SIZE = 128
 failures = []
@@ -43,9 +44,9 @@ def check(ok, what):
         failures.append(what)
 
 
-def render(name, *flags, expect=0):
+def render(name, *flags, expect=0, model=None):
     out = os.path.join(WORK, name + ".png")
-    cmd = [OIT, "render", "--model", GEARBOX, "--size", f"{SIZE}x{SIZE}", "--out", out, "--json", *flags]
+    cmd = [OIT, "render", "--model", model or GEARBOX, "--size", f"{SIZE}x{SIZE}", "--out", out, "--json", *flags]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != expect:
         print(" ".join(cmd), "\n", p.stderr)
@@ -90,8 +91,11 @@ def centroid(img, axis, ox, oy, reach):
 BASE = ["--algorithm", "ll", "--background", "1,1,1"]
 
 # ------------------------------------------------------------- (a) the triad
+turned = None
 for view, orbit in (("front", "0,0"), ("top", "0,90"), ("turned", "30,20")):
     info, img, _ = render("axes-" + view, *BASE, "--orbit", orbit, "--axes")
+    if view == "turned":
+        turned = info, img
     axes = info["axes"]
     ox, oy = axes["origin"]
     length = axes["length"]
@@ -131,7 +135,9 @@ check(blue > 10 and red == 0, f"away X drawn under Z on their shared line (blue 
 
 for corner, (right, bottom) in (("bottom-left", (0, 1)), ("bottom-right", (1, 1)), ("top-left", (0, 0)),
                                 ("top-right", (1, 0))):
-    info, img, _ = render("axes-" + corner, *BASE, "--orbit", "30,20", "--axes=" + corner)
+    # bottom-left: the turned view's (--axes without a corner)
+    info, img = turned if corner == "bottom-left" else render("axes-" + corner, *BASE, "--orbit", "30,20",
+                                                               "--axes=" + corner)[:2]
     ox, oy = info["axes"]["origin"]
     check(info["axes"]["corner"] == corner and (ox > SIZE / 2) == bool(right) and (oy > SIZE / 2) == bool(bottom),
           f"--axes={corner}: origin ({ox:.1f}, {oy:.1f}) in that quarter")
@@ -177,6 +183,10 @@ info, img, err = render("scale-behind", *BASE, "--modelview", ",".join(map(repr,
 check(info["scale_bar"] is None and "behind the camera" in err and err.count("\n") == 1,
       "centre behind the camera: one warning, \"scale_bar\": null")
 
+info, img, _ = render("scale-step", *BASE, "--orbit", "30,30", "--scale-bar", model=STEP)
+bar = info["scale_bar"]
+check(bar["units"] == "mm" and bar["label"] == f"{bar['length']:g} mm", f"STEP: the bar in mm ({bar['label']})")
+
 # ------------------------------------------------- (c) backends, no flags
 aids = ["--orbit", "30,20", "--axes", "--scale-bar"]
 _, egl, _ = render("egl-aids", *BASE, "--backend", "egl", *aids)
@@ -197,7 +207,7 @@ check(changed > 100 and differ == 0 and same > SIZE * SIZE // 2,
       f"EGL and OSMesa aids agree byte for byte where their frames do ({same} pixels, {differ} differ; "
       f"the aids changed {changed})")
 check("axes" not in info_plain and "scale_bar" not in info_plain, "no flags: --json has no axes or scale_bar")
-info_axes, egl_axes, _ = render("egl-axes", *BASE, "--backend", "egl", "--orbit", "30,20", "--axes")
+info_axes, egl_axes = turned  # EGL, orbit 30,20, --axes
 ox, oy = info_axes["axes"]["origin"]
 reach = 1.9 * info_axes["axes"]["length"]
 for y in range(SIZE):
