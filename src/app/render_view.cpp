@@ -198,17 +198,26 @@ QImage RenderView::displayed() const
         return shown;
     // the GUI thread draws them: a few corner masks, no render to wait for
     const QSize size = pixel_size();
+    std::vector<float> storage;
+    const oit_frame_settings frame = current_frame(storage);
+    std::vector<double> key(frame.modelview, frame.modelview + 16);
+    key.insert(key.end(), frame.projection, frame.projection + 16);
+    key.insert(key.end(), {double(size.width()), double(size.height()), double(aids.axes), double(aids.axes_corner),
+                           double(aids.scale_bar), double(reinterpret_cast<uintptr_t>(model_.get()))});
+    if (!aids_image_.isNull() && aids_source_ == shown.cacheKey() && aids_key_ == key)
+        return aids_image_;
     QImage image = (shown.size() == size ? shown : shown.scaled(size, Qt::IgnoreAspectRatio, Qt::SmoothTransformation))
                        .convertToFormat(QImage::Format_RGBA8888);
     image.detach();
-    std::vector<float> storage;
-    const oit_frame_settings frame = current_frame(storage);
     oit_image target{image.width(), image.height(), image.bits()};
     if (image.bytesPerLine() != image.width() * 4)
         return shown; // never: RGBA8888 rows are width * 4 bytes
     oit_error err{};
     if (oit_overlay_draw(&target, &aids, frame.modelview, frame.projection, model_.get(), nullptr, &err) != OIT_OK)
         return shown; // matrices the frame refuses too: the view says so already
+    aids_image_ = image;
+    aids_source_ = shown.cacheKey();
+    aids_key_ = std::move(key);
     return image;
 }
 

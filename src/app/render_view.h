@@ -239,6 +239,11 @@ private:
     std::vector<float> highlight_; // per part: 1 highlighted; empty: no highlight
     // sections (issue 28)
     std::shared_ptr<const oit_model> drawn_model_; // the shown frame's
+    // displayed()'s last image and what it was drawn from (a repaint without a
+    // new frame, camera or aids reuses it)
+    mutable QImage aids_image_;
+    mutable qint64 aids_source_ = 0;
+    mutable std::vector<double> aids_key_;
     std::vector<uint32_t> open_cut_;
     int active_section_ = -1;
     bool dragging_section_ = false;

@@ -451,26 +451,24 @@ static oit_status draw_scale_bar(oit_image *image, const oit_overlay_options *op
     double u = size_unit(image->width, image->height);
     /* the longest 1, 2 or 5 x 10^k that fits a quarter of the width */
     double target = 0.25 * image->width / ppu;
-    int k = (int)floor(log10(target));
-    if (k < -30 || k > 30) {
+    double magnitude = floor(log10(target)); /* +-inf or NaN for a scale out of range */
+    if (!(magnitude >= -30.0 && magnitude <= 30.0)) {
         if (info)
             snprintf(info->scale_problem, sizeof info->scale_problem,
                      "the scale (%g pixels per unit) is out of range: no scale bar", ppu);
         return OIT_OK;
     }
+    int k = (int)magnitude;
     double value = 0.0;
-    int mantissa = 1;
     for (int step = k - 1; step <= k + 1; ++step)
         for (int i = 0; i < 3; ++i) {
             static const int nice[3] = {1, 2, 5};
             double v = nice[i] * power_of_ten(step);
             if (v <= target * (1.0 + 1e-12) && v > value) {
                 value = v;
-                mantissa = nice[i];
                 k = step;
             }
         }
-    (void)mantissa;
     double pixels = value * ppu;
     /* units: B-rep imports (STEP, IGES) hold millimetres */
     bool mm = model->unit_name[0] || model->unit_to_mm > 0.0 || model->tessellation_linear_mm > 0.0;
