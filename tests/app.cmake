@@ -92,3 +92,9 @@ set_tests_properties(app_sections PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RE
 # unknown fields warned about; the committed version-1 example still loads.
 add_test(NAME app_sessions COMMAND ${APP_XVFB} $<TARGET_FILE:test_sessions>)
 set_tests_properties(app_sessions PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
+
+# The orientation aids (issue 29; tests/app/test_aids.cpp): the triad shown by
+# default in its corner only; Export PNG with the aids equals the copied
+# command's image and the view; a few seconds.
+add_test(NAME app_aids COMMAND ${APP_XVFB} $<TARGET_FILE:test_aids>)
+set_tests_properties(app_aids PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)

@@ -202,6 +202,7 @@ private:
     void build_menus();
     void build_file_menu();
     void build_view_menu();
+    void build_aids_menu(QMenu *view); // View > Orientation aids (issue 29)
     void build_help_menu();
     void build_parts_menu(); // main_window_selection.cpp
     void update_highlight(); // the view's highlight from the selection and the action

@@ -289,6 +289,64 @@ void MainWindow::build_view_menu()
     }
     algorithms->setToolTipsVisible(true);
     view->addSeparator();
+    build_aids_menu(view);
+}
+
+// issue 29: the axes triad (on by default) and the scale bar over the view,
+// drawn by the core's overlay; exports and Copy as command carry them when
+// "Include in exports" is on (`oit render --axes=CORNER --scale-bar`).
+void MainWindow::build_aids_menu(QMenu *view)
+{
+    QMenu *aids = view->addMenu("Orientation &aids");
+    aids->setObjectName("aids_menu");
+    auto changed = [this] {
+        settings_changed();
+        view_->update();
+    };
+    QAction *axes = aids->addAction("&Axes triad");
+    axes->setObjectName("aids_axes");
+    axes->setCheckable(true);
+    axes->setToolTip("X red, Y green, Z blue, as the camera turns the model's axes (--axes)");
+    connect(axes, &QAction::triggered, this, [this, changed](bool on) {
+        settings_->render_settings().axes = on;
+        changed();
+    });
+    QMenu *corner = aids->addMenu("Axes &corner");
+    auto *corner_group = new QActionGroup(this);
+    for (int c = 0; c < 4; ++c) {
+        QAction *action = corner->addAction(oit_corner_name(oit_corner(c)));
+        action->setCheckable(true);
+        corner_group->addAction(action);
+        connect(action, &QAction::triggered, this, [this, changed, c] {
+            settings_->render_settings().axes_corner = oit_corner(c);
+            changed();
+        });
+        sync_actions_.push_back(
+            [this, action, c] { action->setChecked(settings_->render_settings().axes_corner == oit_corner(c)); });
+    }
+    QAction *bar = aids->addAction("&Scale bar");
+    bar->setObjectName("aids_scale_bar");
+    bar->setCheckable(true);
+    bar->setToolTip("1, 2 or 5 x 10^k model units (mm for STEP and IGES), exact at the depth of the model's "
+                    "centre (everywhere when orthographic) (--scale-bar)");
+    connect(bar, &QAction::triggered, this, [this, changed](bool on) {
+        settings_->render_settings().scale_bar = on;
+        changed();
+    });
+    QAction *in_export = aids->addAction("&Include in exports");
+    in_export->setObjectName("aids_in_export");
+    in_export->setCheckable(true);
+    in_export->setToolTip("Export PNG and Copy as command carry the axes and the scale bar shown");
+    connect(in_export, &QAction::triggered, this, [this, changed](bool on) {
+        settings_->render_settings().aids_in_export = on;
+        changed();
+    });
+    sync_actions_.push_back([this, axes, bar, in_export] {
+        const RenderSettings &s = settings_->render_settings();
+        axes->setChecked(s.axes);
+        bar->setChecked(s.scale_bar);
+        in_export->setChecked(s.aids_in_export);
+    });
 }
 
 QString MainWindow::view_refusal(int view) const
@@ -416,6 +474,18 @@ bool MainWindow::export_png(const QString &path, int width, int height, QString 
         exporting_ = false;
         error = QString::fromStdString(message);
         return false;
+    }
+    // the orientation aids, as `oit render --axes --scale-bar` draws them on
+    // its frame (the same core function on the same matrices and model)
+    const oit_overlay_options aids = export_aids(settings_->render_settings());
+    if ((aids.axes || aids.scale_bar) && model_) {
+        oit_error err{};
+        if (oit_overlay_draw(&image, &aids, frame.modelview, frame.projection, model_.get(), nullptr, &err) != OIT_OK) {
+            oit_image_free(&image);
+            exporting_ = false;
+            error = QString::fromUtf8(err.message);
+            return false;
+        }
     }
     // The core's writer (the bytes `oit render` writes, atomically) on a pool
     // thread: 0.6-0.7 s at 3840x2160 that the GUI thread would otherwise freeze
@@ -546,6 +616,13 @@ void MainWindow::export_dialog()
     with_highlight->setToolTip("the selected parts tinted as in the view; without, the image has no highlight");
     with_highlight->setEnabled(!view_->highlight().empty());
     form->addRow(with_highlight);
+    auto *with_aids = new QCheckBox("Include axes triad and scale bar (as shown)");
+    with_aids->setObjectName("export_aids");
+    with_aids->setToolTip("the orientation aids the view shows (View > Orientation aids); Copy as command "
+                          "then carries them too (--axes, --scale-bar)");
+    with_aids->setChecked(settings_->render_settings().aids_in_export);
+    with_aids->setEnabled(settings_->render_settings().axes || settings_->render_settings().scale_bar);
+    form->addRow(with_aids);
     auto *buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
     connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
     connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
@@ -553,6 +630,10 @@ void MainWindow::export_dialog()
     if (dialog.exec() != QDialog::Accepted)
         return;
     export_size_ = custom->isChecked() ? QSize(w->value(), h->value()) : QSize();
+    if (with_aids->isEnabled() && with_aids->isChecked() != settings_->render_settings().aids_in_export) {
+        settings_->render_settings().aids_in_export = with_aids->isChecked();
+        settings_changed();
+    }
     QString path = QFileDialog::getSaveFileName(
         this, "Export PNG", export_folder() + "/" + QFileInfo(model_path_).completeBaseName() + ".png",
         "PNG images (*.png)");

@@ -190,6 +190,37 @@ QImage RenderView::shown_b() const
     return r->b.image;
 }
 
+QImage RenderView::displayed() const
+{
+    QImage shown = shown_a();
+    const oit_overlay_options aids = view_aids(settings());
+    if ((!aids.axes && !aids.scale_bar) || !model_ || shown.isNull())
+        return shown;
+    // the GUI thread draws them: a few corner masks, no render to wait for
+    const QSize size = pixel_size();
+    std::vector<float> storage;
+    const oit_frame_settings frame = current_frame(storage);
+    std::vector<double> key(frame.modelview, frame.modelview + 16);
+    key.insert(key.end(), frame.projection, frame.projection + 16);
+    key.insert(key.end(), {double(size.width()), double(size.height()), double(aids.axes), double(aids.axes_corner),
+                           double(aids.scale_bar), double(reinterpret_cast<uintptr_t>(model_.get()))});
+    if (!aids_image_.isNull() && aids_source_ == shown.cacheKey() && aids_key_ == key)
+        return aids_image_;
+    QImage image = (shown.size() == size ? shown : shown.scaled(size, Qt::IgnoreAspectRatio, Qt::SmoothTransformation))
+                       .convertToFormat(QImage::Format_RGBA8888);
+    image.detach();
+    oit_image target{image.width(), image.height(), image.bits()};
+    if (image.bytesPerLine() != image.width() * 4)
+        return shown; // never: RGBA8888 rows are width * 4 bytes
+    oit_error err{};
+    if (oit_overlay_draw(&target, &aids, frame.modelview, frame.projection, model_.get(), nullptr, &err) != OIT_OK)
+        return shown; // matrices the frame refuses too: the view says so already
+    aids_image_ = image;
+    aids_source_ = shown.cacheKey();
+    aids_key_ = std::move(key);
+    return image;
+}
+
 void RenderView::update_overlays()
 {
     const FrameResult *r = shown_result_.get();
@@ -543,7 +574,7 @@ void RenderView::paintEvent(QPaintEvent *)
     } else if (shown_.isNull()) {
         painter.fillRect(rect(), QColor(89, 89, 97));
     } else {
-        QImage shown = shown_a();
+        QImage shown = displayed();
         if (shown.size() == pixel_size()) {
             shown.setDevicePixelRatio(devicePixelRatioF());
             painter.drawImage(QPoint(0, 0), shown);

@@ -108,6 +108,11 @@ public:
     // What the view shows of the last result (before the overlays): side A's
     // image, or its error map; side B's in a split view (null otherwise).
     QImage shown_a() const;
+    // What the view paints when it is not split: shown_a() at the view's pixel
+    // size with the orientation aids the settings ask for (issue 29), drawn by
+    // the core's overlay (oit_overlay_draw, as `oit render --axes --scale-bar`)
+    // with the current camera on a copy; shown_a() itself when there are none.
+    QImage displayed() const;
     QImage shown_b() const;
     // The error view's legend (hidden when the view shows no error map).
     ErrorLegend *legend() const { return legend_; }
@@ -234,6 +239,11 @@ private:
     std::vector<float> highlight_; // per part: 1 highlighted; empty: no highlight
     // sections (issue 28)
     std::shared_ptr<const oit_model> drawn_model_; // the shown frame's
+    // displayed()'s last image and what it was drawn from (a repaint without a
+    // new frame, camera or aids reuses it)
+    mutable QImage aids_image_;
+    mutable qint64 aids_source_ = 0;
+    mutable std::vector<double> aids_key_;
     std::vector<uint32_t> open_cut_;
     int active_section_ = -1;
     bool dragging_section_ = false;

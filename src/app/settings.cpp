@@ -334,6 +334,12 @@ std::string render_command(const std::string &oit_program, const std::string &mo
     }
     if (s.explode > 0.0)
         c << " --explode " << short_exact(s.explode);
+    // the orientation aids, when exports carry them (issue 29)
+    const oit_overlay_options aids = export_aids(s);
+    if (aids.axes)
+        c << " --axes=" << oit_corner_name(aids.axes_corner);
+    if (aids.scale_bar)
+        c << " --scale-bar";
     if (s.error_view) {
         // the same frame with the CPU reference: the figures, and the map beside the image
         std::string map = out_path.empty() ? "error.png" : out_path;
@@ -582,6 +588,9 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     }
     add(d, "caps", Value(rapidjson::StringRef(s.caps ? "on" : "off")), a);
     add(d, "explode", Value(s.explode), a);
+    // the orientation aids (issue 29)
+    add(d, "axes", Value(rapidjson::StringRef(s.axes ? oit_corner_name(s.axes_corner) : "off")), a);
+    add(d, "scale-bar", Value(s.scale_bar), a);
     add(d, "camera", camera_value(camera, a), a);
 
     rapidjson::StringBuffer buffer;
@@ -607,6 +616,7 @@ RenderSettings preset_defaults(const RenderSettings &current)
     s.part_alpha = current.part_alpha;
     s.part_visible = current.part_visible;
     s.section_parts = current.section_parts;
+    s.aids_in_export = current.aids_in_export; // the workbench's choice, not the preset's
     return s;
 }
 
@@ -631,7 +641,9 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         // the workbench's interaction: what renders while moving
         "preview-algorithm",
         // sections and the exploded view (issue 28)
-        "section", "section-parts", "caps", "explode"};
+        "section", "section-parts", "caps", "explode",
+        // the orientation aids (issue 29)
+        "axes", "scale-bar"};
     for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
         std::string key = it->name.GetString();
         if (std::find(std::begin(known), std::end(known), key) == std::end(known))
@@ -832,6 +844,20 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         if (!caps.IsString() || (caps.GetString() != std::string("on") && caps.GetString() != std::string("off")))
             return r.fail("caps", "must be \"on\" or \"off\"");
         s.caps = caps.GetString() == std::string("on");
+    }
+    if (d.HasMember("axes")) {
+        const Value &axes = d["axes"];
+        oit_corner corner = OIT_CORNER_BOTTOM_LEFT;
+        bool off = axes.IsString() && axes.GetString() == std::string("off");
+        if (!axes.IsString() || (!off && oit_corner_parse(axes.GetString(), &corner, nullptr) != OIT_OK))
+            return r.fail("axes", "must be \"off\", \"bottom-left\", \"bottom-right\", \"top-left\" or \"top-right\"");
+        s.axes = !off;
+        s.axes_corner = corner;
+    }
+    if (d.HasMember("scale-bar")) {
+        if (!d["scale-bar"].IsBool())
+            return r.fail("scale-bar", "must be true or false");
+        s.scale_bar = d["scale-bar"].GetBool();
     }
     if (d.HasMember("explode")) {
         const Value &explode = d["explode"];
@@ -1172,4 +1198,22 @@ std::string algorithm_summary(const oit_algorithm_ops &ops)
             return line;
     }
     return line + " (" + word + ")";
+}
+
+oit_overlay_options view_aids(const RenderSettings &settings)
+{
+    oit_overlay_options o;
+    oit_overlay_options_defaults(&o);
+    o.axes = settings.axes;
+    o.axes_corner = settings.axes_corner;
+    o.scale_bar = settings.scale_bar;
+    return o;
+}
+
+oit_overlay_options export_aids(const RenderSettings &settings)
+{
+    oit_overlay_options o = view_aids(settings);
+    if (!settings.aids_in_export)
+        o.axes = o.scale_bar = false;
+    return o;
 }

@@ -68,6 +68,14 @@ struct RenderSettings {
     std::vector<char> section_parts;
     bool caps = true;    // --caps on|off
     double explode = 0.0; // --explode F, 0..OIT_EXPLODE_MAX
+    // issue 29: the orientation aids (View menu; preset keys "axes": a corner
+    // or "off", "scale-bar", the command line's flags). The view shows what
+    // these say; exports and Copy as command carry them when aids_in_export is
+    // on (View > Include aids in exports, or Export PNG's box; not in presets)
+    bool axes = true; // the triad, shown by default
+    oit_corner axes_corner = OIT_CORNER_BOTTOM_LEFT;
+    bool scale_bar = false;
+    bool aids_in_export = false;
 
     RenderSettings();
     void reset_parts(const oit_model &model);
@@ -84,6 +92,11 @@ oit_frame_settings make_frame(const RenderSettings &settings, const oit_model &m
 // The enabled section planes (the first OIT_SECTION_PLANES_MAX), which parts
 // they cut and the caps into local; section_parts points into settings.
 void apply_sections(const RenderSettings &settings, const oit_model &model, oit_local_modulation &local);
+
+// The orientation aids the view shows (settings.axes, scale_bar), and those an
+// export and Copy as command carry (none unless settings.aids_in_export).
+oit_overlay_options view_aids(const RenderSettings &settings);
+oit_overlay_options export_aids(const RenderSettings &settings);
 
 // --tessellation's value: "normal", "coarse", "fine" or the millimetres.
 std::string tessellation_name(const oit_import_options &import);

@@ -98,6 +98,27 @@ static void print_render_json(FILE *out, const render_options *o, const session 
     if (r->gl_allocated_bytes >= 0) /* the independent count of memory_bytes (tests) */
         fprintf(out, ", \"gl_allocated_bytes\": %lld", (long long)r->gl_allocated_bytes);
     json_stats_figures(out, st, true);
+    /* --axes, --scale-bar: what was drawn (pixels: x right, y down from the top-left) */
+    if (r->overlay.axes) {
+        const oit_overlay_info *a = &r->overlay;
+        fprintf(out, ", \"axes\": {\"corner\": \"%s\", \"origin\": [%.6f, %.6f], \"length\": %.6f, "
+                     "\"directions\": [[%.6f, %.6f], [%.6f, %.6f], [%.6f, %.6f]]}",
+                oit_corner_name(o->overlay.axes_corner), a->axes_origin[0], a->axes_origin[1], a->axes_length,
+                a->axes_directions[0][0], a->axes_directions[0][1], a->axes_directions[1][0],
+                a->axes_directions[1][1], a->axes_directions[2][0], a->axes_directions[2][1]);
+    }
+    if (o->overlay.scale_bar && r->overlay.scale_bar) {
+        const oit_overlay_info *b = &r->overlay;
+        fprintf(out, ", \"scale_bar\": {\"length\": %.9g, \"units\": ", b->scale_value);
+        json_string(out, b->scale_units);
+        fprintf(out, ", \"label\": ");
+        json_string(out, b->scale_label);
+        fprintf(out, ", \"pixels\": %.6f, \"pixels_per_unit\": %.9g, \"start\": [%.6f, %.6f], "
+                     "\"thickness\": %.6f, \"exact\": \"%s\"}",
+                b->scale_pixels, b->scale_pixels_per_unit, b->scale_start[0], b->scale_start[1],
+                b->scale_thickness, b->scale_exact ? "everywhere (orthographic)" : "at the model's centre's depth");
+    } else if (o->overlay.scale_bar)
+        fputs(", \"scale_bar\": null", out);
     if (o->out_path) {
         fprintf(out, ", \"out\": ");
         json_string(out, o->out_path);
@@ -189,6 +210,13 @@ static void print_render_help(FILE *out)
             "  --locks-held           %s (tests): every pixel's lock starts taken, so every fragment\n"
             "                         gives up after its tries and the frame fails naming them\n",
             algorithms_reading(OIT_OPTION_LOCKS_HELD, reading, sizeof reading));
+    fputs("  --axes[=CORNER]        draw the axes triad (X red, Y green, Z blue, as the view turns the\n"
+          "                         model's axes) in a corner: bottom-left (default), bottom-right,\n"
+          "                         top-left or top-right; --json adds \"axes\"\n"
+          "  --scale-bar            draw a scale bar (1, 2 or 5 x 10^k model units; mm for STEP and\n"
+          "                         IGES) measured at the model's centre's depth (exact there; exact\n"
+          "                         everywhere for an orthographic projection); --json adds \"scale_bar\"\n",
+          out);
     fputs("  --frames N             render N frames; figures are medians over frames 2..N (default 1)\n"
           "  --json                 print one JSON object with timings and statistics on stdout\n"
           "  --debug                debug GL context: every stage is checked for GL errors\n",

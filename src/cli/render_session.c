@@ -159,6 +159,7 @@ void render_options_defaults(render_options *o)
     o->backend = OIT_BACKEND_EGL;
     oit_algorithm_config_defaults(&o->config);
     o->frames = 1;
+    oit_overlay_options_defaults(&o->overlay);
 }
 
 /* Parses one render option at argv[*i]; returns 1 if consumed, 0 if unknown, -1 on error. */
@@ -328,6 +329,19 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
             return -1;
         }
         o->explode = factor;
+    } else if (strcmp(flag, "--axes") == 0) {
+        o->overlay.axes = true;
+        o->overlay.axes_corner = OIT_CORNER_BOTTOM_LEFT;
+    } else if (strncmp(flag, "--axes=", 7) == 0) {
+        if (oit_corner_parse(flag + 7, &o->overlay.axes_corner, err) != OIT_OK) {
+            *status = oit_fail(err, OIT_E_INPUT,
+                               "--axes=%.60s: no such corner (bottom-left, bottom-right, top-left or top-right)",
+                               flag + 7);
+            return -1;
+        }
+        o->overlay.axes = true;
+    } else if (strcmp(flag, "--scale-bar") == 0) {
+        o->overlay.scale_bar = true;
     } else if (strcmp(flag, "--json") == 0) {
         o->json = true;
     } else if (strcmp(flag, "--debug") == 0) {
@@ -598,6 +612,19 @@ oit_status render_setup_create(session *s, const render_options *o, render_setup
     return status;
 }
 
+oit_status render_overlay(const session *s, const render_options *o, const oit_frame_settings *frame,
+                          oit_image *image, oit_overlay_info *info, oit_error *err)
+{
+    memset(info, 0, sizeof *info);
+    if (!o->overlay.axes && !o->overlay.scale_bar)
+        return OIT_OK; /* the image as rendered, byte for byte */
+    const oit_model *loaded = s->derived ? &s->source_model : &s->model;
+    oit_status status = oit_overlay_draw(image, &o->overlay, frame->modelview, frame->projection, loaded, info, err);
+    if (status == OIT_OK && o->overlay.scale_bar && !info->scale_bar)
+        fprintf(stderr, "oit: warning: --scale-bar: %s\n", info->scale_problem);
+    return status;
+}
+
 oit_status render_frames(session *s, const render_options *o, render_result *result, oit_error *err)
 {
     memset(result, 0, sizeof *result);
@@ -631,6 +658,8 @@ oit_status render_frames(session *s, const render_options *o, render_result *res
     }
     if (status == OIT_OK)
         status = ops->read_image(setup.alg, &result->image, err);
+    if (status == OIT_OK)
+        status = render_overlay(s, o, &setup.frame, &result->image, &result->overlay, err);
     if (status == OIT_OK)
         median_stats(per_frame, o->frames, &result->stats);
     if (setup.alg)

@@ -55,6 +55,7 @@ typedef struct render_options {
     bool json;
     oit_import_options import; /* --tessellation (STEP, IGES) */
     double explode;            /* --explode F, 0..OIT_EXPLODE_MAX (0: the assembly as built) */
+    oit_overlay_options overlay; /* --axes[=CORNER], --scale-bar: drawn on the image render_frames returns */
 } render_options;
 
 void render_options_defaults(render_options *o);
@@ -117,6 +118,7 @@ typedef struct render_result {
      * created, counted by enumerating GL objects (oit_gl_enumerate_allocated_bytes,
      * which knows nothing of the algorithms' own accounting); -1 otherwise */
     int64_t gl_allocated_bytes;
+    oit_overlay_info overlay; /* what --axes and --scale-bar drew (render_frames_overlay) */
 } render_result;
 
 /* The frame settings o asks for on s's model (default camera unless matrices
@@ -133,7 +135,15 @@ typedef struct render_setup {
 } render_setup;
 oit_status render_setup_create(session *s, const render_options *o, render_setup *setup,
                                oit_error *err);
-/* Renders o->frames frames; figures are medians over frames 2..N. */
+/* The orientation aids o asks for (--axes, --scale-bar) onto image, a frame
+ * of s's model rendered with frame's matrices: the one place the command
+ * line draws them (render_frames calls it on its final image; a command
+ * that makes frames another way calls it before writing each). The scale
+ * bar takes the model as loaded (its centre and units), not the exploded one. */
+oit_status render_overlay(const session *s, const render_options *o, const oit_frame_settings *frame,
+                          oit_image *image, oit_overlay_info *info, oit_error *err);
+/* Renders o->frames frames; figures are medians over frames 2..N. The
+ * image has o's orientation aids on it (render_overlay). */
 oit_status render_frames(session *s, const render_options *o, render_result *result, oit_error *err);
 
 /* --------------------------------------------------------------- output */

@@ -303,6 +303,59 @@ void oit_error_map_colour(int difference, uint8_t rgb[3]);
  * map's scale). Pixels without fragments show the background. */
 void oit_heatmap_colour(int64_t length, int64_t longest, uint8_t rgb[3]);
 
+/* ------------------------------------------------------- orientation aids */
+
+/* issue 29 (overlay.c; docs/cli.md, --axes and --scale-bar): drawn on the
+ * CPU onto a finished RGBA8 frame, so the command line and the workbench's
+ * export give the same bytes whatever rendered it. */
+typedef enum oit_corner {
+    OIT_CORNER_BOTTOM_LEFT = 0,
+    OIT_CORNER_BOTTOM_RIGHT = 1,
+    OIT_CORNER_TOP_LEFT = 2,
+    OIT_CORNER_TOP_RIGHT = 3
+} oit_corner;
+/* "bottom-left", "bottom-right", "top-left", "top-right" */
+const char *oit_corner_name(oit_corner corner);
+oit_status oit_corner_parse(const char *text, oit_corner *out, oit_error *err);
+
+typedef struct oit_overlay_options {
+    bool axes;              /* the triad: X red, Y green, Z blue, turned by the modelview */
+    oit_corner axes_corner; /* default bottom-left */
+    bool scale_bar;         /* bottom right (bottom left when the triad is there) */
+} oit_overlay_options;
+void oit_overlay_options_defaults(oit_overlay_options *options); /* both off, bottom-left */
+
+/* What was drawn (pixels in image coordinates: x right, y down, the pixel
+ * (x, y) covering [x, x + 1) x [y, y + 1)). */
+typedef struct oit_overlay_info {
+    bool axes;
+    double axes_origin[2];        /* where the three arrows start */
+    double axes_length;           /* an arrow's length when it lies in the image plane */
+    double axes_directions[3][2]; /* X, Y, Z: each arrow's tip is origin + length * direction */
+    bool scale_bar;               /* false with options->scale_bar: scale_problem says why */
+    double scale_value;           /* 1, 2 or 5 x 10^k model units */
+    char scale_units[8];          /* "mm" (STEP, IGES) or "" (the model's own units) */
+    char scale_label[48];         /* "20 mm" */
+    double scale_pixels;          /* scale_value x scale_pixels_per_unit: the bar's length */
+    double scale_pixels_per_unit; /* along x, at the depth of the model's centre */
+    double scale_start[2];        /* the bar's top-left corner */
+    double scale_thickness;
+    bool scale_exact;             /* orthographic: true everywhere; perspective: only at the centre's depth */
+    char scale_problem[96];
+} oit_overlay_info;
+
+/* Draws the aids options asks for onto image, for the frame's matrices
+ * (file coordinates, as oit_frame_settings). The triad shows the model's axes
+ * as the modelview's rotation turns them, the ones pointing away under those
+ * pointing at the eye. The scale bar is measured at the depth of the model's
+ * centre (model->origin; the default camera orbits it), exact there (and
+ * everywhere for an orthographic projection); its units are millimetres for
+ * B-rep imports, the model's own otherwise. The sizes grow with the image's
+ * shorter side. info (may be NULL) receives what was drawn. */
+oit_status oit_overlay_draw(oit_image *image, const oit_overlay_options *options, const double modelview[16],
+                            const double projection[16], const oit_model *model, oit_overlay_info *info,
+                            oit_error *err);
+
 /* ------------------------------------------------------------------- files */
 /* atomic_file.c. WHAT names the file in the user's words (a flag such as
  * "--model"); it may be NULL or "". */

@@ -19,7 +19,7 @@
 static_assert(sizeof(oit_modulation) == 84, "oit_modulation changed: presets (settings.cpp) and this test");
 static_assert(sizeof(oit_algorithm_config) == 64, "oit_algorithm_config changed: presets (settings.cpp) and this test");
 static_assert(sizeof(oit_import_options) == 16, "oit_import_options changed: presets (settings.cpp) and this test");
-static_assert(sizeof(RenderSettings) == 472, "RenderSettings changed: presets (settings.cpp) and this test");
+static_assert(sizeof(RenderSettings) == 488, "RenderSettings changed: presets (settings.cpp) and this test");
 static_assert(sizeof(Camera) == 136, "Camera changed: presets (settings.cpp) and this test");
 
 namespace {
@@ -86,6 +86,11 @@ void every_field_changed(RenderSettings &s, Camera &c)
     s.section_parts = {0, 1, 1};
     s.caps = false;
     s.explode = 1.5;
+    // the orientation aids (issue 29): "axes" holds the corner or "off" (the
+    // triad on, its default, in another corner); aids_in_export is the
+    // workbench's choice, not a preset's
+    s.axes_corner = OIT_CORNER_TOP_RIGHT;
+    s.scale_bar = true;
     c.set_mode(Camera::Mode::Walk);
     c.orthographic = true;
     c.fov_degrees = 55.0f;
@@ -118,7 +123,7 @@ QStringList differences(const RenderSettings &a, const RenderSettings &b)
     SAME_ARRAY(modulation.halo_colour, 3) SAME(modulation.last_layer_opaque) SAME(modulation.epsilon_max)
     SAME(focus_shape) SAME_ARRAY(focus, 6) SAME(contrast) SAME(part_alpha) SAME(part_visible) SAME(error_view)
     SAME(split) SAME(split_algorithm) SAME(wipe) SAME(preview_algorithm) SAME(import.tessellation) SAME(import.linear_deflection_mm)
-    SAME(sections) SAME(section_parts) SAME(caps) SAME(explode)
+    SAME(sections) SAME(section_parts) SAME(caps) SAME(explode) SAME(axes) SAME(axes_corner) SAME(scale_bar)
     return out;
 }
 
@@ -161,9 +166,9 @@ private slots:
         Camera default_camera;
         // every field really is away from its default (else the test proves nothing for it)
         QStringList changed_fields = differences(changed, defaults);
-        // 52 comparisons (arrays element by element), all but import.tessellation
-        // (the deflection stands for it)
-        QVERIFY2(changed_fields.size() == 52 && !changed_fields.contains("import.tessellation"),
+        // 56 comparisons (arrays element by element), all but import.tessellation
+        // (the deflection stands for it) and axes (on by default; the corner stands for it)
+        QVERIFY2(changed_fields.size() == 54 && !changed_fields.contains("import.tessellation"),
                  qPrintable(changed_fields.join(", ")));
         QCOMPARE(camera_differences(camera, default_camera).size(), 8);
 
