@@ -84,3 +84,7 @@ endif()
 # command; presets; the view's drag handle as one undo step; a few seconds.
 add_test(NAME app_sections COMMAND ${APP_XVFB} $<TARGET_FILE:test_sections>)
 set_tests_properties(app_sections PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
+# File ▸ Export turntable (tests/app/test_turntable.cpp): 8 frames at 64x64 off the GUI
+# thread, byte for byte the `oit render --turntable` command's PNGs; Cancel leaves nothing.
+add_test(NAME app_turntable COMMAND ${APP_XVFB} $<TARGET_FILE:test_turntable>)
+set_tests_properties(app_turntable PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
