@@ -1041,7 +1041,8 @@ oit_status oit_scene_generate(const char *name, int complexity, const char *obj_
  * default camera and the y axis), the centre keeps its eye-space position,
  * the axis keeps its direction in the image. The axis is a model (file)
  * space unit vector: x, y or z, or "view", the direction base shows pointing
- * up the image (base^-1 applied to eye +y). */
+ * up the image (base^-1 applied to eye +y); oit_turntable_axis takes that
+ * modelview, which may be NULL for x, y and z. */
 typedef enum oit_turntable_up {
     OIT_TURNTABLE_UP_Y = 0, /* the default: the CLI's default camera and the workbench's Y up */
     OIT_TURNTABLE_UP_Z = 1,
