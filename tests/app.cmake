@@ -98,3 +98,7 @@ set_tests_properties(app_sessions PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RE
 # command's image and the view; a few seconds.
 add_test(NAME app_aids COMMAND ${APP_XVFB} $<TARGET_FILE:test_aids>)
 set_tests_properties(app_aids PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
+# File ▸ Export turntable (tests/app/test_turntable.cpp): 8 frames at 64x64 off the GUI
+# thread, byte for byte the `oit render --turntable` command's PNGs; Cancel leaves nothing.
+add_test(NAME app_turntable COMMAND ${APP_XVFB} $<TARGET_FILE:test_turntable>)
+set_tests_properties(app_turntable PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)

@@ -111,12 +111,23 @@ public:
     // event loop waits, so the window keeps answering); clears the progress.
     // with_highlight: the selection highlight as the view shows it (Export PNG's
     // "Include selection highlight"); without, none.
+    bool draw_export_aids(oit_image &image, const oit_frame_settings &frame, QString &error) const;
     bool export_png(const QString &path, int width, int height, QString &error, bool with_highlight = false);
     // Where Export PNG's save dialog opens: the last export's folder, else the
     // user's Pictures folder (never the source tree).
     QString export_folder() const;
     // The size Export PNG last used when chosen (invalid: the view's size).
     QSize export_size() const { return export_size_; }
+    // File > Export turntable… (docs/workbench.md): frames frames of the camera's
+    // orbit about the up axis (View's Y or Z up) through the model's centre
+    // (oit.h, "turntables"), frame 0 the view, each rendered as Export PNG
+    // renders (the render worker, a fresh algorithm: `oit render`'s bytes),
+    // written with the video (fps > 0; 0: none) off the GUI thread into
+    // folder, replaced whole. A progress dialog ("turntable_progress") with
+    // Cancel: the frame under way ends, then nothing is left behind.
+    bool export_turntable(const QString &folder, int frames, int width, int height, int fps, QString &error);
+    // The `oit render --turntable` command that writes the same folder.
+    QString turntable_command(const QString &folder, int frames, int width, int height, int fps) const;
     // The `oit render` command for the current view (what "Copy as command" copies).
     QString render_command_for_view(const QString &out_path) const;
     QString oit_program() const;
@@ -192,6 +203,8 @@ public:
 signals:
     void model_loaded(const QString &path);
     void model_failed(const QString &message);
+    // Export turntable: frames written so far of total.
+    void turntable_progress(int done, int total);
 
 protected:
     void dragEnterEvent(QDragEnterEvent *event) override;
@@ -200,6 +213,7 @@ protected:
 
 private:
     void build_menus();
+    void turntable_dialog(); // File > Export turntable…
     void build_file_menu();
     void build_view_menu();
     void build_aids_menu(QMenu *view); // View > Orientation aids (issue 29)

@@ -28,6 +28,7 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QPlainTextEdit>
+#include <QProgressDialog>
 #include <QRadioButton>
 #include <QSpinBox>
 #include <QStandardPaths>
@@ -127,6 +128,7 @@ void MainWindow::build_file_menu()
     });
     file->addSeparator();
     file->addAction("&Export PNG…", this, &MainWindow::export_dialog, QKeySequence("Ctrl+E"));
+    file->addAction("Export &turntable…", this, &MainWindow::turntable_dialog);
     file->addAction("&Copy as command", this, &MainWindow::copy_command, QKeySequence("Ctrl+Shift+C"));
     file->addSeparator();
     menu_action(file, "&Save settings preset…", QKeySequence::Save, this, [this] {
@@ -455,6 +457,21 @@ bool MainWindow::save_preset(const QString &path, QString &error)
         QByteArray::fromStdString(preset_to_json(settings_->render_settings(), settings_->camera(), model_.get()));
     return write_output_file(path, nullptr, bytes, error);
 }
+// The orientation aids on an exported frame, as `oit render --axes
+// --scale-bar` draws them on its frame (the same core function on the same
+// matrices and model): Export PNG and every turntable frame.
+bool MainWindow::draw_export_aids(oit_image &image, const oit_frame_settings &frame, QString &error) const
+{
+    const oit_overlay_options aids = export_aids(settings_->render_settings());
+    if ((!aids.axes && !aids.scale_bar) || !model_)
+        return true;
+    oit_error err{};
+    if (oit_overlay_draw(&image, &aids, frame.modelview, frame.projection, model_.get(), nullptr, &err) == OIT_OK)
+        return true;
+    error = QString::fromUtf8(err.message);
+    return false;
+}
+
 bool MainWindow::export_png(const QString &path, int width, int height, QString &error, bool with_highlight)
 {
     if (exporting_) {
@@ -477,15 +494,10 @@ bool MainWindow::export_png(const QString &path, int width, int height, QString 
     }
     // the orientation aids, as `oit render --axes --scale-bar` draws them on
     // its frame (the same core function on the same matrices and model)
-    const oit_overlay_options aids = export_aids(settings_->render_settings());
-    if ((aids.axes || aids.scale_bar) && model_) {
-        oit_error err{};
-        if (oit_overlay_draw(&image, &aids, frame.modelview, frame.projection, model_.get(), nullptr, &err) != OIT_OK) {
-            oit_image_free(&image);
-            exporting_ = false;
-            error = QString::fromUtf8(err.message);
-            return false;
-        }
+    if (!draw_export_aids(image, frame, error)) {
+        oit_image_free(&image);
+        exporting_ = false;
+        return false;
     }
     // The core's writer (the bytes `oit render` writes, atomically) on a pool
     // thread: 0.6-0.7 s at 3840x2160 that the GUI thread would otherwise freeze
@@ -646,6 +658,187 @@ void MainWindow::export_dialog()
         show_error("Export PNG", error);
     else
         status_label_->setText(QString("wrote %1 (%2x%3)").arg(path).arg(width).arg(height));
+}
+
+// ------------------------------------------------------------- turntable
+
+namespace {
+// Runs work on a pool thread while a local event loop keeps the window answering.
+QString off_gui_thread(const std::function<QString()> &work)
+{
+    QFutureWatcher<QString> watcher;
+    QEventLoop loop;
+    QObject::connect(&watcher, &QFutureWatcher<QString>::finished, &loop, &QEventLoop::quit);
+    watcher.setFuture(QtConcurrent::run(work));
+    if (!watcher.isFinished())
+        loop.exec();
+    return watcher.result();
+}
+} // namespace
+
+QString MainWindow::turntable_command(const QString &folder, int frames, int width, int height, int fps) const
+{
+    if (!model_)
+        return QString();
+    // Copy as command's, with the frame at the export's size (its projection's aspect), then the turntable's flags
+    std::vector<float> storage;
+    RenderSettings settings = settings_->render_settings();
+    oit_frame_settings frame = make_frame(settings, *model_, settings_->camera(), width, height, storage);
+    FrameResultPointer last = view_->last_result();
+    if (last && last->status == OIT_OK && last->algorithm == settings.algorithm && !last->left_out.empty()) {
+        settings.modulation = last->modulation;
+        settings.focus_shape = last->focus_shape;
+    }
+    QString command = QString::fromStdString(render_command(oit_program().toStdString(), model_path_.toStdString(),
+                                                            settings, frame, folder.toStdString()));
+    command += QString(" --turntable %1 --turntable-up %2")
+                   .arg(frames)
+                   .arg(settings_->camera().up == Camera::Up::Z ? "z" : "y");
+    command += fps > 0 ? QString(" --fps %1").arg(fps) : QString(" --no-video");
+    return command;
+}
+
+bool MainWindow::export_turntable(const QString &folder, int frames, int width, int height, int fps, QString &error)
+{
+    if (!model_) {
+        error = "no model is loaded";
+        return false;
+    }
+    if (exporting_) {
+        error = "an export is already running";
+        return false;
+    }
+    oit_error err{};
+    QByteArray name = QFile::encodeName(folder);
+    oit_turntable_output *output = nullptr;
+    if (oit_turntable_output_open(name.constData(), "turntable", width, height, frames, fps, &output, &err) !=
+        OIT_OK) {
+        error = QString::fromUtf8(err.message);
+        return false;
+    }
+    exporting_ = true;
+    QProgressDialog progress("Rendering the turntable…", "Cancel", 0, frames, this);
+    progress.setObjectName("turntable_progress");
+    progress.setWindowTitle("Export turntable");
+    progress.setWindowModality(Qt::WindowModal);
+    progress.setMinimumDuration(0);
+    progress.setValue(0);
+    // the orbit (oit.h): about the camera's up axis through the model's centre
+    double axis[3], centre[3], base[16];
+    oit_turntable_axis(nullptr, settings_->camera().up == Camera::Up::Z ? OIT_TURNTABLE_UP_Z : OIT_TURNTABLE_UP_Y,
+                       axis, nullptr);
+    std::memcpy(centre, model_->origin, sizeof centre);
+    QString problem;
+    for (int i = 0; i < frames && problem.isEmpty() && !progress.wasCanceled(); ++i) {
+        double modelview[16];
+        if (i > 0)
+            oit_turntable_modelview(base, centre, axis, i, frames, modelview);
+        oit_image image{};
+        oit_frame_settings frame;
+        std::string message;
+        // frame 0 is Export PNG's frame of the view at this size; the others turn its modelview
+        if (!view_->render_offscreen(width, height, image, frame, message, false, i > 0 ? modelview : nullptr)) {
+            problem = QString::fromStdString(message);
+            break;
+        }
+        if (i == 0)
+            std::memcpy(base, frame.modelview, sizeof base);
+        if (!draw_export_aids(image, frame, problem)) {
+            oit_image_free(&image);
+            break;
+        }
+        problem = off_gui_thread([output, &image]() -> QString {
+            oit_error e{};
+            return oit_turntable_output_add(output, &image, &e) == OIT_OK ? QString() : QString::fromUtf8(e.message);
+        });
+        oit_image_free(&image);
+        if (problem.isEmpty()) {
+            progress.setValue(i + 1);
+            emit turntable_progress(i + 1, frames);
+        }
+    }
+    bool cancelled = problem.isEmpty() && progress.wasCanceled();
+    if (problem.isEmpty() && !cancelled) {
+        progress.setLabelText("Finishing the video…");
+        problem = off_gui_thread([output]() -> QString {
+            oit_error e{};
+            return oit_turntable_output_commit(output, &e) == OIT_OK ? QString() : QString::fromUtf8(e.message);
+        });
+    } else {
+        oit_turntable_output_abort(output); // nothing is left behind
+    }
+    progress.reset();
+    exporting_ = false;
+    if (cancelled) {
+        error = "cancelled: nothing was written";
+        log_message("turntable", QString("cancelled: %1 is as it was").arg(folder));
+        return false;
+    }
+    if (!problem.isEmpty()) {
+        error = problem;
+        return false;
+    }
+    log_message("turntable", QString("wrote %1 frames of %2x%3 in %4; the same with: %5")
+                                 .arg(frames)
+                                 .arg(width)
+                                 .arg(height)
+                                 .arg(folder, turntable_command(folder, frames, width, height, fps)));
+    return true;
+}
+
+void MainWindow::turntable_dialog()
+{
+    if (!model_)
+        return;
+    QDialog dialog(this);
+    dialog.setWindowTitle("Export turntable");
+    auto *form = new QFormLayout(&dialog);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows);
+    QSize size = view_->side_pixel_size();
+    auto *frames = new QSpinBox, *w = new QSpinBox, *h = new QSpinBox, *fps = new QSpinBox;
+    frames->setRange(1, OIT_TURNTABLE_FRAMES_MAX);
+    frames->setValue(120);
+    w->setRange(2, 16384);
+    h->setRange(2, 16384);
+    w->setValue(size.width() & ~1); // the video needs even sides
+    h->setValue(size.height() & ~1);
+    fps->setRange(1, OIT_VIDEO_FPS_MAX);
+    fps->setValue(30);
+    auto *video = new QCheckBox("MP4 video (H.264; even width and height)");
+    video->setChecked(true);
+    auto *size_row = new QHBoxLayout;
+    size_row->addWidget(w);
+    size_row->addWidget(new QLabel("x"));
+    size_row->addWidget(h);
+    form->addRow("Frames (a full turn)", frames);
+    form->addRow("Size", size_row);
+    form->addRow(video);
+    form->addRow("Frames per second", fps);
+    connect(video, &QCheckBox::toggled, fps, &QWidget::setEnabled);
+    form->addRow(new QLabel("The folder gets frame_0000.png … and turntable.mp4; the camera turns about the\n"
+                            "up axis (View ▸ Up) through the model's centre, starting from this view."));
+    auto *buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    form->addRow(buttons);
+    if (dialog.exec() != QDialog::Accepted)
+        return;
+    QString folder = QFileDialog::getSaveFileName(
+        this, "Export turntable (a folder)", export_folder() + "/" + QFileInfo(model_path_).completeBaseName() +
+                                                 "-turntable",
+        QString(), nullptr, QFileDialog::ShowDirsOnly);
+    if (folder.isEmpty())
+        return;
+    QString error;
+    if (!export_turntable(folder, frames->value(), w->value(), h->value(), video->isChecked() ? fps->value() : 0,
+                          error)) {
+        if (!error.startsWith("cancelled"))
+            show_error("Export turntable", error);
+        status_label_->setText("turntable: " + error);
+    } else {
+        export_folder_ = QFileInfo(folder).absolutePath();
+        status_label_->setText(QString("wrote the turntable in %1").arg(folder));
+    }
 }
 
 // ----------------------------------------------------------------- paths

@@ -486,7 +486,7 @@ void RenderView::frame_done(FrameResultPointer result)
 }
 
 bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,
-                                  std::string &error, bool with_highlight)
+                                  std::string &error, bool with_highlight, const double *modelview)
 {
     if (!model_) {
         error = "no model is loaded";
@@ -506,6 +506,8 @@ bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_f
     job.error_view = false;
     if (!with_highlight)
         job.component_highlight.clear();
+    if (modelview)
+        std::memcpy(job.frame.modelview, modelview, sizeof job.frame.modelview);
     frame = job.frame;
     export_result_.reset();
     QEventLoop loop;

@@ -16,6 +16,10 @@
 //   preview took longer than the moves' interval); it is abandoned for a full
 //   frame the user asked for (an algorithm switch, F5);
 // - cancel() abandons whatever runs or waits; export jobs are never superseded.
+// - a turntable (MainWindow::export_turntable) is a series of export jobs, one
+//   per frame, each submitted when the previous frame's PNG and video frame
+//   are written (on a pool thread, not here): no frame waits behind another,
+//   view jobs run between them, and Cancel stops after the frame under way.
 //
 // What the view asks for (RenderView::request_frame; the rules live here):
 // - nothing changed since the last request (same algorithm, settings, camera,

@@ -34,6 +34,7 @@
 #include "pick_command.h"
 #include "render_session.h"
 #include "session_file.h"
+#include "turntable_command.h"
 
 /* --------------------------------------------------------------- JSON */
 
@@ -280,6 +281,8 @@ static int render_with_options(int argc, char **argv, render_options *options, c
     oit_status status = OIT_OK;
     bool error_vs_reference = false;
     const char *error_map_path = NULL;
+    turntable_options turntable;
+    turntable_options_defaults(&turntable);
     for (int i = 0; i < argc; ++i) {
         if (strcmp(argv[i], "--session") == 0) {
             ++i;
@@ -287,6 +290,7 @@ static int render_with_options(int argc, char **argv, render_options *options, c
         }
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             print_render_help(stdout);
+            turntable_print_help(stdout);
             oit_cli_print_local_help(stdout);
             oit_cli_print_modulation_help(stdout);
             return EXIT_OK;
@@ -301,6 +305,11 @@ static int render_with_options(int argc, char **argv, render_options *options, c
             error_map_path = argv[++i];
             continue;
         }
+        int turntable_parsed = turntable_parse_option(argc, argv, &i, &turntable, &err, &status);
+        if (turntable_parsed < 0)
+            return report(status, &err);
+        if (turntable_parsed > 0)
+            continue;
         int parsed = parse_render_option(argc, argv, &i, &o, &err, &status);
         if (parsed < 0)
             return report(status, &err);
@@ -314,6 +323,11 @@ static int render_with_options(int argc, char **argv, render_options *options, c
         o.projection[0] = o.projection[5] * o.height / o.width;
     if (!o.model_path)
         return usage_error("render needs --model PATH (or --session FILE)%s", "");
+    if (turntable.frames > 0)
+        return turntable_run(&o, &turntable,
+                             error_vs_reference ? "--error-vs-reference" : error_map_path ? "--error-map" : NULL);
+    if (turntable.fps_given || turntable.up_given || turntable.no_video)
+        return usage_error("--fps, --turntable-up and --no-video go with --turntable N%s", "");
     if (o.out_path && (status = check_output_path("--out", o.out_path, &err)) != OIT_OK)
         return report(status, &err);
     if (error_map_path && (status = check_output_path("--error-map", error_map_path, &err)) != OIT_OK)

@@ -1084,6 +1084,66 @@ const oit_scene_generator *oit_scene_generator_list(size_t *count);
 oit_status oit_scene_generate(const char *name, int complexity, const char *obj_path,
                               oit_error *err);
 
+/* ------------------------------------------------------ turntables, video */
+
+/* A turntable (turntable.c; docs/cli.md, "Turntables"): n frames of a full
+ * orbit of the camera about an up axis through a centre. Frame i's modelview
+ * is base * translate(centre) * rotate(axis, -360 * i / n degrees) *
+ * translate(-centre), in double (frame 0 is base bit for bit): the camera
+ * turns by +360 i / n about the axis (as --orbit's azimuth grows, for the
+ * default camera and the y axis), the centre keeps its eye-space position,
+ * the axis keeps its direction in the image. The axis is a model (file)
+ * space unit vector: x, y or z, or "view", the direction base shows pointing
+ * up the image (base^-1 applied to eye +y); oit_turntable_axis takes that
+ * modelview, which may be NULL for x, y and z. */
+typedef enum oit_turntable_up {
+    OIT_TURNTABLE_UP_Y = 0, /* the default: the CLI's default camera and the workbench's Y up */
+    OIT_TURNTABLE_UP_Z = 1,
+    OIT_TURNTABLE_UP_X = 2,
+    OIT_TURNTABLE_UP_VIEW = 3
+} oit_turntable_up;
+#define OIT_TURNTABLE_FRAMES_MAX 10000
+#define OIT_TURNTABLE_VIDEO_NAME "turntable.mp4"
+oit_status oit_turntable_axis(const double modelview[16], oit_turntable_up up, double axis[3], oit_error *err);
+void oit_turntable_modelview(const double base[16], const double centre[3], const double axis[3], int frame,
+                             int count, double out[16]);
+
+/* An MP4 video, H.264 (libx264, crf 18, preset medium, one thread) in
+ * yuv420p at fps frames per second, written with FFmpeg's libraries
+ * (video.c). yuv420p halves the colour resolution, so the width and height
+ * must be even (odd sizes are refused, not padded: OIT_E_INPUT). The file is
+ * written to a temporary beside path; oit_video_close(keep = true) finishes
+ * it and renames it over path, keep = false (or any failure) removes it.
+ * The libraries' own logging is turned off (av_log_set_level, process-wide). */
+#define OIT_VIDEO_FPS_MAX 240
+typedef struct oit_video oit_video;
+oit_status oit_video_check_size(int width, int height, oit_error *err);
+oit_status oit_video_open(const char *path, int width, int height, int fps, oit_video **out, oit_error *err);
+oit_status oit_video_write(oit_video *video, const oit_image *frame, oit_error *err);
+/* Frees video (NULL is allowed) in every case. */
+oit_status oit_video_close(oit_video *video, bool keep, oit_error *err);
+
+/* A turntable's folder: FOLDER/frame_0000.png ... (four digits, from 0) and,
+ * with fps > 0, FOLDER/turntable.mp4. FOLDER is a new name, an empty
+ * directory or a previous turntable (it holds frame_0000.png and only
+ * regular files), replaced whole: everything is written into a temporary
+ * folder beside it (oit_temporary_create), which commit renames over it in
+ * one step; abort (or a signal) removes it and FOLDER stays as it was.
+ * WHAT names the folder in messages (a flag, "--out"). Check runs open's
+ * checks (and makes and removes the temporary) without writing anything. */
+typedef struct oit_turntable_output oit_turntable_output;
+oit_status oit_turntable_output_check(const char *folder, const char *what, int frames, oit_error *err);
+oit_status oit_turntable_output_open(const char *folder, const char *what, int width, int height, int frames,
+                                     int fps, oit_turntable_output **out, oit_error *err);
+/* The next frame: its PNG, and its video frame. */
+oit_status oit_turntable_output_add(oit_turntable_output *output, const oit_image *image, oit_error *err);
+/* Milliseconds spent so far writing the PNGs and encoding the video. */
+void oit_turntable_output_times(const oit_turntable_output *output, double *png_ms, double *video_ms);
+/* Finishes the video and puts the folder in place; frees output (aborted on failure). */
+oit_status oit_turntable_output_commit(oit_turntable_output *output, oit_error *err);
+/* Removes the temporary folder and frees output (NULL is allowed). */
+void oit_turntable_output_abort(oit_turntable_output *output);
+
 #ifdef __cplusplus
 }
 #endif
