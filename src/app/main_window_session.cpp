@@ -20,6 +20,8 @@ bool MainWindow::save_session(const QString &path, QString &error)
     SessionExport exported;
     exported.width = size.width();
     exported.height = size.height();
+    const oit_overlay_options aids = export_aids(settings_->render_settings());
+    exported.aids = aids.axes || aids.scale_bar;
     std::vector<float> storage;
     oit_frame_settings frame =
         make_frame(settings_->render_settings(), *model_, settings_->camera(), size.width(), size.height(), storage);
@@ -66,6 +68,8 @@ bool MainWindow::open_session(const QString &path, QString &error)
     }
     for (const std::string &warning : data.warnings)
         log_message("warning", QString::fromStdString(warning));
+    if (data.export_aids >= 0)
+        s.aids_in_export = data.export_aids == 1;
     settings_->render_settings() = s;
     if (has_camera)
         settings_->camera() = camera;

@@ -92,6 +92,7 @@ std::string session_to_json(const std::string &session_path, const std::string &
         e.AddMember("size", std::move(size), a);
         e.AddMember("modelview", matrix_rows(exported.modelview, a), a);
         e.AddMember("projection", matrix_rows(exported.projection, a), a);
+        e.AddMember("aids", Value(exported.aids), a);
         d.AddMember("export", std::move(e), a);
     }
     rapidjson::StringBuffer buffer;
@@ -211,7 +212,7 @@ bool session_from_json(const std::string &file, const std::string &text, Session
             return fail("\"export\" must be an object {\"size\", \"modelview\", \"projection\"}");
         for (auto it = e.MemberBegin(); it != e.MemberEnd(); ++it) {
             std::string key = it->name.GetString();
-            if (key != "size" && key != "modelview" && key != "projection")
+            if (key != "size" && key != "modelview" && key != "projection" && key != "aids")
                 warn("\"export\": unknown field \"" + key + "\" ignored");
         }
         if (e.HasMember("size")) {
@@ -221,6 +222,11 @@ bool session_from_json(const std::string &file, const std::string &text, Session
                 return fail("\"export\": \"size\" must be [width, height], 1..16384 each");
             out.export_width = size[0].GetInt();
             out.export_height = size[1].GetInt();
+        }
+        if (e.HasMember("aids")) {
+            if (!e["aids"].IsBool())
+                return fail("\"export\": \"aids\" must be true or false");
+            out.export_aids = e["aids"].GetBool() ? 1 : 0;
         }
         for (const char *key : {"modelview", "projection"})
             if (e.HasMember(key)) {

@@ -20,6 +20,7 @@ struct SessionData {
     std::string render;      // a preset's JSON object, "" if the session has none
     std::vector<SavedView> views;
     int export_width = 0, export_height = 0; // 0: not stored
+    int export_aids = -1;                     // "export": "aids" (Include in exports): -1 not stored, 0, 1
     std::vector<std::string> warnings;      // unknown fields, ignored: "FILE: ..."
 };
 
@@ -27,6 +28,7 @@ struct SessionData {
 struct SessionExport {
     int width = 0, height = 0;
     double modelview[16] = {}, projection[16] = {};
+    bool aids = false; // the orientation aids drawn on it (View > Orientation aids > Include in exports)
 };
 
 // The session file's text. model_path is written relative to the session's folder.

@@ -301,8 +301,18 @@ static oit_status read_session(const char *path, const cJSON *root, bool model_g
         return oit_fail(err, OIT_E_INPUT, "%s: \"render\" must be an object (the command line's flag names)", path);
     const cJSON *parts = cJSON_GetObjectItemCaseSensitive(render, "section-parts");
     bool cuts_nothing = cJSON_IsArray(parts) && cJSON_GetArraySize(parts) == 0;
+    /* "axes" and "scale-bar" are the view's orientation aids; the export
+     * (and so this render) draws them only where "export" says "aids": true */
+    const cJSON *export_aids = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(root, "export"), "aids");
+    if (export_aids && !cJSON_IsBool(export_aids))
+        return oit_fail(err, OIT_E_INPUT, "%s: \"export\": \"aids\" must be true or false", path);
     cJSON_ArrayForEach(item, render)
     {
+        bool aid = strcmp(item->string, "axes") == 0 || strcmp(item->string, "scale-bar") == 0;
+        if (aid && !cJSON_IsTrue(export_aids))
+            continue;
+        if (aid && cJSON_IsString(item) && strcmp(item->valuestring, "off") == 0)
+            continue;
         if ((status = render_flags(path, item, cuts_nothing, f, err)) != OIT_OK)
             return status;
     }
@@ -315,10 +325,10 @@ static oit_status read_session(const char *path, const cJSON *root, bool model_g
     if (exported && !cJSON_IsObject(exported))
         return oit_fail(err, OIT_E_INPUT, "%s: \"export\" must be an object {\"size\", \"modelview\", \"projection\"}",
                         path);
-    static const char *const export_keys[] = {"size", "modelview", "projection"};
+    static const char *const export_keys[] = {"size", "modelview", "projection", "aids"};
     cJSON_ArrayForEach(item, exported)
     {
-        if (!known(item->string, export_keys, 3))
+        if (!known(item->string, export_keys, 4))
             fprintf(stderr, "oit: warning: %s: \"export\": unknown field \"%s\" ignored\n", path, item->string);
     }
     const cJSON *size = cJSON_GetObjectItemCaseSensitive(exported, "size");
