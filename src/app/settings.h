@@ -68,6 +68,12 @@ struct RenderSettings {
     std::vector<char> section_parts;
     bool caps = true;    // --caps on|off
     double explode = 0.0; // --explode F, 0..OIT_EXPLODE_MAX
+    // Anti-aliasing (issue 29; --samples, preset key "samples": "auto", 1, 4, 8
+    // or 16): 0 is Auto, the view's frames at 1 sample while the view moves and
+    // again at kAutoSamples once it is still (render_worker.h has the rule);
+    // 1 is off; 4, 8, 16 every full frame. Exports use export_samples().
+    int samples = 0;
+    static constexpr int kAutoSamples = 4;
 
     RenderSettings();
     void reset_parts(const oit_model &model);
@@ -84,6 +90,11 @@ oit_frame_settings make_frame(const RenderSettings &settings, const oit_model &m
 // The enabled section planes (the first OIT_SECTION_PLANES_MAX), which parts
 // they cut and the caps into local; section_parts points into settings.
 void apply_sections(const RenderSettings &settings, const oit_model &model, oit_local_modulation &local);
+
+// The samples of the frame the view settles on (Auto: kAutoSamples) and of
+// an export (at least kAutoSamples: exports always anti-alias).
+int view_samples(const RenderSettings &settings);
+int export_samples(const RenderSettings &settings);
 
 // --tessellation's value: "normal", "coarse", "fine" or the millimetres.
 std::string tessellation_name(const oit_import_options &import);

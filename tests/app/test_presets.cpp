@@ -19,7 +19,7 @@
 static_assert(sizeof(oit_modulation) == 84, "oit_modulation changed: presets (settings.cpp) and this test");
 static_assert(sizeof(oit_algorithm_config) == 64, "oit_algorithm_config changed: presets (settings.cpp) and this test");
 static_assert(sizeof(oit_import_options) == 16, "oit_import_options changed: presets (settings.cpp) and this test");
-static_assert(sizeof(RenderSettings) == 472, "RenderSettings changed: presets (settings.cpp) and this test");
+static_assert(sizeof(RenderSettings) == 480, "RenderSettings changed: presets (settings.cpp) and this test");
 static_assert(sizeof(Camera) == 136, "Camera changed: presets (settings.cpp) and this test");
 
 namespace {
@@ -86,6 +86,7 @@ void every_field_changed(RenderSettings &s, Camera &c)
     s.section_parts = {0, 1, 1};
     s.caps = false;
     s.explode = 1.5;
+    s.samples = 8; // issue 29 (default 0: auto)
     c.set_mode(Camera::Mode::Walk);
     c.orthographic = true;
     c.fov_degrees = 55.0f;
@@ -118,7 +119,7 @@ QStringList differences(const RenderSettings &a, const RenderSettings &b)
     SAME_ARRAY(modulation.halo_colour, 3) SAME(modulation.last_layer_opaque) SAME(modulation.epsilon_max)
     SAME(focus_shape) SAME_ARRAY(focus, 6) SAME(contrast) SAME(part_alpha) SAME(part_visible) SAME(error_view)
     SAME(split) SAME(split_algorithm) SAME(wipe) SAME(preview_algorithm) SAME(import.tessellation) SAME(import.linear_deflection_mm)
-    SAME(sections) SAME(section_parts) SAME(caps) SAME(explode)
+    SAME(sections) SAME(section_parts) SAME(caps) SAME(explode) SAME(samples)
     return out;
 }
 
