@@ -468,11 +468,12 @@ void RenderView::antialias_when_still()
     // Auto's rule (render_worker.h): the latest full frame, at 1 sample, shown
     // while nothing moves and nothing newer waits, is rendered again at 4
     const FrameResult *r = last_result_.get();
-    if (settings().samples != 0 || continuous_ || !worker_ || interacting() || rest_timer_->isActive() || !r ||
+    int samples = view_samples(settings());
+    if (settings().samples != 0 || samples <= 1 || continuous_ || !worker_ || interacting() || rest_timer_->isActive() || !r ||
         r->status != OIT_OK || r->coarse_scale != 1 || r->samples != 1 || r->id != latest_id_ ||
         r->wall_ms > kAutoSamplesMaxMs)
         return;
-    submit(1, false, std::string(), RenderSettings::kAutoSamples);
+    submit(1, false, std::string(), samples);
 }
 
 bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,

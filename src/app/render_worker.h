@@ -40,7 +40,8 @@
 //   RenderView::kMaxCoarseScale) above kPreviewBudgetMs, finer below a quarter of it.
 // - anti-aliasing (RenderSettings::samples, --samples): previews always render at
 //   1 sample; a chosen count (4, 8, 16) renders every full frame at it; Auto (the
-//   default) renders full frames at 1 sample while the view changes and, once the
+//   default; the colour view only: the diagnostic views and the error map show
+//   each pixel centre's figures, at 1) renders full frames at 1 sample while the view changes and, once the
 //   full frame of the latest request is shown, the input rests (no button or walk
 //   key held, no rest timer running) and that frame took at most
 //   RenderView::kAutoSamplesMaxMs, asks for the same frame again at

@@ -215,7 +215,11 @@ const char *modulation_mode_name(oit_modulation_mode mode)
 
 int view_samples(const RenderSettings &s)
 {
-    return s.samples == 0 ? RenderSettings::kAutoSamples : s.samples;
+    // Auto anti-aliases the colour view; the diagnostic views (heat map,
+    // layers, fields...) and the error map show each pixel centre's own figures
+    if (s.samples == 0)
+        return s.modulation.view == OIT_VIEW_COLOUR && !s.error_view ? int(RenderSettings::kAutoSamples) : 1;
+    return s.samples;
 }
 
 int export_samples(const RenderSettings &s)

@@ -91,8 +91,9 @@ oit_frame_settings make_frame(const RenderSettings &settings, const oit_model &m
 // they cut and the caps into local; section_parts points into settings.
 void apply_sections(const RenderSettings &settings, const oit_model &model, oit_local_modulation &local);
 
-// The samples of the frame the view settles on (Auto: kAutoSamples) and of
-// an export (at least kAutoSamples: exports always anti-alias).
+// The samples of the frame the view settles on (Auto: kAutoSamples in the
+// colour view without the error map, else 1) and of an export (at least
+// kAutoSamples: exports always anti-alias).
 int view_samples(const RenderSettings &settings);
 int export_samples(const RenderSettings &settings);
 

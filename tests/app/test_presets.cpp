@@ -164,7 +164,7 @@ private slots:
         QStringList changed_fields = differences(changed, defaults);
         // 52 comparisons (arrays element by element), all but import.tessellation
         // (the deflection stands for it)
-        QVERIFY2(changed_fields.size() == 52 && !changed_fields.contains("import.tessellation"),
+        QVERIFY2(changed_fields.size() == 53 && !changed_fields.contains("import.tessellation"),
                  qPrintable(changed_fields.join(", ")));
         QCOMPARE(camera_differences(camera, default_camera).size(), 8);
 
