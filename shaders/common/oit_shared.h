@@ -110,6 +110,14 @@
 /* ---- image units ---- */
 #define OIT_IMAGE_LIST_HEAD 0  /* r32ui, one list head per pixel */
 #define OIT_IMAGE_LIST_COUNT 1 /* r32ui, fragments per pixel */
+/* anti-aliasing (common/samples_accumulate.comp, gpu_algorithm.c): the
+ * RGBA8 output viewed as rgba8ui, and the per-pixel sum of the samples
+ * (rgba16ui: 16 samples x 255 fit) */
+#define OIT_IMAGE_SAMPLES_OUTPUT 4
+#define OIT_IMAGE_SAMPLES_SUM 5
+#define OIT_SAMPLES_STORE 0   /* the first sample: sum = output */
+#define OIT_SAMPLES_ADD 1     /* sum += output */
+#define OIT_SAMPLES_RESOLVE 2 /* the last: output = (sum + output + n / 2) / n */
 
 /* ---- texture units ---- */
 #define OIT_TEXUNIT_DEPTH_PREVIOUS 0 /* depth peeling: depth of the layer peeled last */

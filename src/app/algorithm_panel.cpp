@@ -115,6 +115,21 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
         background->setText(colour_text(s.background));
     });
     look->addRow("background", background);
+    // anti-aliasing (--samples; render_worker.h has Auto's rule)
+    static const int sample_values[] = {0, 1, 4, 8, 16};
+    auto *samples = combo({"auto (4 once the view is still)", "off", "4 samples", "8 samples", "16 samples"},
+                          [&s] {
+                              for (int i = 0; i < 5; ++i)
+                                  if (sample_values[i] == s.samples)
+                                      return i;
+                              return 0;
+                          },
+                          [this, &s](int i) {
+                              s.samples = sample_values[i];
+                              emit edited();
+                          });
+    samples->setObjectName("samples");
+    look->addRow("anti-aliasing", samples);
     // items in oit_tessellation_level's order, then a deflection in millimetres a preset gave
     auto *tessellation = combo({"normal", "coarse", "fine", "the preset's (millimetres)"},
                                [&s] { return s.import.linear_deflection_mm > 0 ? 3 : int(s.import.tessellation); },

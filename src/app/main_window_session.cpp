@@ -22,6 +22,7 @@ bool MainWindow::save_session(const QString &path, QString &error)
     exported.height = size.height();
     const oit_overlay_options aids = export_aids(settings_->render_settings());
     exported.aids = aids.axes || aids.scale_bar;
+    exported.samples = export_samples(settings_->render_settings());
     std::vector<float> storage;
     oit_frame_settings frame =
         make_frame(settings_->render_settings(), *model_, settings_->camera(), size.width(), size.height(), storage);

@@ -346,7 +346,7 @@ void RenderView::request_frame(bool interactive)
     emit status_changed(frame_status());
 }
 
-void RenderView::submit(int coarse_scale, bool refinement, const std::string &algorithm)
+void RenderView::submit(int coarse_scale, bool refinement, const std::string &algorithm, int samples)
 {
     QSize full = side_pixel_size();
     int width = std::max(1, full.width() / coarse_scale), height = std::max(1, full.height() / coarse_scale);
@@ -356,6 +356,11 @@ void RenderView::submit(int coarse_scale, bool refinement, const std::string &al
     if (!algorithm.empty())
         job.algorithm = algorithm;
     job.refinement = refinement;
+    // anti-aliasing (render_worker.h): previews at 1 sample, Auto's first full frame too
+    if (samples > 0)
+        job.frame.samples = samples;
+    else if (coarse_scale > 1 || settings().samples == 0)
+        job.frame.samples = 1;
     std::string job_algorithm = job.algorithm;
     latest_id_ = worker_->submit(std::move(job));
     ++jobs_submitted_;
@@ -448,7 +453,9 @@ void RenderView::frame_done(FrameResultPointer result)
         last_image_ = result->image;
         last_stats_ = result->stats;
         last_full_ms_ = result->wall_ms;
-        full_ms_[result->algorithm] = result->wall_ms;
+        bool auto_samples = settings().samples == 0;
+        if (!auto_samples || result->samples == 1) // Auto's still frame does not make frames "slow"
+            full_ms_[result->algorithm] = result->wall_ms;
         shown_full_id_ = result->id;
         if (last_stats_.overflow_retries > 0)
             overflow_total_ += long(last_stats_.overflow_retries);
@@ -467,6 +474,8 @@ void RenderView::frame_done(FrameResultPointer result)
             emit status_changed(frame_status()); // a newer frame is on its way: not the stats
         if (continuous_ && result->id == latest_id_)
             submit(1);
+        else
+            antialias_when_still();
     } else {
         // coarser when a preview is itself slow, finer when it is cheap (the
         // algorithms' time: an upload does not count); "auto" turns to wboit
@@ -483,6 +492,19 @@ void RenderView::frame_done(FrameResultPointer result)
         emit coarse_frame_rendered();
         emit status_changed(frame_status());
     }
+}
+
+void RenderView::antialias_when_still()
+{
+    // Auto's rule (render_worker.h): the latest full frame, at 1 sample, shown
+    // while nothing moves and nothing newer waits, is rendered again at 4
+    const FrameResult *r = last_result_.get();
+    int samples = view_samples(settings());
+    if (settings().samples != 0 || samples <= 1 || continuous_ || !worker_ || interacting() || rest_timer_->isActive() || !r ||
+        r->status != OIT_OK || r->coarse_scale != 1 || r->samples != 1 || r->id != latest_id_ ||
+        r->wall_ms > kAutoSamplesMaxMs)
+        return;
+    submit(1, false, std::string(), samples);
 }
 
 bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,
@@ -502,6 +524,7 @@ bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_f
     }
     FrameJob job = make_job(width, height, 1);
     job.kind = FrameJob::Kind::Export; // side A's colour image, as `oit render`
+    job.frame.samples = export_samples(settings()); // exports always anti-alias (render_worker.h)
     job.algorithm_b.clear();
     job.error_view = false;
     if (!with_highlight)
@@ -747,6 +770,7 @@ void RenderView::mouseReleaseEvent(QMouseEvent *event)
         emit clicked(QPoint(int(event->pos().x() * ratio), int(event->pos().y() * ratio)),
                      event->modifiers() & Qt::AltModifier);
     }
+    antialias_when_still(); // the drag's last frame came while the button was down
 }
 
 void RenderView::wheelEvent(QWheelEvent *event)
@@ -782,8 +806,10 @@ void RenderView::keyReleaseEvent(QKeyEvent *event)
 {
     if (!event->isAutoRepeat()) {
         walk_keys_.remove(event->key());
-        if (walk_keys_.isEmpty())
+        if (walk_keys_.isEmpty()) {
             walk_timer_->stop();
+            antialias_when_still();
+        }
     }
     QWidget::keyReleaseEvent(event);
 }

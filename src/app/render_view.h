@@ -49,6 +49,9 @@ public:
     static constexpr int kProgressAfterMs = 300;  // then the overlay shows the frame's progress
     static constexpr double kPreviewBudgetMs = 60.0; // a preview slower than this goes coarser
     static constexpr int kMaxCoarseScale = 8;        // the coarsest preview: 1/8 per side
+    // Auto anti-aliasing (render_worker.h): a still view's full frame is rendered
+    // again at 4 samples when it took at most this long (4 samples: about 4x)
+    static constexpr double kAutoSamplesMaxMs = 2500.0;
 
     // Shows frames of the settings model's render settings and camera (the
     // window's); the mouse and keys move that camera and the wipe line.
@@ -185,7 +188,12 @@ private:
     void camera_moved();
     FrameJob make_job(int width, int height, int coarse_scale) const;
     // algorithm: the job's (empty: the chosen one)
-    void submit(int coarse_scale, bool refinement = false, const std::string &algorithm = std::string());
+    // Auto anti-aliasing: the still view's latest full frame again at 4 samples
+    // (render_worker.h); called when a frame arrives and when the input rests
+    void antialias_when_still();
+    // samples: 0 the rule of render_worker.h (previews 1; Auto's first full frame 1)
+    void submit(int coarse_scale, bool refinement = false, const std::string &algorithm = std::string(),
+                int samples = 0);
     void frame_done(FrameResultPointer result);
     void walk_tick();
     bool interacting() const;

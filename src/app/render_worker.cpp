@@ -89,6 +89,7 @@ std::string frame_key(const oit_frame_settings &f)
 {
     KeyWriter k;
     k << f.width << f.height << f.modelview << f.projection << f.alpha << f.shading << f.background;
+    k << f.samples; // anti-aliasing: a different image
     const oit_modulation &m = f.modulation;
     k << m.view << m.view_parameter << m.mode << m.neighbours << m.curvature_neighbours << m.curvature_effect
       << m.focus_region << m.distance << m.distance_skip << m.fields << m.diffusion_iterations
@@ -460,6 +461,7 @@ void RenderWorker::render_job(FrameJob &job)
     result->id = job.id;
     result->kind = job.kind;
     result->coarse_scale = job.coarse_scale;
+    result->samples = job.frame.samples < 1 ? 1 : job.frame.samples;
     result->algorithm = job.algorithm;
     oit_stats_reset(&result->stats);
     Running running{this, &job, now_ms(), 0.0, QString()};

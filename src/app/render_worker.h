@@ -42,6 +42,18 @@
 //   previews with its own two algorithms;
 // - the scale adapts to the preview's own time: coarser (up to
 //   RenderView::kMaxCoarseScale) above kPreviewBudgetMs, finer below a quarter of it.
+// - anti-aliasing (RenderSettings::samples, --samples): previews always render at
+//   1 sample; a chosen count (4, 8, 16) renders every full frame at it; Auto (the
+//   default; the colour view only: the diagnostic views and the error map show
+//   each pixel centre's figures, at 1) renders full frames at 1 sample while the view changes and, once the
+//   full frame of the latest request is shown, the input rests (no button or walk
+//   key held, no rest timer running) and that frame took at most
+//   RenderView::kAutoSamplesMaxMs, asks for the same frame again at
+//   RenderSettings::kAutoSamples (4) samples, an ordinary view job that any newer
+//   one supersedes; 4 samples cost about 4 times the frame (docs/benchmarks.md,
+//   "Anti-aliasing"), so a still view gets edges without slowing a drag. Exports
+//   render at export_samples (at least 4; the chosen count if higher), and their
+//   command says --samples.
 // The status line names what is on screen and what renders
 // (RenderView::frame_status: "dp refining…, showing ll preview (1/4 scale)").
 // Options an algorithm cannot express (the core refuses them with
@@ -132,6 +144,7 @@ struct FrameResult {
     uint64_t id = 0;
     FrameJob::Kind kind = FrameJob::Kind::View;
     int coarse_scale = 1;
+    int samples = 1;         // the frame's anti-aliasing samples (job.frame.samples)
     std::string algorithm;
     oit_status status = OIT_OK;
     QString error;           // status != OIT_OK: the core's message

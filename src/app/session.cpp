@@ -93,6 +93,8 @@ std::string session_to_json(const std::string &session_path, const std::string &
         e.AddMember("modelview", matrix_rows(exported.modelview, a), a);
         e.AddMember("projection", matrix_rows(exported.projection, a), a);
         e.AddMember("aids", Value(exported.aids), a);
+        if (exported.samples > 0)
+            e.AddMember("samples", Value(exported.samples), a);
         d.AddMember("export", std::move(e), a);
     }
     rapidjson::StringBuffer buffer;
@@ -212,7 +214,8 @@ bool session_from_json(const std::string &file, const std::string &text, Session
             return fail("\"export\" must be an object {\"size\", \"modelview\", \"projection\"}");
         for (auto it = e.MemberBegin(); it != e.MemberEnd(); ++it) {
             std::string key = it->name.GetString();
-            if (key != "size" && key != "modelview" && key != "projection" && key != "aids")
+            if (key != "size" && key != "modelview" && key != "projection" && key != "aids" &&
+                key != "samples")
                 warn("\"export\": unknown field \"" + key + "\" ignored");
         }
         if (e.HasMember("size")) {
@@ -222,6 +225,11 @@ bool session_from_json(const std::string &file, const std::string &text, Session
                 return fail("\"export\": \"size\" must be [width, height], 1..16384 each");
             out.export_width = size[0].GetInt();
             out.export_height = size[1].GetInt();
+        }
+        if (e.HasMember("samples")) {
+            const Value &n = e["samples"];
+            if (!n.IsInt() || (n.GetInt() != 1 && n.GetInt() != 4 && n.GetInt() != 8 && n.GetInt() != 16))
+                return fail("\"export\": \"samples\" must be 1, 4, 8 or 16");
         }
         if (e.HasMember("aids")) {
             if (!e["aids"].IsBool())

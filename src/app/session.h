@@ -29,6 +29,7 @@ struct SessionExport {
     int width = 0, height = 0;
     double modelview[16] = {}, projection[16] = {};
     bool aids = false; // the orientation aids drawn on it (View > Orientation aids > Include in exports)
+    int samples = 0;   // its samples per pixel (export_samples: exports always anti-alias); 0: not written
 };
 
 // The session file's text. model_path is written relative to the session's folder.

@@ -47,6 +47,7 @@ oit_frame_settings make_frame(const RenderSettings &s, const oit_model &model, c
     camera.matrices(width, height, frame.modelview, frame.projection, framed_aspect);
     frame.alpha = s.alpha;
     frame.shading = s.shading;
+    frame.samples = view_samples(s); // the view's still frame (render_worker.h); exports raise it
     std::copy(s.background, s.background + 3, frame.background);
     frame.modulation = s.modulation;
     storage.clear();
@@ -212,6 +213,20 @@ const char *modulation_mode_name(oit_modulation_mode mode)
     return std::string(word) == "unknown" ? "none" : word;
 }
 
+int view_samples(const RenderSettings &s)
+{
+    // Auto anti-aliases the colour view; the diagnostic views (heat map,
+    // layers, fields...) and the error map show each pixel centre's own figures
+    if (s.samples == 0)
+        return s.modulation.view == OIT_VIEW_COLOUR && !s.error_view ? int(RenderSettings::kAutoSamples) : 1;
+    return s.samples;
+}
+
+int export_samples(const RenderSettings &s)
+{
+    return std::max(view_samples(s), int(RenderSettings::kAutoSamples));
+}
+
 std::string render_command(const std::string &oit_program, const std::string &model_path,
                            const RenderSettings &s, const oit_frame_settings &frame, const std::string &out_path)
 {
@@ -228,6 +243,8 @@ std::string render_command(const std::string &oit_program, const std::string &mo
     c << " --alpha " << number(s.alpha) << " --shading " << oit_setting_word(OIT_SETTING_SHADING, s.shading);
     c << " --background " << number(s.background[0]) << "," << number(s.background[1]) << ","
       << number(s.background[2]);
+    if (frame.samples > 1) // the frame's own count: an export's is at least 4
+        c << " --samples " << frame.samples;
     oit_algorithm_config defaults;
     oit_algorithm_config_defaults(&defaults);
     if (s.config.max_memory_bytes != defaults.max_memory_bytes)
@@ -515,6 +532,10 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     add(d, "moments", Value(rapidjson::StringRef(oit_setting_word(OIT_SETTING_MOMENTS, s.config.moments))), a);
     add(d, "alpha", Value(double(s.alpha)), a);
     add(d, "shading", Value(rapidjson::StringRef(oit_setting_word(OIT_SETTING_SHADING, s.shading))), a);
+    if (s.samples == 0)
+        add(d, "samples", Value(rapidjson::StringRef("auto")), a);
+    else
+        add(d, "samples", Value(s.samples), a);
     add(d, "background", array_value(s.background, 3, a), a);
     const oit_modulation &m = s.modulation;
     add(d, "view", string_value(view_name(m), a), a);
@@ -643,7 +664,9 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         // sections and the exploded view (issue 28)
         "section", "section-parts", "caps", "explode",
         // the orientation aids (issue 29)
-        "axes", "scale-bar"};
+        "axes", "scale-bar",
+        // anti-aliasing (issue 29): "auto" or --samples' count
+        "samples"};
     for (auto it = d.MemberBegin(); it != d.MemberEnd(); ++it) {
         std::string key = it->name.GetString();
         if (std::find(std::begin(known), std::end(known), key) == std::end(known))
@@ -676,6 +699,15 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
     if (!r.choice(d, "shading", words, oit_setting_words(OIT_SETTING_SHADING, &words), shading))
         return false;
     s.shading = oit_shading_mode(shading);
+    if (d.HasMember("samples")) {
+        const Value &v = d["samples"];
+        if (v.IsString() && std::string(v.GetString()) == "auto")
+            s.samples = 0;
+        else if (v.IsInt() && v.GetInt() >= 1 && oit_sample_positions(v.GetInt(), nullptr) != 0)
+            s.samples = v.GetInt();
+        else
+            return r.fail("samples", "must be \"auto\", 1, 4, 8 or 16");
+    }
     bool present;
     if (!r.numbers(d, "background", 3, s.background, present))
         return false;

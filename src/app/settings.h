@@ -76,6 +76,12 @@ struct RenderSettings {
     oit_corner axes_corner = OIT_CORNER_BOTTOM_LEFT;
     bool scale_bar = false;
     bool aids_in_export = false;
+    // Anti-aliasing (issue 29; --samples, preset key "samples": "auto", 1, 4, 8
+    // or 16): 0 is Auto, the view's frames at 1 sample while the view moves and
+    // again at kAutoSamples once it is still (render_worker.h has the rule);
+    // 1 is off; 4, 8, 16 every full frame. Exports use export_samples().
+    int samples = 0;
+    static constexpr int kAutoSamples = 4;
 
     RenderSettings();
     void reset_parts(const oit_model &model);
@@ -97,6 +103,11 @@ void apply_sections(const RenderSettings &settings, const oit_model &model, oit_
 // export and Copy as command carry (none unless settings.aids_in_export).
 oit_overlay_options view_aids(const RenderSettings &settings);
 oit_overlay_options export_aids(const RenderSettings &settings);
+// The samples of the frame the view settles on (Auto: kAutoSamples in the
+// colour view without the error map, else 1) and of an export (at least
+// kAutoSamples: exports always anti-alias).
+int view_samples(const RenderSettings &settings);
+int export_samples(const RenderSettings &settings);
 
 // --tessellation's value: "normal", "coarse", "fine" or the millimetres.
 std::string tessellation_name(const oit_import_options &import);

@@ -360,6 +360,8 @@ static const RowTip kRowTips[] = {
     {"moments", "--moments", "the moments kept per pixel: 4 or 6 power moments, or 3 trigonometric ones"},
     {"shading", "--shading", "flat: the material colour; headlight: lit from the eye"},
     {"background", "--background", "the colour behind the model"},
+    {"anti-aliasing", "--samples", "samples per pixel, averaged: auto renders 1 while the view moves and 4 once it "
+                                   "is still; exports use at least 4"},
     {"tessellation", "--tessellation", "how STEP and IGES surfaces become triangles: the linear deflection 1/1000 "
                                        "(normal), 1/250 (coarse) or 1/4000 (fine) of the model's diagonal; the model "
                                        "is loaded again (other formats have their triangles)"},

@@ -54,6 +54,8 @@ static void print_render_json(FILE *out, const render_options *o, const session 
         json_string(out, s->shader_dir);
     }
     fprintf(out, ", \"width\": %d, \"height\": %d, \"frames\": %d", o->width, o->height, o->frames);
+    fprintf(out, ", \"samples\": %d, \"sample_positions\": \"%s\"", o->samples,
+            oit_sample_positions_name(o->samples));
     fprintf(out, ", \"triangles\": %u", s->model.triangle_count);
     json_warnings(out, &s->model);
     /* the camera used, row by row as --modelview/--projection and oit measure take it */
@@ -170,6 +172,9 @@ static void print_render_help(FILE *out)
             "  --shading MODE         flat | headlight (default headlight: two-sided diffuse from the eye)\n"
             "  --background R,G,B     each in [0, 1] (default 1,1,1)\n"
             "  --backend NAME         egl | osmesa (default egl)\n"
+            "  --samples N            anti-aliasing: 1 (default, off), 4, 8 or 16 samples per pixel at\n"
+            "                         the standard (Direct3D 11 / Vulkan) positions; every algorithm\n"
+            "                         renders N times and the images are averaged (N times the time)\n"
             "  --explode F            exploded view, F in [0, 10] (default 0: the assembly as built): each\n"
             "                         part moves away from its parent's centre (the model's, or its node's\n"
             "                         in an assembly tree) by F times its centre's distance from it;\n"

@@ -160,6 +160,7 @@ void render_options_defaults(render_options *o)
     oit_algorithm_config_defaults(&o->config);
     o->frames = 1;
     oit_overlay_options_defaults(&o->overlay);
+    o->samples = 1;
 }
 
 /* Parses one render option at argv[*i]; returns 1 if consumed, 0 if unknown, -1 on error. */
@@ -238,6 +239,15 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
     } else if (strcmp(flag, "--background") == 0) {
         NEED_VALUE();
         CHECK(parse_colour("--background", value, o->background, err));
+    } else if (strcmp(flag, "--samples") == 0) {
+        NEED_VALUE();
+        long n;
+        /* the core's table of sample counts (oit_sample_positions) is the one rule */
+        if (!parse_int(value, 1, OIT_SAMPLES_MAX, &n) || oit_sample_positions((int)n, NULL) == 0) {
+            *status = oit_fail(err, OIT_E_INPUT, "--samples must be 1, 4, 8 or 16, got '%s'", value);
+            return -1;
+        }
+        o->samples = (int)n;
     } else if (strcmp(flag, "--backend") == 0) {
         NEED_VALUE();
         int backend;
@@ -580,6 +590,7 @@ oit_status render_frame_settings(const session *s, const render_options *o, oit_
            sizeof frame->projection);
     frame->alpha = o->alpha;
     frame->shading = o->shading;
+    frame->samples = o->samples;
     memcpy(frame->background, o->background, sizeof frame->background);
     frame->modulation = o->modulation;
     oit_status status = oit_cli_resolve_local_options(&s->model, &frame->local, err);

@@ -308,6 +308,11 @@ static oit_status read_session(const char *path, const cJSON *root, bool model_g
         return oit_fail(err, OIT_E_INPUT, "%s: \"export\": \"aids\" must be true or false", path);
     cJSON_ArrayForEach(item, render)
     {
+        /* the export's sample count ("export": "samples") is the one it
+         * rendered with: the view's setting ("auto", or off) is not */
+        if (strcmp(item->string, "samples") == 0 &&
+            (cJSON_HasObjectItem(cJSON_GetObjectItemCaseSensitive(root, "export"), "samples") || cJSON_IsString(item)))
+            continue;
         bool aid = strcmp(item->string, "axes") == 0 || strcmp(item->string, "scale-bar") == 0;
         if (aid && !cJSON_IsTrue(export_aids))
             continue;
@@ -325,10 +330,10 @@ static oit_status read_session(const char *path, const cJSON *root, bool model_g
     if (exported && !cJSON_IsObject(exported))
         return oit_fail(err, OIT_E_INPUT, "%s: \"export\" must be an object {\"size\", \"modelview\", \"projection\"}",
                         path);
-    static const char *const export_keys[] = {"size", "modelview", "projection", "aids"};
+    static const char *const export_keys[] = {"size", "modelview", "projection", "aids", "samples"};
     cJSON_ArrayForEach(item, exported)
     {
-        if (!known(item->string, export_keys, 4))
+        if (!known(item->string, export_keys, 5))
             fprintf(stderr, "oit: warning: %s: \"export\": unknown field \"%s\" ignored\n", path, item->string);
     }
     const cJSON *size = cJSON_GetObjectItemCaseSensitive(exported, "size");
@@ -343,6 +348,16 @@ static oit_status read_session(const char *path, const cJSON *root, bool model_g
         f->height = (int)h->valuedouble;
         snprintf(text, sizeof text, "%dx%d", f->width, f->height);
         if ((status = add_flag(f, "--size", text, "export.size", err)) != OIT_OK)
+            return status;
+    }
+    const cJSON *samples = cJSON_GetObjectItemCaseSensitive(exported, "samples");
+    if (samples) {
+        if (!cJSON_IsNumber(samples) || samples->valuedouble != floor(samples->valuedouble) ||
+            !(samples->valuedouble >= 1 && samples->valuedouble <= 16))
+            return oit_fail(err, OIT_E_INPUT, "%s: \"export\": \"samples\" must be 1, 4, 8 or 16", path);
+        char text[32];
+        snprintf(text, sizeof text, "%d", (int)samples->valuedouble);
+        if ((status = add_flag(f, "--samples", text, "export.samples", err)) != OIT_OK)
             return status;
     }
     const cJSON *modelview = cJSON_GetObjectItemCaseSensitive(exported, "modelview");

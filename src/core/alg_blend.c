@@ -111,5 +111,6 @@ const oit_algorithm_ops oit_algorithm_blend = {
     .render = blend_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
+    .accumulate = oit_gpu_accumulate,
     .destroy = blend_destroy,
 };

@@ -456,5 +456,6 @@ const oit_algorithm_ops oit_algorithm_ddp = {
     .render = ddp_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
+    .accumulate = oit_gpu_accumulate,
     .destroy = ddp_destroy,
 };

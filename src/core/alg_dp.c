@@ -538,5 +538,6 @@ const oit_algorithm_ops oit_algorithm_dp = {
     .render = dp_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
+    .accumulate = oit_gpu_accumulate,
     .destroy = dp_destroy,
 };

@@ -41,5 +41,6 @@ const oit_algorithm_ops oit_algorithm_hybrid = {
     .render = closest_layers_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
+    .accumulate = oit_gpu_accumulate,
     .destroy = closest_layers_destroy,
 };

@@ -992,5 +992,6 @@ const oit_algorithm_ops oit_algorithm_ib = {
     .render = ib_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
+    .accumulate = oit_gpu_accumulate,
     .destroy = ib_destroy,
 };

@@ -615,5 +615,6 @@ const oit_algorithm_ops oit_algorithm_ll = {
     .render = ll_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
+    .accumulate = oit_gpu_accumulate,
     .destroy = ll_destroy,
 };

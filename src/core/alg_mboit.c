@@ -219,5 +219,6 @@ const oit_algorithm_ops oit_algorithm_mboit = {
     .render = mboit_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
+    .accumulate = oit_gpu_accumulate,
     .destroy = mboit_destroy,
 };

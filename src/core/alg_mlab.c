@@ -294,5 +294,6 @@ const oit_algorithm_ops oit_algorithm_mlab = {
     .render = mlab_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
+    .accumulate = oit_gpu_accumulate,
     .destroy = mlab_destroy,
 };

@@ -81,6 +81,7 @@ struct oit_algorithm {
     oit_algorithm_config config;
     int width, height;
     uint8_t *rgba; /* output, top row first */
+    uint16_t *sample_sum; /* anti-aliasing: the samples' per-pixel sum, 4 per pixel; NULL at 1 sample */
 
     /* Per-pixel fragment store in GL row order (row 0 = bottom): a counting sort. */
     uint32_t *pixel_counts;  /* width * height: fragments per pixel, then fill cursor */
@@ -262,6 +263,8 @@ static uint64_t pixel_bytes_held(const oit_algorithm *alg)
         bytes += pixels * sizeof *alg->pixel_counts;
     if (alg->pixel_offsets)
         bytes += (pixels + 1) * sizeof *alg->pixel_offsets;
+    if (alg->sample_sum)
+        bytes += pixels * 4 * sizeof *alg->sample_sum;
     return bytes;
 }
 
@@ -325,6 +328,8 @@ static void free_pixel_arrays(oit_algorithm *alg)
     free(alg->rgba);
     free(alg->pixel_counts);
     free(alg->pixel_offsets);
+    free(alg->sample_sum);
+    alg->sample_sum = NULL;
     alg->rgba = NULL;
     alg->pixel_counts = NULL;
     alg->pixel_offsets = NULL;
@@ -546,6 +551,46 @@ static void reference_stats(const oit_algorithm *alg, oit_stats *out)
     *out = alg->stats;
 }
 
+/* Anti-aliasing (oit_algorithm_ops.accumulate): the same sum and rounded
+ * average as common/samples_accumulate.comp, in 16-bit integers. */
+static oit_status reference_accumulate(oit_algorithm *alg, int sample, int samples, oit_stats *frame,
+                                       oit_error *err)
+{
+    size_t values = (size_t)alg->width * (size_t)alg->height * 4;
+    if (samples <= 1) {
+        free(alg->sample_sum);
+        alg->sample_sum = NULL;
+        return OIT_OK;
+    }
+    if (sample < 0 || sample >= samples || samples > OIT_SAMPLES_MAX || !frame || !alg->rgba)
+        return oit_fail(err, OIT_E_RUNTIME, "reference: sample %d of %d cannot be accumulated", sample, samples);
+    double start = thread_cpu_ms(), wall_start = wall_ms();
+    if (!alg->sample_sum) {
+        alg->sample_sum = malloc(values * sizeof *alg->sample_sum);
+        if (!alg->sample_sum)
+            return oit_fail(err, OIT_E_RUNTIME, "reference: out of memory for the samples' sum");
+    }
+    if (sample == 0) {
+        for (size_t i = 0; i < values; ++i)
+            alg->sample_sum[i] = alg->rgba[i];
+    } else if (sample + 1 < samples) {
+        for (size_t i = 0; i < values; ++i)
+            alg->sample_sum[i] = (uint16_t)(alg->sample_sum[i] + alg->rgba[i]);
+    } else {
+        unsigned n = (unsigned)samples;
+        for (size_t i = 0; i < values; ++i)
+            alg->rgba[i] = (uint8_t)((alg->sample_sum[i] + alg->rgba[i] + n / 2) / n);
+    }
+    oit_stats_add_stage(frame, "samples_accumulate", thread_cpu_ms() - start);
+    frame->cpu_ms += wall_ms() - wall_start;
+    uint64_t held = bytes_held(alg);
+    frame->memory_bytes = held > frame->memory_bytes ? held : frame->memory_bytes;
+    frame->bytes_per_pixel = (double)pixel_bytes_held(alg) / ((double)alg->width * (double)alg->height);
+    if (sample + 1 == samples)
+        alg->stats = *frame;
+    return OIT_OK;
+}
+
 /* The reference shows the composited image and the views that select
  * fragments by depth order, with the local modulations and the distance; list
  * heat maps and the Illustration Buffer's modulation are the GPU algorithms'
@@ -574,5 +619,6 @@ const oit_algorithm_ops oit_algorithm_reference = {
     .render = reference_render,
     .read_image = reference_read_image,
     .stats = reference_stats,
+    .accumulate = reference_accumulate,
     .destroy = reference_destroy,
 };

@@ -132,5 +132,6 @@ const oit_algorithm_ops oit_algorithm_wboit = {
     .render = wboit_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
+    .accumulate = oit_gpu_accumulate,
     .destroy = wboit_destroy,
 };

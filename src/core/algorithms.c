@@ -114,6 +114,44 @@ oit_status oit_frame_relative(const oit_model *model, const oit_frame_settings *
     return oit_section_eye_planes(relative, planes, &count, err);
 }
 
+/* A frame of several samples describes the whole frame (docs/algorithms.md,
+ * "Anti-aliasing"): wall time and stage times summed over the samples (a
+ * stage's time is that of all its runs), fragments and retries summed, the
+ * histogram summed (it counts pixel-samples), the longest list, layers and
+ * bands the largest, truncated if any sample was, the ratios (mean list,
+ * psi, neighbour shares) the mean of the samples', memory the most held. */
+static void mean_in(double *total, double one, int sample)
+{
+    if (one >= 0.0)
+        *total = sample == 0 || *total < 0.0 ? one : (*total * sample + one) / (sample + 1);
+}
+
+static void oit_stats_add_sample(oit_stats *total, const oit_stats *one, int sample)
+{
+    total->cpu_ms += one->cpu_ms;
+    for (int i = 0; i < one->stage_count; ++i)
+        oit_stats_add_stage(total, one->stages[i].name, one->stages[i].gpu_ms);
+    total->memory_bytes = one->memory_bytes > total->memory_bytes ? one->memory_bytes : total->memory_bytes;
+    if (one->fragments >= 0)
+        total->fragments = (total->fragments < 0 ? 0 : total->fragments) + one->fragments;
+    if (one->overflow_retries >= 0)
+        total->overflow_retries = (total->overflow_retries < 0 ? 0 : total->overflow_retries) + one->overflow_retries;
+    total->max_list = one->max_list > total->max_list ? one->max_list : total->max_list;
+    total->layers = one->layers > total->layers ? one->layers : total->layers;
+    total->bands = one->bands > total->bands ? one->bands : total->bands;
+    total->truncated = total->truncated || one->truncated;
+    mean_in(&total->mean_list, one->mean_list, sample);
+    mean_in(&total->psi, one->psi, sample);
+    mean_in(&total->neighbours_four_share, one->neighbours_four_share, sample);
+    mean_in(&total->neighbours_symmetric_share, one->neighbours_symmetric_share, sample);
+    mean_in(&total->neighbours_same_component_share, one->neighbours_same_component_share, sample);
+    total->histogram_bins = one->histogram_bins;
+    for (int i = 0; i < one->histogram_bins && i < OIT_HISTOGRAM_BINS; ++i)
+        total->list_histogram[i] += one->list_histogram[i];
+    total->bytes_per_fragment = one->bytes_per_fragment;
+    total->bytes_per_pixel = one->bytes_per_pixel;
+}
+
 oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg, const oit_scene *scene,
                                 const oit_frame_settings *frame, oit_error *err)
 {
@@ -126,9 +164,44 @@ oit_status oit_algorithm_render(const oit_algorithm_ops *ops, oit_algorithm *alg
         status = oit_matrices_validate(frame->modelview, frame->projection, err);
     if (status != OIT_OK)
         return status;
+    const signed char *offsets = NULL;
+    int samples = oit_sample_positions(frame->samples, &offsets);
     oit_frame_settings relative;
-    status = oit_frame_relative(scene->model, frame, &relative, err);
-    if (status != OIT_OK)
-        return status;
-    return ops->render(alg, scene, &relative, err);
+    if (samples == 1) {
+        status = oit_frame_relative(scene->model, frame, &relative, err);
+        if (status == OIT_OK)
+            status = ops->accumulate(alg, 0, 1, NULL, err); /* releases a target of earlier frames */
+        if (status != OIT_OK)
+            return status;
+        return ops->render(alg, scene, &relative, err);
+    }
+    /* Anti-aliasing by supersampling (docs/algorithms.md, "Anti-aliasing"):
+     * every algorithm renders the frame once per sample position with the
+     * projection moved so that its pixel centres fall on that position,
+     * and ops->accumulate averages the images. The reference goes through
+     * here too, so it samples at exactly the same positions. */
+    oit_stats total;
+    oit_stats_reset(&total);
+    for (int s = 0; s < samples; ++s) {
+        /* a clip-space translation by the offset: x_ndc moves by 2 dx / width;
+         * y by -2 dy / height (the offsets count y down the image, NDC y up) */
+        double jitter[16];
+        oit_mat4_identity(jitter);
+        jitter[12] = 2.0 * (offsets[2 * s] / 16.0) / frame->width;
+        jitter[13] = -2.0 * (offsets[2 * s + 1] / 16.0) / frame->height;
+        oit_frame_settings sample = *frame;
+        oit_mat4_multiply(jitter, frame->projection, sample.projection);
+        status = oit_frame_relative(scene->model, &sample, &relative, err);
+        if (status == OIT_OK)
+            status = ops->render(alg, scene, &relative, err);
+        if (status != OIT_OK)
+            return status;
+        oit_stats one;
+        ops->stats(alg, &one);
+        oit_stats_add_sample(&total, &one, s);
+        status = ops->accumulate(alg, s, samples, &total, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    return OIT_OK;
 }

@@ -37,6 +37,9 @@ oit_status oit_frame_check(const oit_algorithm_ops *ops, const oit_frame_setting
 {
     const oit_capabilities *can = ops->capabilities;
     const oit_modulation *m = &frame->modulation;
+    if (frame->samples != 0 && oit_sample_positions(frame->samples, NULL) == 0)
+        return oit_fail(err, OIT_E_INPUT, "%s: frame.samples %d is not 1, 4, 8 or 16 (0: 1)", ops->name,
+                        frame->samples);
     if ((int)m->mode < 0 || (int)m->mode >= OIT_MODULATION_COUNT)
         return oit_fail(err, OIT_E_INPUT, "%s: unknown modulation %d", ops->name, (int)m->mode);
     if (can->modulations[m->mode])
@@ -52,4 +55,44 @@ oit_status oit_frame_check(const oit_algorithm_ops *ops, const oit_frame_setting
     if (can->views[m->view])
         return refuse(err, ops->name, can->views[m->view], oit_setting_word(OIT_SETTING_VIEW, m->view));
     return OIT_OK;
+}
+
+/* The standard multisample positions, in 1/16 pixel from the pixel centre,
+ * x right and y down: Direct3D 11's D3D11_STANDARD_MULTISAMPLE_PATTERN
+ * (D3D11_STANDARD_MULTISAMPLE_QUALITY_LEVELS, "Standard sample patterns"),
+ * which Vulkan's standard sample locations repeat (the specification's
+ * table "Standard sample locations", given there in [0, 1) from the pixel's
+ * corner: 0.5 + offset / 16). */
+static const signed char positions_1[] = {0, 0};
+static const signed char positions_4[] = {-2, -6, 6, -2, -6, 2, 2, 6};
+static const signed char positions_8[] = {1, -3, -1, 3, 5, 1, -3, -5, -5, 5, -7, -1, 3, 7, 7, -7};
+static const signed char positions_16[] = {1,  1,  -1, -3, -3, 2,  4,  -1, -5, -2, 2,  5,  5,  3,  3,  -5,
+                                           -2, 6,  0,  -7, -4, -6, -6, 4,  -8, 0,  7,  -4, 6,  7,  -7, -8};
+
+int oit_sample_positions(int samples, const signed char **offsets)
+{
+    const signed char *table = NULL;
+    switch (samples) {
+    case 0:
+    case 1: table = positions_1; samples = 1; break;
+    case 4: table = positions_4; break;
+    case 8: table = positions_8; break;
+    case 16: table = positions_16; break;
+    default: return 0;
+    }
+    if (offsets)
+        *offsets = table;
+    return samples;
+}
+
+const char *oit_sample_positions_name(int samples)
+{
+    switch (samples) {
+    case 0:
+    case 1: return "centre";
+    case 4: return "d3d11-standard-4";
+    case 8: return "d3d11-standard-8";
+    case 16: return "d3d11-standard-16";
+    default: return "unknown";
+    }
 }

@@ -38,6 +38,24 @@ void oit_stats_reset(oit_stats *stats)
     stats->neighbours_same_component_share = -1.0;
 }
 
+void oit_stats_add_stage(oit_stats *stats, const char *name, double ms)
+{
+    for (int i = 0; i < stats->stage_count; ++i)
+        if (strncmp(stats->stages[i].name, name, OIT_STAGE_NAME_SIZE) == 0) {
+            stats->stages[i].gpu_ms += ms;
+            return;
+        }
+    if (stats->stage_count == OIT_MAX_STAGES) {
+        oit_stage_time *last = &stats->stages[OIT_MAX_STAGES - 1];
+        snprintf(last->name, OIT_STAGE_NAME_SIZE, "(remaining stages)");
+        last->gpu_ms += ms;
+        return;
+    }
+    oit_stage_time *stage = &stats->stages[stats->stage_count++];
+    snprintf(stage->name, OIT_STAGE_NAME_SIZE, "%s", name);
+    stage->gpu_ms = ms;
+}
+
 void oit_algorithm_config_defaults(oit_algorithm_config *config)
 {
     memset(config, 0, sizeof *config);

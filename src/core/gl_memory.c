@@ -35,6 +35,7 @@ size_t oit_gl_texel_bytes(GLenum internal_format)
     case GL_RGBA16:
     case GL_RG32F:
     case GL_RG32UI:
+    case GL_RGBA16UI:
     case GL_RG32I:
         return 8;
     case GL_RGBA32F:

@@ -55,6 +55,8 @@ void oit_gpu_destroy(oit_gpu_algorithm *gpu)
     for (int i = 0; i < gpu->program_count; ++i)
         glDeleteProgram(gpu->programs[i]);
     oit_gl_memory_delete_buffers(&gpu->memory, 1, &gpu->frame_block);
+    if (gpu->sample_sum)
+        oit_gl_memory_delete_textures(&gpu->memory, 1, &gpu->sample_sum);
     oit_gl_output_release(&gpu->output);
     oit_timer_destroy(&gpu->timer);
     free(gpu->shader_dir);
@@ -268,4 +270,60 @@ oit_status oit_gpu_read_image(oit_algorithm *alg, oit_image *out, oit_error *err
 void oit_gpu_stats(const oit_algorithm *alg, oit_stats *out)
 {
     *out = ((const oit_gpu_algorithm *)alg)->stats;
+}
+
+oit_status oit_gpu_accumulate(oit_algorithm *alg, int sample, int samples, oit_stats *frame, oit_error *err)
+{
+    oit_gpu_algorithm *gpu = (oit_gpu_algorithm *)alg;
+    int width = gpu->output.width, height = gpu->output.height;
+    if (samples <= 1 || (gpu->sample_sum && (gpu->sample_sum_width != width || gpu->sample_sum_height != height))) {
+        if (gpu->sample_sum)
+            oit_gl_memory_delete_textures(&gpu->memory, 1, &gpu->sample_sum);
+        gpu->sample_sum = 0;
+        if (samples <= 1)
+            return OIT_OK;
+    }
+    if (sample < 0 || sample >= samples || samples > OIT_SAMPLES_MAX || !frame || !gpu->output.colour)
+        return oit_fail(err, OIT_E_RUNTIME, "%s: sample %d of %d cannot be accumulated", gpu->name, sample,
+                        samples);
+    if (!gpu->sample_program) { /* built on first use, outside the stage's time */
+        oit_status status = oit_gpu_compute_program(gpu, "common/samples_accumulate.comp", &gpu->sample_program, err);
+        if (status != OIT_OK)
+            return status;
+    }
+    glFinish();
+    double start = oit_now_ms();
+    if (!gpu->sample_sum) {
+        gpu->sample_sum = oit_gl_memory_texture_2d(&gpu->memory, OIT_GL_MEMORY_PIXELS, GL_RGBA16UI, width, height);
+        gpu->sample_sum_width = width;
+        gpu->sample_sum_height = height;
+    }
+    int step = sample == 0 ? OIT_SAMPLES_STORE : sample + 1 < samples ? OIT_SAMPLES_ADD : OIT_SAMPLES_RESOLVE;
+    glMemoryBarrier(GL_ALL_BARRIER_BITS); /* the frame's last writes to the output */
+    glBindImageTexture(OIT_IMAGE_SAMPLES_OUTPUT, gpu->output.colour, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8UI);
+    glBindImageTexture(OIT_IMAGE_SAMPLES_SUM, gpu->sample_sum, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16UI);
+    glUseProgram(gpu->sample_program);
+    glUniform1i(glGetUniformLocation(gpu->sample_program, "u_step"), step);
+    glUniform1ui(glGetUniformLocation(gpu->sample_program, "u_samples"), (GLuint)samples);
+    glDispatchCompute((GLuint)(width + 7) / 8, (GLuint)(height + 7) / 8, 1);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    glUseProgram(0);
+    glBindImageTexture(OIT_IMAGE_SAMPLES_OUTPUT, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8UI);
+    glBindImageTexture(OIT_IMAGE_SAMPLES_SUM, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16UI);
+    glFinish();
+    double ms = oit_now_ms() - start;
+    char where[64];
+    snprintf(where, sizeof where, "%s: samples_accumulate", gpu->name);
+    oit_status status = oit_gl_check(where, err);
+    if (status != OIT_OK)
+        return status;
+    oit_stats_add_stage(frame, "samples_accumulate", ms);
+    frame->cpu_ms += ms;
+    uint64_t held = oit_gl_memory_total(&gpu->memory);
+    frame->memory_bytes = held > frame->memory_bytes ? held : frame->memory_bytes;
+    frame->bytes_per_pixel =
+        (double)oit_gl_memory_bytes(&gpu->memory, OIT_GL_MEMORY_PIXELS) / ((double)width * (double)height);
+    if (step == OIT_SAMPLES_RESOLVE)
+        gpu->stats = *frame;
+    return OIT_OK;
 }

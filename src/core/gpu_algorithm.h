@@ -23,6 +23,12 @@ typedef struct oit_gpu_algorithm {
     GLuint frame_block; /* the frame's parameters (OIT_UBO_FRAME), uploaded by oit_gpu_frame_begin */
     GLuint programs[OIT_GPU_PROGRAMS_MAX]; /* built by oit_gpu_program*, deleted with the algorithm */
     int program_count;
+    /* anti-aliasing (oit_gpu_accumulate): the samples' per-pixel sum
+     * (RGBA16UI, tracked as per-pixel memory; none in a frame of one sample)
+     * and its size, and the program that adds and resolves */
+    GLuint sample_sum;
+    int sample_sum_width, sample_sum_height;
+    GLuint sample_program;
 } oit_gpu_algorithm;
 
 /* A zeroed state of state_size bytes that starts with the base, set up
@@ -114,8 +120,13 @@ typedef struct oit_texture_unit {
 oit_status oit_gpu_fullscreen_stage(oit_gpu_algorithm *gpu, oit_status status, const char *stage,
                                     GLuint program, GLbitfield barriers, const oit_texture_unit *textures, int texture_count, oit_error *err);
 
-/* The operations table's read_image and stats, for every GPU algorithm. */
+/* The operations table's read_image, stats and accumulate, for every GPU
+ * algorithm. accumulate (oit.h, oit_algorithm_ops) adds the output to the
+ * sum by common/samples_accumulate.comp, which reads the RGBA8 output as
+ * the integers it holds, and resolves it there; its time is glFinish-bracketed
+ * wall time. */
 oit_status oit_gpu_read_image(oit_algorithm *alg, oit_image *out, oit_error *err);
 void oit_gpu_stats(const oit_algorithm *alg, oit_stats *out);
+oit_status oit_gpu_accumulate(oit_algorithm *alg, int sample, int samples, oit_stats *frame, oit_error *err);
 
 #endif

@@ -643,7 +643,27 @@ typedef struct oit_frame_settings {
     oit_modulation modulation;
     oit_local_modulation local;
     oit_progress progress;
+    /* Anti-aliasing (--samples; docs/algorithms.md, "Anti-aliasing"): 0 or 1
+     * renders one sample at each pixel centre, as always; 4, 8 or 16 render
+     * the frame that many times, each with the projection moved by one of
+     * the standard sample positions (oit_sample_positions), and average the
+     * RGBA8 images. oit_frame_check refuses any other value. Done once for
+     * every algorithm, the reference included, by oit_algorithm_render. */
+    int samples;
 } oit_frame_settings;
+
+/* The sample counts --samples takes besides 1, and the largest. */
+#define OIT_SAMPLES_MAX 16
+/* The sample positions of a frame of `samples` samples (0 or 1: the pixel
+ * centre; 4, 8, 16: the standard multisample positions of Direct3D 11
+ * (D3D11_STANDARD_MULTISAMPLE_PATTERN) and Vulkan (standard sample
+ * locations), which are the same), as offsets from the pixel centre in
+ * 1/16 pixel, x to the right and y down the image, two per sample; their
+ * count, or 0 for a count --samples does not take. */
+int oit_sample_positions(int samples, const signed char **offsets);
+/* The positions' name for reports ("centre", "d3d11-standard-4", ...);
+ * "unknown" for a count --samples does not take. */
+const char *oit_sample_positions_name(int samples);
 
 /* Matrix helpers (matrix.c), column-major double[16]. */
 void oit_mat4_identity(double m[16]);
@@ -781,6 +801,9 @@ typedef struct oit_stats {
 } oit_stats;
 
 void oit_stats_reset(oit_stats *stats); /* zeroes, and marks the optional figures n/a (-1) */
+/* Adds ms to the stage named `name`, appending it when there is none (a
+ * frame's last slot sums the stages past OIT_MAX_STAGES, as the timer does). */
+void oit_stats_add_stage(oit_stats *stats, const char *name, double ms);
 
 /* ------------------------------------------------------ the algorithm table */
 
@@ -926,6 +949,16 @@ typedef struct oit_algorithm_ops {
                          const oit_frame_settings *frame, oit_error *err);
     oit_status (*read_image)(oit_algorithm *alg, oit_image *out, oit_error *err);
     void (*stats)(const oit_algorithm *alg, oit_stats *out);
+    /* Anti-aliasing, for oit_algorithm_render only (every algorithm has the
+     * same one, its kind's: oit_gpu_accumulate, the reference's own): after
+     * sample `sample` (0-based) of `samples` (2..OIT_SAMPLES_MAX) rendered,
+     * adds the output to the accumulation target (sample 0 stores it), adds
+     * the step's time to *frame as the stage "samples_accumulate" and the
+     * memory held to it; after the last, writes the rounded average (sum +
+     * samples / 2) / samples per channel into the output, which read_image
+     * then returns, and takes *frame as its statistics. samples 1: releases
+     * the target (a frame of one sample holds none). */
+    oit_status (*accumulate)(oit_algorithm *alg, int sample, int samples, oit_stats *frame, oit_error *err);
     void (*destroy)(oit_algorithm *alg);
 } oit_algorithm_ops;
 

@@ -8,3 +8,8 @@
 # by tests/app.cmake.
 add_test(NAME app_preview COMMAND ${APP_XVFB} $<TARGET_FILE:test_preview>)
 set_tests_properties(app_preview PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 120)
+# Anti-aliasing in the view (tests/app/test_antialiasing.cpp): Auto renders the
+# still view again at 4 samples (a drag at 1), Off renders once, a chosen count
+# every full frame, exports at least 4 samples and their command says --samples.
+add_test(NAME app_antialiasing COMMAND ${APP_XVFB} $<TARGET_FILE:test_antialiasing>)
+set_tests_properties(app_antialiasing PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 120)
