@@ -308,10 +308,9 @@ static oit_status read_session(const char *path, const cJSON *root, bool model_g
         return oit_fail(err, OIT_E_INPUT, "%s: \"export\": \"aids\" must be true or false", path);
     cJSON_ArrayForEach(item, render)
     {
-        /* the export's sample count ("export": "samples") is the one it
-         * rendered with: the view's setting ("auto", or off) is not */
-        if (strcmp(item->string, "samples") == 0 &&
-            (cJSON_HasObjectItem(cJSON_GetObjectItemCaseSensitive(root, "export"), "samples") || cJSON_IsString(item)))
+        /* the export's sample count (below) is the one it rendered with:
+         * the view's setting ("auto", or off) is not */
+        if (strcmp(item->string, "samples") == 0)
             continue;
         bool aid = strcmp(item->string, "axes") == 0 || strcmp(item->string, "scale-bar") == 0;
         if (aid && !cJSON_IsTrue(export_aids))
@@ -350,16 +349,21 @@ static oit_status read_session(const char *path, const cJSON *root, bool model_g
         if ((status = add_flag(f, "--size", text, "export.size", err)) != OIT_OK)
             return status;
     }
+    /* the export's samples; a session without them (older) renders as the
+     * workbench exports it today: at least 4 samples, more where "render"
+     * asks for more (export_samples in src/app/settings.cpp) */
     const cJSON *samples = cJSON_GetObjectItemCaseSensitive(exported, "samples");
-    if (samples) {
-        if (!cJSON_IsNumber(samples) || samples->valuedouble != floor(samples->valuedouble) ||
-            !(samples->valuedouble >= 1 && samples->valuedouble <= 16))
-            return oit_fail(err, OIT_E_INPUT, "%s: \"export\": \"samples\" must be 1, 4, 8 or 16", path);
-        char text[32];
-        snprintf(text, sizeof text, "%d", (int)samples->valuedouble);
-        if ((status = add_flag(f, "--samples", text, "export.samples", err)) != OIT_OK)
-            return status;
-    }
+    if (samples && (!cJSON_IsNumber(samples) || samples->valuedouble != floor(samples->valuedouble) ||
+                    !(samples->valuedouble >= 1 && samples->valuedouble <= 16)))
+        return oit_fail(err, OIT_E_INPUT, "%s: \"export\": \"samples\" must be 1, 4, 8 or 16", path);
+    const cJSON *view_samples = cJSON_GetObjectItemCaseSensitive(render, "samples");
+    int export_samples = samples ? (int)samples->valuedouble
+                         : cJSON_IsNumber(view_samples) && view_samples->valuedouble > 4.0 ? (int)view_samples->valuedouble
+                                                                                            : 4;
+    char samples_text[32];
+    snprintf(samples_text, sizeof samples_text, "%d", export_samples);
+    if ((status = add_flag(f, "--samples", samples_text, samples ? "export.samples" : "render.samples", err)) != OIT_OK)
+        return status;
     const cJSON *modelview = cJSON_GetObjectItemCaseSensitive(exported, "modelview");
     const cJSON *projection = cJSON_GetObjectItemCaseSensitive(exported, "projection");
     if (!modelview != !projection)
