@@ -125,37 +125,12 @@ static oit_status bundle_check(const bench_settings *b, const scene_list *scenes
     if (oit_temporary_path_length(bundle->path) + 1 + longest_length + 16 >= PATH_MAX)
         return oit_fail(err, OIT_E_INPUT, "--bundle %s: %s: its files' paths would pass %d bytes", path,
                         strerror(ENAMETOOLONG), PATH_MAX - 1);
-    struct stat info;
-    if (stat(bundle->path, &info) != 0)
-        return OIT_OK; /* a new name */
-    bundle->replaces = true;
-    bundle->mode = info.st_mode & 07777;
-    DIR *directory = opendir(bundle->path);
-    if (!directory)
-        return oit_fail(err, OIT_E_INPUT, "--bundle %s: cannot read: %s", path, strerror(errno));
-    int entries = 0;
-    bool has_json = false;
-    char odd[256] = "";
-    struct dirent *entry;
-    while ((entry = readdir(directory)) != NULL) {
-        if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
-            continue;
-        ++entries;
-        has_json |= strcmp(entry->d_name, "bundle.json") == 0;
-        char full[4400];
-        snprintf(full, sizeof full, "%s/%s", bundle->path, entry->d_name);
-        struct stat item;
-        if (!odd[0] && (lstat(full, &item) != 0 || !S_ISREG(item.st_mode)))
-            snprintf(odd, sizeof odd, "%s", entry->d_name);
-    }
-    closedir(directory);
-    if (entries > 0 && !has_json)
-        return oit_fail(err, OIT_E_INPUT,
-                        "--bundle %s: the directory is not empty and not a bundle (no bundle.json)", path);
-    if (odd[0])
-        return oit_fail(err, OIT_E_INPUT,
-                        "--bundle %s: holds '%s', which is not a regular file: not a bundle", path, odd);
-    return OIT_OK;
+    bool replaces = false;
+    unsigned mode = 0;
+    status = oit_output_folder_check(bundle->path, "--bundle", path, "bundle", "bundle.json", &replaces, &mode, err);
+    bundle->replaces = replaces;
+    bundle->mode = mode;
+    return status;
 }
 
 oit_status bundle_open(const bench_settings *b, const scene_list *scenes, bench_bundle *bundle,

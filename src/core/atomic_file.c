@@ -3,9 +3,11 @@
  * replaced atomically (a full disk leaves the previous file whole). See
  * oit.h, "files"; the temporaries themselves are temporaries.c's. */
 #define _GNU_SOURCE /* fopencookie */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -293,6 +295,44 @@ oit_status oit_check_output_file(const char *path, const char *what, oit_error *
     oit_status status = plan_output(path, what, false, false, &plan, err);
     free(plan.target);
     return status;
+}
+
+oit_status oit_output_folder_check(const char *path, const char *what, const char *given, const char *kind,
+                                   const char *marker, bool *replaces, unsigned *mode, oit_error *err)
+{
+    *replaces = false;
+    *mode = 0;
+    struct stat info;
+    if (stat(path, &info) != 0)
+        return OIT_OK; /* a new name */
+    *replaces = true;
+    *mode = info.st_mode & 07777;
+    DIR *directory = opendir(path);
+    if (!directory)
+        return oit_fail(err, OIT_E_INPUT, "%s %s: cannot read: %s", what, given, strerror(errno));
+    int entries = 0;
+    bool has_marker = false;
+    char odd[256] = "";
+    struct dirent *entry;
+    while ((entry = readdir(directory)) != NULL) {
+        if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
+            continue;
+        ++entries;
+        has_marker |= strcmp(entry->d_name, marker) == 0;
+        char full[PATH_MAX + 300];
+        snprintf(full, sizeof full, "%s/%s", path, entry->d_name);
+        struct stat item;
+        if (!odd[0] && (lstat(full, &item) != 0 || !S_ISREG(item.st_mode)))
+            snprintf(odd, sizeof odd, "%s", entry->d_name);
+    }
+    closedir(directory);
+    if (entries > 0 && !has_marker)
+        return oit_fail(err, OIT_E_INPUT, "%s %s: the directory is not empty and not a %s (no %s)", what, given,
+                        kind, marker);
+    if (odd[0])
+        return oit_fail(err, OIT_E_INPUT, "%s %s: holds '%s', which is not a regular file: not a %s", what, given,
+                        odd, kind);
+    return OIT_OK;
 }
 
 oit_status oit_output_target(const char *path, const char *what, char **target, oit_error *err)

@@ -405,6 +405,14 @@ oit_status oit_open_regular_file(const char *path, const char *what, FILE **out,
 typedef struct oit_atomic_file oit_atomic_file;
 #define OIT_ATOMIC_APPEND 1 /* append in place under an exclusive lock */
 oit_status oit_check_output_file(const char *path, const char *what, oit_error *err);
+/* A folder an output replaces whole (bench --bundle, render --turntable): a
+ * new name (*replaces false), an empty folder, or a previous one of its KIND,
+ * which holds MARKER and nothing but regular files; *mode is then its
+ * permissions. Else OIT_E_INPUT "WHAT GIVEN: the directory is not empty and
+ * not a KIND (no MARKER)" or "WHAT GIVEN: holds 'NAME', which is not a regular
+ * file: not a KIND". PATH is the folder's resolved path (oit_output_target). */
+oit_status oit_output_folder_check(const char *path, const char *what, const char *given, const char *kind,
+                                   const char *marker, bool *replaces, unsigned *mode, oit_error *err);
 /* The check for an output that is a folder (oit bench --bundle): a new name
  * or a directory (which is replaced: it must be readable and writable); a
  * regular file is "WHAT PATH: not a directory", anything else refused as

@@ -107,38 +107,13 @@ static double now_ms(void)
  * holds frame_0000.png and nothing but regular files). */
 static oit_status check_folder(oit_turntable_output *t, oit_error *err)
 {
-    struct stat info;
-    if (stat(t->path, &info) != 0)
-        return OIT_OK; /* a new name */
-    t->replaces = true;
-    t->mode = info.st_mode & 07777;
-    DIR *directory = opendir(t->path);
-    if (!directory)
-        return oit_fail(err, OIT_E_INPUT, "%s %s: cannot read: %s", t->what, t->given, strerror(errno));
-    int entries = 0;
-    bool has_frame = false;
-    char odd[256] = "";
-    struct dirent *entry;
-    while ((entry = readdir(directory)) != NULL) {
-        if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
-            continue;
-        ++entries;
-        has_frame |= strcmp(entry->d_name, "frame_0000.png") == 0;
-        char full[PATH_MAX + 300];
-        snprintf(full, sizeof full, "%s/%s", t->path, entry->d_name);
-        struct stat item;
-        if (!odd[0] && (lstat(full, &item) != 0 || !S_ISREG(item.st_mode)))
-            snprintf(odd, sizeof odd, "%s", entry->d_name);
-    }
-    closedir(directory);
-    if (entries > 0 && !has_frame)
-        return oit_fail(err, OIT_E_INPUT,
-                        "%s %s: the directory is not empty and not a turntable (no frame_0000.png): not replaced",
-                        t->what, t->given);
-    if (odd[0])
-        return oit_fail(err, OIT_E_INPUT, "%s %s: holds '%s', which is not a regular file: not a turntable", t->what,
-                        t->given, odd);
-    return OIT_OK;
+    bool replaces = false;
+    unsigned mode = 0;
+    oit_status status = oit_output_folder_check(t->path, t->what, t->given, "turntable", "frame_0000.png", &replaces,
+                                                &mode, err);
+    t->replaces = replaces;
+    t->mode = mode;
+    return status;
 }
 
 oit_status oit_turntable_output_check(const char *folder, const char *what, int frames, oit_error *err)
