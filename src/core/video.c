@@ -9,8 +9,15 @@
  * The libraries rather than the ffmpeg program: no process to start, find or
  * feed through a pipe; every failure is a status and a line here; each frame
  * is a call, so the caller reports progress and can stop between frames.
+ *
+ * The libraries are opened on the first video (dlopen, by the sonames of the
+ * headers built against), not linked: linked, they and their ~110 codec
+ * libraries loaded into every `oit` and workbench process, ~0.26 s more per
+ * start and past a tight `ulimit -v` (tests/driver_failure.sh), for the few
+ * runs that write a video.
  */
 #define _POSIX_C_SOURCE 200809L
+#include <dlfcn.h>
 #include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
 #include <libavutil/error.h>
@@ -18,12 +25,123 @@
 #include <libavutil/log.h>
 #include <libavutil/opt.h>
 #include <libswscale/swscale.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "oit.h"
+
+/* The functions this file calls, from the libraries opened at run time
+ * (LIBRARY: libavutil, libavcodec, libavformat, libswscale). */
+#define FFMPEG_FUNCTIONS(X) \
+    X(0, av_strerror) \
+    X(0, av_log_set_level) \
+    X(0, av_frame_alloc) \
+    X(0, av_frame_free) \
+    X(0, av_frame_get_buffer) \
+    X(0, av_frame_make_writable) \
+    X(0, av_opt_set) \
+    X(1, avcodec_find_encoder_by_name) \
+    X(1, avcodec_alloc_context3) \
+    X(1, avcodec_free_context) \
+    X(1, avcodec_open2) \
+    X(1, avcodec_parameters_from_context) \
+    X(1, avcodec_send_frame) \
+    X(1, avcodec_receive_packet) \
+    X(1, av_packet_alloc) \
+    X(1, av_packet_free) \
+    X(1, av_packet_rescale_ts) \
+    X(2, avformat_alloc_output_context2) \
+    X(2, avformat_free_context) \
+    X(2, avformat_new_stream) \
+    X(2, avformat_write_header) \
+    X(2, av_interleaved_write_frame) \
+    X(2, av_write_trailer) \
+    X(2, avio_open) \
+    X(2, avio_closep) \
+    X(3, sws_getContext) \
+    X(3, sws_freeContext) \
+    X(3, sws_scale)
+
+static struct {
+#define FFMPEG_POINTER(LIBRARY, FUNCTION) __typeof__(&FUNCTION) FUNCTION;
+    FFMPEG_FUNCTIONS(FFMPEG_POINTER)
+#undef FFMPEG_POINTER
+} ffmpeg;
+static char ffmpeg_problem[512]; /* empty once every function is found */
+static pthread_once_t ffmpeg_once = PTHREAD_ONCE_INIT;
+
+static void ffmpeg_open(void)
+{
+    /* the sonames of the headers this file is built against */
+    static const char *const sonames[4] = {
+        "libavutil.so." AV_STRINGIFY(LIBAVUTIL_VERSION_MAJOR),
+        "libavcodec.so." AV_STRINGIFY(LIBAVCODEC_VERSION_MAJOR),
+        "libavformat.so." AV_STRINGIFY(LIBAVFORMAT_VERSION_MAJOR),
+        "libswscale.so." AV_STRINGIFY(LIBSWSCALE_VERSION_MAJOR),
+    };
+    void *handles[4];
+    for (int i = 0; i < 4; ++i) {
+        handles[i] = dlopen(sonames[i], RTLD_NOW | RTLD_LOCAL);
+        if (!handles[i]) {
+            const char *why = dlerror();
+            snprintf(ffmpeg_problem, sizeof ffmpeg_problem, "cannot load FFmpeg's %s: %s", sonames[i],
+                     why ? why : "not found");
+            return;
+        }
+    }
+#define FFMPEG_FIND(LIBRARY, FUNCTION)                                                                          \
+    {                                                                                                           \
+        void *symbol = dlsym(handles[LIBRARY], #FUNCTION);                                                      \
+        if (!symbol) {                                                                                          \
+            snprintf(ffmpeg_problem, sizeof ffmpeg_problem, "%s has no %s", sonames[LIBRARY], #FUNCTION);      \
+            return;                                                                                             \
+        }                                                                                                       \
+        memcpy(&ffmpeg.FUNCTION, &symbol, sizeof symbol);                                                       \
+    }
+    FFMPEG_FUNCTIONS(FFMPEG_FIND)
+#undef FFMPEG_FIND
+}
+
+static oit_status ffmpeg_ready(const char *path, oit_error *err)
+{
+    pthread_once(&ffmpeg_once, ffmpeg_open);
+    if (ffmpeg_problem[0])
+        return oit_fail(err, OIT_E_RUNTIME, "video %s: %s", path, ffmpeg_problem);
+    return OIT_OK;
+}
+
+/* the calls below go through the table */
+#define av_strerror ffmpeg.av_strerror
+#define av_log_set_level ffmpeg.av_log_set_level
+#define av_frame_alloc ffmpeg.av_frame_alloc
+#define av_frame_free ffmpeg.av_frame_free
+#define av_frame_get_buffer ffmpeg.av_frame_get_buffer
+#define av_frame_make_writable ffmpeg.av_frame_make_writable
+#define av_opt_set ffmpeg.av_opt_set
+#define avcodec_find_encoder_by_name ffmpeg.avcodec_find_encoder_by_name
+#define avcodec_alloc_context3 ffmpeg.avcodec_alloc_context3
+#define avcodec_free_context ffmpeg.avcodec_free_context
+#define avcodec_open2 ffmpeg.avcodec_open2
+#define avcodec_parameters_from_context ffmpeg.avcodec_parameters_from_context
+#define avcodec_send_frame ffmpeg.avcodec_send_frame
+#define avcodec_receive_packet ffmpeg.avcodec_receive_packet
+#define av_packet_alloc ffmpeg.av_packet_alloc
+#define av_packet_free ffmpeg.av_packet_free
+#define av_packet_rescale_ts ffmpeg.av_packet_rescale_ts
+#define avformat_alloc_output_context2 ffmpeg.avformat_alloc_output_context2
+#define avformat_free_context ffmpeg.avformat_free_context
+#define avformat_new_stream ffmpeg.avformat_new_stream
+#define avformat_write_header ffmpeg.avformat_write_header
+#define av_interleaved_write_frame ffmpeg.av_interleaved_write_frame
+#define av_write_trailer ffmpeg.av_write_trailer
+#define avio_open ffmpeg.avio_open
+#define avio_closep ffmpeg.avio_closep
+#define sws_getContext ffmpeg.sws_getContext
+#define sws_freeContext ffmpeg.sws_freeContext
+#define sws_scale ffmpeg.sws_scale
 
 struct oit_video {
     oit_temporary temporary;
@@ -82,6 +200,8 @@ oit_status oit_video_open(const char *path, int width, int height, int fps, oit_
     if (fps < 1 || fps > OIT_VIDEO_FPS_MAX)
         return oit_fail(err, OIT_E_INPUT, "a video's frame rate must be 1 to %d frames per second, got %d",
                         OIT_VIDEO_FPS_MAX, fps);
+    if ((status = ffmpeg_ready(path, err)) != OIT_OK)
+        return status;
     /* the libraries print nothing: every failure comes back as a status */
     av_log_set_level(AV_LOG_QUIET);
     const AVCodec *encoder = avcodec_find_encoder_by_name("libx264");
