@@ -13,31 +13,12 @@
 
 #include <memory>
 
-#include "parts_test_model.h"
+#include "render_view_test.h"
 #include "render_view.h"
 #include "settings_model.h"
 
-namespace {
-
-std::shared_ptr<const oit_model> three_squares()
-{
-    auto model = std::make_shared<parts_test::Model>();
-    QString message;
-    if (!parts_test::build(*model,
-                           {parts_test::square("housing", 0, 0, 0, 1), parts_test::square("gear", 0, 0, 0.5f, 0.5f),
-                            parts_test::square("shaft", 0.5f, 0, 1, 0.25f)},
-                           &message))
-        return nullptr;
-    return std::shared_ptr<const oit_model>(model, &model->m);
-}
-
-void mouse(QWidget *view, QEvent::Type type, QPoint at, Qt::MouseButton button, Qt::MouseButtons buttons)
-{
-    QMouseEvent event(type, at, view->mapToGlobal(at), button, buttons, Qt::NoModifier);
-    QApplication::sendEvent(view, &event);
-}
-
-} // namespace
+using render_view_test::mouse;
+using render_view_test::three_squares;
 
 class AntialiasingTest : public QObject {
     Q_OBJECT
