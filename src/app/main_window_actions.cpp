@@ -305,14 +305,21 @@ void MainWindow::build_aids_menu(QMenu *view)
         settings_changed();
         view_->update();
     };
-    QAction *axes = aids->addAction("&Axes triad");
-    axes->setObjectName("aids_axes");
-    axes->setCheckable(true);
-    axes->setToolTip("X red, Y green, Z blue, as the camera turns the model's axes (--axes)");
-    connect(axes, &QAction::triggered, this, [this, changed](bool on) {
-        settings_->render_settings().axes = on;
-        changed();
-    });
+    // a checkable action bound to one of the settings' flags
+    auto toggle = [this, aids, changed](const char *text, const char *name, const char *tip,
+                                        bool RenderSettings::*flag) {
+        QAction *action = aids->addAction(text);
+        action->setObjectName(name);
+        action->setCheckable(true);
+        action->setToolTip(tip);
+        connect(action, &QAction::triggered, this, [this, changed, flag](bool on) {
+            settings_->render_settings().*flag = on;
+            changed();
+        });
+        sync_actions_.push_back([this, action, flag] { action->setChecked(settings_->render_settings().*flag); });
+    };
+    toggle("&Axes triad", "aids_axes", "X red, Y green, Z blue, as the camera turns the model's axes (--axes)",
+           &RenderSettings::axes);
     QMenu *corner = aids->addMenu("Axes &corner");
     auto *corner_group = new QActionGroup(this);
     for (int c = 0; c < 4; ++c) {
@@ -326,29 +333,12 @@ void MainWindow::build_aids_menu(QMenu *view)
         sync_actions_.push_back(
             [this, action, c] { action->setChecked(settings_->render_settings().axes_corner == oit_corner(c)); });
     }
-    QAction *bar = aids->addAction("&Scale bar");
-    bar->setObjectName("aids_scale_bar");
-    bar->setCheckable(true);
-    bar->setToolTip("1, 2 or 5 x 10^k model units (mm for STEP and IGES), exact at the depth of the model's "
-                    "centre (everywhere when orthographic) (--scale-bar)");
-    connect(bar, &QAction::triggered, this, [this, changed](bool on) {
-        settings_->render_settings().scale_bar = on;
-        changed();
-    });
-    QAction *in_export = aids->addAction("&Include in exports");
-    in_export->setObjectName("aids_in_export");
-    in_export->setCheckable(true);
-    in_export->setToolTip("Export PNG and Copy as command carry the axes and the scale bar shown");
-    connect(in_export, &QAction::triggered, this, [this, changed](bool on) {
-        settings_->render_settings().aids_in_export = on;
-        changed();
-    });
-    sync_actions_.push_back([this, axes, bar, in_export] {
-        const RenderSettings &s = settings_->render_settings();
-        axes->setChecked(s.axes);
-        bar->setChecked(s.scale_bar);
-        in_export->setChecked(s.aids_in_export);
-    });
+    toggle("&Scale bar", "aids_scale_bar",
+           "1, 2 or 5 x 10^k model units (mm for STEP and IGES), exact at the depth of the model's "
+           "centre (everywhere when orthographic) (--scale-bar)",
+           &RenderSettings::scale_bar);
+    toggle("&Include in exports", "aids_in_export",
+           "Export PNG and Copy as command carry the axes and the scale bar shown", &RenderSettings::aids_in_export);
 }
 
 QString MainWindow::view_refusal(int view) const
