@@ -73,13 +73,7 @@ void oit_turntable_modelview(const double base[16], const double centre[3], cons
         turn[12 + row] = moved;
     }
     turn[15] = 1.0;
-    for (int col = 0; col < 4; ++col)
-        for (int row = 0; row < 4; ++row) {
-            double sum = 0.0;
-            for (int k = 0; k < 4; ++k)
-                sum += base[k * 4 + row] * turn[col * 4 + k];
-            out[col * 4 + row] = sum;
-        }
+    oit_mat4_multiply(base, turn, out);
 }
 
 /* ------------------------------------------------------------ the folder */
