@@ -111,7 +111,6 @@ public:
     // event loop waits, so the window keeps answering); clears the progress.
     // with_highlight: the selection highlight as the view shows it (Export PNG's
     // "Include selection highlight"); without, none.
-    bool draw_export_aids(oit_image &image, const oit_frame_settings &frame, QString &error) const;
     bool export_png(const QString &path, int width, int height, QString &error, bool with_highlight = false);
     // Where Export PNG's save dialog opens: the last export's folder, else the
     // user's Pictures folder (never the source tree).
@@ -261,6 +260,10 @@ private:
     SettingsModel *settings_ = nullptr;
     RenderView *view_ = nullptr;
     ModelLoader *loader_ = nullptr;
+    // An exported frame made the core's image, aids drawn, then written by
+    // write, on a pool thread (main_window_actions.cpp); "" or the message.
+    QString finish_export(QImage shown, const oit_frame_settings &frame,
+                          std::function<QString(const oit_image &)> write) const;
     ModelPointer model_;
     QPoint last_pick_pixel_{-1, -1}; // where the last click picked, and the rank it showed
     int last_pick_rank_ = 0;

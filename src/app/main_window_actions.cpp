@@ -38,7 +38,10 @@
 #include <QUndoStack>
 #include <QVBoxLayout>
 
+#include <array>
 #include <cstring>
+#include <functional>
+#include <memory>
 
 namespace {
 
@@ -447,19 +450,51 @@ bool MainWindow::save_preset(const QString &path, QString &error)
         QByteArray::fromStdString(preset_to_json(settings_->render_settings(), settings_->camera(), model_.get()));
     return write_output_file(path, nullptr, bytes, error);
 }
-// The orientation aids on an exported frame, as `oit render --axes
-// --scale-bar` draws them on its frame (the same core function on the same
-// matrices and model): Export PNG and every turntable frame.
-bool MainWindow::draw_export_aids(oit_image &image, const oit_frame_settings &frame, QString &error) const
+namespace {
+// Runs work on a pool thread while a local event loop keeps the window answering.
+QString off_gui_thread(const std::function<QString()> &work)
+{
+    QFutureWatcher<QString> watcher;
+    QEventLoop loop;
+    QObject::connect(&watcher, &QFutureWatcher<QString>::finished, &loop, &QEventLoop::quit);
+    watcher.setFuture(QtConcurrent::run(work));
+    if (!watcher.isFinished())
+        loop.exec();
+    return watcher.result();
+}
+} // namespace
+
+// The end of an export, on a pool thread while the GUI thread runs its event
+// loop: the frame's pixels (shared with the worker's result) copied into the
+// core's image, the orientation aids drawn on it as `oit render --axes
+// --scale-bar` draws them (the same core function on the same matrices and
+// model), then written. At 3840x2160 the copy alone held the event loop for
+// 0.3-0.4 s on a loaded machine (app_workbench's UHD export). Export PNG and
+// every turntable frame.
+QString MainWindow::finish_export(QImage shown, const oit_frame_settings &frame,
+                                  std::function<QString(const oit_image &)> write) const
 {
     const oit_overlay_options aids = export_aids(settings_->render_settings());
-    if ((!aids.axes && !aids.scale_bar) || !model_)
-        return true;
-    oit_error err{};
-    if (oit_overlay_draw(&image, &aids, frame.modelview, frame.projection, model_.get(), nullptr, &err) == OIT_OK)
-        return true;
-    error = QString::fromUtf8(err.message);
-    return false;
+    ModelPointer model = aids.axes || aids.scale_bar ? model_ : nullptr;
+    std::array<double, 16> modelview, projection;
+    std::copy(frame.modelview, frame.modelview + 16, modelview.begin());
+    std::copy(frame.projection, frame.projection + 16, projection.begin());
+    // held through a pointer so that the last reference, and the 33 MB, go on the pool thread
+    auto pixels = std::make_shared<QImage>(std::move(shown));
+    return off_gui_thread([pixels, aids, model, modelview, projection, write]() -> QString {
+        oit_image image{};
+        oit_error err{};
+        oit_status status = oit_image_alloc(&image, pixels->width(), pixels->height(), &err);
+        for (int row = 0; status == OIT_OK && row < image.height; ++row)
+            std::memcpy(image.rgba + size_t(row) * size_t(image.width) * 4, pixels->constScanLine(row),
+                        size_t(image.width) * 4);
+        *pixels = QImage();
+        if (status == OIT_OK && model)
+            status = oit_overlay_draw(&image, &aids, modelview.data(), projection.data(), model.get(), nullptr, &err);
+        QString problem = status == OIT_OK ? write(image) : QString::fromUtf8(err.message);
+        oit_image_free(&image);
+        return problem;
+    });
 }
 
 bool MainWindow::export_png(const QString &path, int width, int height, QString &error, bool with_highlight)
@@ -473,41 +508,26 @@ bool MainWindow::export_png(const QString &path, int width, int height, QString 
     if (!check_output_path(path, nullptr, error))
         return false;
     exporting_ = true;
-    oit_image image{};
+    QImage shown;
     oit_frame_settings frame;
     std::string message;
-    bool rendered = view_->render_offscreen(width, height, image, frame, message, with_highlight);
-    if (!rendered) {
+    if (!view_->render_offscreen(width, height, shown, frame, message, with_highlight)) {
         exporting_ = false;
         error = QString::fromStdString(message);
         return false;
     }
-    // the orientation aids, as `oit render --axes --scale-bar` draws them on
-    // its frame (the same core function on the same matrices and model)
-    if (!draw_export_aids(image, frame, error)) {
-        oit_image_free(&image);
-        exporting_ = false;
-        return false;
-    }
-    // The core's writer (the bytes `oit render` writes, atomically) on a pool
-    // thread: 0.6-0.7 s at 3840x2160 that the GUI thread would otherwise freeze
+    // The core's writer (the bytes `oit render` writes, atomically) with the
+    // aids, off the GUI thread: 0.6-0.7 s at 3840x2160 it would otherwise freeze
     QString refused;
     bool ok = check_output_path(path, nullptr, refused); // again: the frame took a while
     if (ok) {
         QByteArray name = QFile::encodeName(path);
-        QFutureWatcher<QString> watcher;
-        QEventLoop loop;
-        connect(&watcher, &QFutureWatcher<QString>::finished, &loop, &QEventLoop::quit);
-        watcher.setFuture(QtConcurrent::run([name, &image]() -> QString {
+        refused = finish_export(std::move(shown), frame, [name](const oit_image &image) -> QString {
             oit_error err{};
             return oit_png_write(name.constData(), &image, &err) == OIT_OK ? QString() : QString::fromUtf8(err.message);
-        }));
-        if (!watcher.isFinished())
-            loop.exec();
-        refused = watcher.result();
+        });
         ok = refused.isEmpty();
     }
-    oit_image_free(&image);
     exporting_ = false;
     if (!ok) {
         error = refused;
@@ -652,20 +672,6 @@ void MainWindow::export_dialog()
 
 // ------------------------------------------------------------- turntable
 
-namespace {
-// Runs work on a pool thread while a local event loop keeps the window answering.
-QString off_gui_thread(const std::function<QString()> &work)
-{
-    QFutureWatcher<QString> watcher;
-    QEventLoop loop;
-    QObject::connect(&watcher, &QFutureWatcher<QString>::finished, &loop, &QEventLoop::quit);
-    watcher.setFuture(QtConcurrent::run(work));
-    if (!watcher.isFinished())
-        loop.exec();
-    return watcher.result();
-}
-} // namespace
-
 QString MainWindow::turntable_command(const QString &folder, int frames, int width, int height, int fps) const
 {
     if (!model_)
@@ -723,25 +729,20 @@ bool MainWindow::export_turntable(const QString &folder, int frames, int width, 
         double modelview[16];
         if (i > 0)
             oit_turntable_modelview(base, centre, axis, i, frames, modelview);
-        oit_image image{};
+        QImage shown;
         oit_frame_settings frame;
         std::string message;
         // frame 0 is Export PNG's frame of the view at this size; the others turn its modelview
-        if (!view_->render_offscreen(width, height, image, frame, message, false, i > 0 ? modelview : nullptr)) {
+        if (!view_->render_offscreen(width, height, shown, frame, message, false, i > 0 ? modelview : nullptr)) {
             problem = QString::fromStdString(message);
             break;
         }
         if (i == 0)
             std::memcpy(base, frame.modelview, sizeof base);
-        if (!draw_export_aids(image, frame, problem)) {
-            oit_image_free(&image);
-            break;
-        }
-        problem = off_gui_thread([output, &image]() -> QString {
+        problem = finish_export(std::move(shown), frame, [output](const oit_image &image) -> QString {
             oit_error e{};
             return oit_turntable_output_add(output, &image, &e) == OIT_OK ? QString() : QString::fromUtf8(e.message);
         });
-        oit_image_free(&image);
         if (problem.isEmpty()) {
             progress.setValue(i + 1);
             emit turntable_progress(i + 1, frames);

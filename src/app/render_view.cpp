@@ -507,8 +507,8 @@ void RenderView::antialias_when_still()
     submit(1, false, std::string(), samples);
 }
 
-bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,
-                                  std::string &error, bool with_highlight, const double *modelview)
+bool RenderView::render_offscreen(int width, int height, QImage &image, oit_frame_settings &frame, std::string &error,
+                                  bool with_highlight, const double *modelview)
 {
     if (!model_) {
         error = "no model is loaded";
@@ -552,14 +552,7 @@ bool RenderView::render_offscreen(int width, int height, oit_image &image, oit_f
         error = result->error.toStdString();
         return false;
     }
-    oit_error err{};
-    if (oit_image_alloc(&image, result->image.width(), result->image.height(), &err) != OIT_OK) {
-        error = err.message;
-        return false;
-    }
-    for (int row = 0; row < image.height; ++row)
-        std::memcpy(image.rgba + size_t(row) * size_t(image.width) * 4, result->image.constScanLine(row),
-                    size_t(image.width) * 4);
+    image = result->image; // shared, not copied: 33 MB at 3840x2160
     frame.modulation = result->modulation;
     frame.local.focus_shape = result->focus_shape;
     return true;

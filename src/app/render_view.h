@@ -71,11 +71,13 @@ public:
     void cancel_frame();
     // Render at width x height into image off the view (an export); frame
     // returns the matrices. Waits in a local event loop (the GUI stays live).
+    // image shares the worker's pixels: no copy is made on the GUI thread
+    // (MainWindow::finish_export makes the core's image on a pool thread).
     // with_highlight: the selection highlight as the view shows it (else none).
     // modelview (16 doubles, or null: the camera's) replaces the camera's
     // modelview (a turntable's frame; the projection stays the camera's).
-    bool render_offscreen(int width, int height, oit_image &image, oit_frame_settings &frame,
-                          std::string &error, bool with_highlight = false, const double *modelview = nullptr);
+    bool render_offscreen(int width, int height, QImage &image, oit_frame_settings &frame, std::string &error,
+                          bool with_highlight = false, const double *modelview = nullptr);
     // The frame the view shows now (its size in pixels and its matrices); side
     // by side, the frame of each half (side A's, which Copy as command copies).
     oit_frame_settings current_frame(std::vector<float> &storage) const;
