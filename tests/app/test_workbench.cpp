@@ -205,6 +205,10 @@ void WorkbenchTest::export_equals_oit_render()
     RenderSettings &s = settings();
     s.alpha = 0.7f;
     s.background[0] = s.background[1] = s.background[2] = 0.25f;
+    // 4 samples chosen, not Auto: Auto renders the view at 4 only when a frame
+    // at 1 is quick (render_worker.h), and a slow machine (ASan, a loaded CI)
+    // would leave the view at 1 while the export always anti-aliases
+    s.samples = 4;
     window->set_part_alpha(1, 0.3f);
     camera().trackball(glm::vec2(80, 60), glm::vec2(100, 50), view_size.width(), view_size.height());
     window->settings_changed();
@@ -518,7 +522,23 @@ void WorkbenchTest::a_uhd_export_keeps_the_window_answering()
     tick.stop();
     qInfo("3840x2160 export: %lld ms; timer ticks: %d, the longest gap %.1f ms", clock.elapsed(), ticks, worst_gap_ms);
     QVERIFY2(ticks > 10, "the export was too short to prove anything");
-    QVERIFY2(worst_gap_ms < 250.0, qPrintable(QString("the event loop stalled %1 ms during the export").arg(worst_gap_ms)));
+    // Nothing of the export runs on the GUI thread (the frame on the worker;
+    // the copy into the core's image, the aids and the PNG on a pool thread):
+    // 28-33 ms here in release, also at load 7-10. Under AddressSanitizer the
+    // gaps come while the worker's passes run, with nothing of ours on the GUI
+    // thread: 208 ms measured with the machine at load 8 from other processes
+    // (1146 ms once, inside the whole test at that load; RUN_SERIAL keeps other
+    // tests away in the suite), so that build gets 3 times the budget, as
+    // hundred_thousand_parts does. The GUI thread's own
+    // 33 MB copy (0.28-0.39 s) or the PNG written on it (0.6-0.7 s in release)
+    // fail both.
+#if defined(__SANITIZE_ADDRESS__)
+    const double budget_ms = 750.0;
+#else
+    const double budget_ms = 250.0;
+#endif
+    QVERIFY2(worst_gap_ms < budget_ms,
+             qPrintable(QString("the event loop stalled %1 ms during the export").arg(worst_gap_ms)));
     QCOMPARE(QImageReader(path).size(), QSize(3840, 2160));
     QFile::remove(path);
 }
