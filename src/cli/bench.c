@@ -318,6 +318,8 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
     }
     oit_image reference_image = {0};
     bool has_reference = false;
+    int scene_bins = 0; /* the reference frame's list-length histogram: every row's scene_histogram */
+    uint64_t scene_histogram[OIT_HISTOGRAM_BINS];
     if (load == OIT_OK && b->reference_pixels > 0 && (long)width * height <= b->reference_pixels) {
         render_options ro = o;
         ro.algorithm = oit_algorithm_find("reference");
@@ -326,6 +328,10 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
         if (rr)
             has_reference =
                 run_algorithm(s, &ro, 0, 1, 0.0, rr, &reference_image, NULL, NULL, &ref_err) == OIT_OK;
+        if (has_reference) {
+            scene_bins = rr->last.histogram_bins;
+            memcpy(scene_histogram, rr->last.list_histogram, sizeof scene_histogram);
+        }
         free(rr);
         if (!has_reference && !b->quiet)
             fprintf(stderr, "bench: %s %dx%d: no reference image: %s\n", scene->name, width, height,
@@ -351,6 +357,9 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
             failures = -1;
             break;
         }
+        r->scene_histogram_bins = scene_bins;
+        if (scene_bins > 0)
+            memcpy(r->scene_histogram, scene_histogram, sizeof r->scene_histogram);
         progress->index++;
         progress->scene = scene->name;
         progress->algorithm = algorithm->label;
