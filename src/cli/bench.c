@@ -152,7 +152,8 @@ static oit_status parse_sizes(const char *text, int widths[], int heights[], int
 static const char bench_help[] =
     "usage: oit bench (--scene-list FILE | --model PATH [--name NAME]) [options] [render options]\n"
     "Scenes x algorithms x sizes in one process: warm-up frames, then N measured frames;\n"
-    "per-stage and frame times (median, min, max), memory, fragments, longest list, Psi and the\n"
+    "per-stage and frame times (median, min, max), memory, fragments, longest list, Psi, the\n"
+    "list-length histograms (the algorithm's, and the scene's from the reference) and the\n"
     "difference from the reference, one row per run as CSV and/or JSON.\n"
     "  --scene-list FILE      one scene per line: NAME MODEL [render options such as --orbit AZ,EL or\n"
     "                         --modelview/--projection]; '#' comments (bat/setup.py writes one)\n"
@@ -168,7 +169,7 @@ static const char bench_help[] =
     "  --csv FILE             write the CSV there (default: stdout unless --json is given)\n"
     "  --json FILE            write the JSON there ('-' for stdout)\n"
     "  --reference-max-pixels N  compare with the CPU reference where width*height <= N\n"
-    "                         (default 65536; 0: never)\n"
+    "                         (default 65536; 0: never); also the rows' scene_histogram\n"
     "  --tolerance T          channel difference counted as a mismatch (default 2)\n"
     "  --orbit-sequence N     also render N frames (2..3600) of a slow orbit and the reference of\n"
     "                         each; report flicker, flicker_max and orbit_rmse_mean\n"
