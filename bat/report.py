@@ -53,6 +53,9 @@ from report_data import (  # noqa: E402
     read_csv,
     stages_of,
     stage_sum,
+    HISTOGRAM_BINS,
+    scene_histogram,
+    histogram_quantile,
     number,
     read_measure,
     missing_shared,
@@ -284,6 +287,59 @@ class Report:
                   "Ψ is the share of non-empty pixels whose list is longer than 2/3 of the longest (the thesis's "
                   "\"worst third\"), in percent.", "",
                   *table(["scene", "vertices", "triangles", "fragments", "longest list", "Ψ %", "mean list"], rows), "")
+
+    def depth_complexity(self):
+        """Per scene, the histogram of list lengths (fragments per pixel) at the bench size: from the
+        reference's scene_histogram when bench rendered it, else the exact algorithms' list_histogram."""
+        found = []
+        for s in self.scenes:
+            rows = [r for r in self.bench if r["scene"] == s]
+            h, source = scene_histogram(rows)
+            if h:
+                found.append((s, h, source, rows[0]))
+        if not found:
+            return  # a bench.csv from before the histogram columns, or no exact algorithm ran
+        rows = []
+        for s, h, source, r in found:
+            pixels = sum(h)
+            lit = pixels - h[0]
+            fragments = sum(i * c for i, c in enumerate(h))
+            rows.append([s, f"{r['width']}×{r['height']}", f"`{source}`", fmt(100 * lit / pixels, 1),
+                         fmt(fragments / lit if lit else None, 2)
+                         + ("+" if h[-1] else ""),
+                         fmt(histogram_quantile(h, 0.5), 0), fmt(histogram_quantile(h, 0.9), 0),
+                         fmt(histogram_quantile(h, 0.99), 0), fmt(h[-1], 0)])
+        columns = min(4, len(found))
+        lines = (len(found) + columns - 1) // columns
+        fig, axes = plt.subplots(lines, columns, figsize=(3.2 * columns, 2.2 * lines), squeeze=False)
+        for k, (s, h, source, r) in enumerate(found):
+            ax = axes[k // columns][k % columns]
+            last = max((i for i, c in enumerate(h) if c), default=1)
+            xs = list(range(1, max(last, 1) + 1))
+            ax.bar(xs, [h[i] for i in xs], width=1.0, color=["C3" if i == HISTOGRAM_BINS - 1 else "C0" for i in xs])
+            ax.set_yscale("log")
+            ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+            ax.set_title(s, fontsize=8)
+            ax.tick_params(labelsize=7)
+            if k % columns == 0:
+                ax.set_ylabel("pixels (log)", fontsize=7)
+            if k // columns == lines - 1:
+                ax.set_xlabel("fragments per pixel", fontsize=7)
+        for k in range(len(found), lines * columns):
+            axes[k // columns][k % columns].axis("off")
+        fig.suptitle("Depth complexity: pixels per list length (empty pixels left out; red: 64 or more)",
+                     fontsize=9)
+        fig.tight_layout()
+        self.emit("## Depth complexity per scene", "",
+                  "How many fragments each pixel's list holds, at the bench size: the axis the OIT papers "
+                  "plot quality and cost against. From `oit bench`'s `scene_histogram` (the CPU reference's "
+                  "frame) where it rendered the reference, else the `list_histogram` of the exact algorithm "
+                  "named (`ll`'s lists; [cli.md](cli.md#oit-bench)). Covered: the share of pixels with at "
+                  "least one fragment; mean: fragments per covered pixel (`+`: some lists are in the open "
+                  "bin of 64 or more, counted as 64); p50, p90, p99: the list length that half, 90% and 99% "
+                  "of the covered pixels do not exceed; ≥ 64: pixels in the open bin.", "",
+                  *table(["scene", "size", "from", "covered %", "mean", "p50", "p90", "p99", "≥ 64"], rows), "",
+                  self.save(fig, "depth-complexity"), "")
 
     def views_text(self):
         """How many views of each model the run measured (bench.csv's model and scene columns), beside the
@@ -763,7 +819,7 @@ class Report:
                   "bat/run_comparison.sh --quick         # a smoke test in minutes; report in build/bench/quick-docs",
                   "```", "",
                   "Raw results: `build/bench/results/bench.csv` (one row per scene × algorithm: median, minimum and "
-                  "maximum of frame and stage times, memory, fragments, longest list, Ψ), `bench.json` (the same with "
+                  "maximum of frame and stage times, memory, fragments, longest list, Ψ, list-length histograms), `bench.json` (the same with "
                   "the renderer and the command), `machine.json` (the machine: CPU, cores, GL renderer), "
                   "`accuracy.csv`, and one text file per `oit measure` script.", "")
 
@@ -771,6 +827,7 @@ class Report:
         self.header()
         self.targets()
         self.scenes_table()
+        self.depth_complexity()
         self.frame_times()
         self.ratios_section()
         self.ib_stages()

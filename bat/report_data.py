@@ -40,6 +40,52 @@ def stages_of(row):
     return out
 
 
+HISTOGRAM_BINS = 65  # OIT_HISTOGRAM_BINS: list lengths 0..63, and 64 or more
+# the algorithms whose list_histogram counts every fragment of the frame (oit bench's CSV)
+HISTOGRAM_ALGORITHMS = ("reference", "ll", "ll-array", "ib", "kbuffer", "hybrid")
+
+
+def histogram_of(row, key="list_histogram"):
+    """A bench CSV row's histogram field (counts joined by ';', trailing zero bins left out) as a
+    list of HISTOGRAM_BINS counts, or None when the row has none (or the CSV predates the column)."""
+    field = (row or {}).get(key) or ""
+    if not field:
+        return None
+    counts = [int(c) for c in field.split(";")]
+    return counts + [0] * (HISTOGRAM_BINS - len(counts))
+
+
+def scene_histogram(rows):
+    """The depth complexity of one scene and size from its bench rows, and where it came from: the
+    reference frame's (scene_histogram, on every row when bench rendered the reference), else the
+    list_histogram of the first exact algorithm that has one (they count the same lists)."""
+    for r in rows:
+        h = histogram_of(r, "scene_histogram")
+        if h:
+            return h, "reference"
+    for name in HISTOGRAM_ALGORITHMS:
+        for r in rows:
+            if r["algorithm"].split(":")[0] == name and not r.get("error"):
+                h = histogram_of(r)
+                if h:
+                    return h, r["algorithm"]
+    return None, None
+
+
+def histogram_quantile(counts, q):
+    """The list length below which a share q of the non-empty pixels lie (the open last bin counts
+    as its lower bound); None without non-empty pixels."""
+    total = sum(counts[1:])
+    if total == 0:
+        return None
+    seen = 0
+    for length, c in enumerate(counts[1:], start=1):
+        seen += c
+        if seen >= q * total:
+            return length
+    return len(counts) - 1
+
+
 def stage_sum(stages, prefixes):
     return sum(ms for name, ms in stages.items() if any(name.startswith(p) for p in prefixes))
 

@@ -97,6 +97,10 @@ set_tests_properties(app_sessions PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RE
 # default in its corner only; Export PNG with the aids equals the copied
 # command's image and the view; a few seconds.
 add_test(NAME app_aids COMMAND ${APP_XVFB} $<TARGET_FILE:test_aids>)
+# The Stats tab's depth-complexity plot (issue 30; tests/app/test_histogram_plot.cpp): ll's bins
+# equal the frame's and oit render --json's, sum to the pixels; a bar's tooltip; none for blend.
+add_test(NAME app_histogram_plot COMMAND ${APP_XVFB} $<TARGET_FILE:test_histogram_plot>)
+set_tests_properties(app_histogram_plot PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
 set_tests_properties(app_aids PROPERTIES ENVIRONMENT "${APP_ENVIRONMENT}" RESOURCE_LOCK xvfb TIMEOUT 180)
 # File ▸ Export turntable (tests/app/test_turntable.cpp): 8 frames at 64x64 off the GUI
 # thread, byte for byte the `oit render --turntable` command's PNGs; Cancel leaves nothing.

@@ -19,6 +19,10 @@ set_tests_properties(bench_orbit PROPERTIES FIXTURES_REQUIRED scenes)
 add_test(NAME bench_bundle
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench_bundle.sh ${OIT} ${WORK}/bench_bundle ${SCENES} ${PROJECT_SOURCE_DIR})
 set_tests_properties(bench_bundle PROPERTIES FIXTURES_REQUIRED scenes)
+# list_histogram and scene_histogram in bench's CSV and JSON: sums, and equal to oit render --json's
+add_test(NAME bench_histogram
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench_histogram.sh ${OIT} ${WORK}/bench_histogram ${SCENES})
+set_tests_properties(bench_histogram PROPERTIES FIXTURES_REQUIRED scenes)
 add_test(NAME bench_algorithm_order
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bench_order.sh ${OIT} ${WORK}/bench_order ${SCENES})
 set_tests_properties(bench_algorithm_order PROPERTIES FIXTURES_REQUIRED scenes)

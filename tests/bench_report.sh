@@ -22,13 +22,29 @@ python3 "$source/bat/report.py" --results "$work/results" --docs "$work/docs" --
 page=$work/docs/benchmarks.md
 for heading in "## Targets" "## Scenes" "## Frame time per algorithm and scene" "## Our ratios beside the thesis's" \
     "## Illustration Buffer: stage breakdown" "## Parallel coordinates" "## Memory per algorithm" "## Resolution sweep" \
-    "## Difference from the reference"; do
+    "## Difference from the reference" "## Depth complexity per scene"; do
     grep -qF "$heading" "$page" || fail "benchmarks.md lacks '$heading'"
 done
 grep -q "llvmpipe" "$page" || fail "benchmarks.md must name the driver"
-for image in frame-times ratios ib-stages parallel memory resolutions; do
+for image in frame-times ratios ib-stages parallel memory resolutions depth-complexity; do
     [ -s "$work/docs/images/bench-$image.png" ] || fail "no plot bench-$image.png"
 done
+# the depth-complexity table is ll's list_histogram of bench.csv (no reference there), recomputed
+python3 - "$work/results/bench.csv" "$page" <<'PY' || fail "the depth-complexity table does not show bench.csv's histograms"
+import csv, sys
+rows, page = list(csv.DictReader(open(sys.argv[1]))), open(sys.argv[2]).read()
+for scene in ("onion-a", "spheres-b"):
+    ll = next(r for r in rows if r["scene"] == scene and r["algorithm"] == "ll")
+    h = [int(c) for c in ll["list_histogram"].split(";")]
+    assert sum(h) == 32 * 32 and ll["scene_histogram"] == "", ll
+    covered = 32 * 32 - h[0]
+    mean = sum(i * c for i, c in enumerate(h)) / covered
+    assert sum(i * c for i, c in enumerate(h)) == int(ll["fragments"]), (h, ll["fragments"])
+    p50 = next(i for i in range(1, len(h)) if sum(h[1:i + 1]) >= covered / 2)
+    line = f"| {scene} | 32×32 | `ll` | {100 * covered / 1024:.1f} | {mean:.2f} | {p50} | "
+    assert line in page, (line, [l for l in page.splitlines() if l.startswith(f"| {scene} | 32×32 | `")])
+print("depth complexity ok")
+PY
 
 # The sentences about the machine and the thesis are computed from the inputs: this machine's ...
 grep -qF "$(nproc) logical CPUs" "$page" || fail "benchmarks.md must say this machine's $(nproc) logical CPUs"

@@ -82,7 +82,7 @@ data = json.load(open(os.path.join(work, "bench.json")))
 header = list(rows[0])
 expected_tail = ["ref_max_diff", "ref_mean_diff", "ref_over_tolerance_percent", "error_rmse", "error_psnr",
                  "error_ssim", "error_max", "error_share_over_2", "flicker", "flicker_max", "orbit_rmse_mean",
-                 "stages", "error"]
+                 "stages", "list_histogram", "scene_histogram", "error"]
 assert header[-len(expected_tail):] == expected_tail, header
 assert len(rows) == 2 * len(variants) == len(data["results"]), (len(rows), len(data["results"]))
 keys = {"rmse": "error_rmse", "psnr": "error_psnr", "ssim": "error_ssim", "max": "error_max",

@@ -11,6 +11,7 @@
 #include "screen_fit.h"
 #include "section_overlay.h"
 #include "sections_panel.h"
+#include "histogram_plot.h"
 #include "stats_panel.h"
 #include "views_panel.h"
 
@@ -24,6 +25,7 @@
 #include <QFileInfo>
 #include <QGuiApplication>
 #include <QLabel>
+#include <QVBoxLayout>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
@@ -233,7 +235,17 @@ QTabWidget *MainWindow::build_tabs()
     tabs_->addTab(scrolled(camera_panel_), "Camera");
     tabs_->addTab(scrolled(views_panel_), "Views");
     tabs_->addTab(scrolled(sections_panel_), "Sections");
-    tabs_->addTab(stats_panel_, "Stats");
+    // the Stats tab: the figures, and under them the frame's depth complexity
+    auto *stats_tab = new QWidget;
+    auto *stats_layout = new QVBoxLayout(stats_tab);
+    stats_layout->setContentsMargins(0, 0, 0, 0);
+    histogram_plot_ = new HistogramPlot;
+    histogram_plot_->setObjectName("histogram_plot");
+    auto *histogram_title = new QLabel("Depth complexity (list lengths) of the shown frame");
+    stats_layout->addWidget(stats_panel_, 1);
+    stats_layout->addWidget(histogram_title);
+    stats_layout->addWidget(histogram_plot_);
+    tabs_->addTab(stats_tab, "Stats");
     tabs_->addTab(scrolled(compare_panel_), "Compare");
     return tabs_;
 }
@@ -629,6 +641,9 @@ void MainWindow::update_stats()
     compare_panel_->set_figures(summary.figures);
     stats_panel_->setPlainText(summary.text);
     const oit_stats &st = view_->last_stats();
+    const QSize shown = view_->last_image().size();
+    histogram_plot_->set_histogram(st, QString::fromStdString(s.algorithm),
+                                   uint64_t(shown.width()) * uint64_t(shown.height()));
     QString truncated;
     if (st.truncated)
         truncated = QString(" — TRUNCATED: the layer cap %1 left fragments out").arg(s.config.max_layers);

@@ -44,6 +44,7 @@ class PartsPanel;
 class SectionsPanel;
 class SettingsPanel;
 class StatsPanel;
+class HistogramPlot;
 class ViewsPanel;
 
 class MainWindow : public QMainWindow {
@@ -289,6 +290,7 @@ private:
     CameraPanel *camera_panel_ = nullptr;
     ViewsPanel *views_panel_ = nullptr;
     StatsPanel *stats_panel_ = nullptr;
+    HistogramPlot *histogram_plot_ = nullptr; // under the Stats tab's text: the frame's list lengths
     ComparePanel *compare_panel_ = nullptr;
     SectionsPanel *sections_panel_ = nullptr;
 

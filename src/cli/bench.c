@@ -152,7 +152,8 @@ static oit_status parse_sizes(const char *text, int widths[], int heights[], int
 static const char bench_help[] =
     "usage: oit bench (--scene-list FILE | --model PATH [--name NAME]) [options] [render options]\n"
     "Scenes x algorithms x sizes in one process: warm-up frames, then N measured frames;\n"
-    "per-stage and frame times (median, min, max), memory, fragments, longest list, Psi and the\n"
+    "per-stage and frame times (median, min, max), memory, fragments, longest list, Psi, the\n"
+    "list-length histograms (the algorithm's, and the scene's from the reference) and the\n"
     "difference from the reference, one row per run as CSV and/or JSON.\n"
     "  --scene-list FILE      one scene per line: NAME MODEL [render options such as --orbit AZ,EL or\n"
     "                         --modelview/--projection]; '#' comments (bat/setup.py writes one)\n"
@@ -168,7 +169,7 @@ static const char bench_help[] =
     "  --csv FILE             write the CSV there (default: stdout unless --json is given)\n"
     "  --json FILE            write the JSON there ('-' for stdout)\n"
     "  --reference-max-pixels N  compare with the CPU reference where width*height <= N\n"
-    "                         (default 65536; 0: never)\n"
+    "                         (default 65536; 0: never); also the rows' scene_histogram\n"
     "  --tolerance T          channel difference counted as a mismatch (default 2)\n"
     "  --orbit-sequence N     also render N frames (2..3600) of a slow orbit and the reference of\n"
     "                         each; report flicker, flicker_max and orbit_rmse_mean\n"
@@ -318,6 +319,8 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
     }
     oit_image reference_image = {0};
     bool has_reference = false;
+    int scene_bins = 0; /* the reference frame's list-length histogram: every row's scene_histogram */
+    uint64_t scene_histogram[OIT_HISTOGRAM_BINS];
     if (load == OIT_OK && b->reference_pixels > 0 && (long)width * height <= b->reference_pixels) {
         render_options ro = o;
         ro.algorithm = oit_algorithm_find("reference");
@@ -326,6 +329,10 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
         if (rr)
             has_reference =
                 run_algorithm(s, &ro, 0, 1, 0.0, rr, &reference_image, NULL, NULL, &ref_err) == OIT_OK;
+        if (has_reference) {
+            scene_bins = rr->last.histogram_bins;
+            memcpy(scene_histogram, rr->last.list_histogram, sizeof scene_histogram);
+        }
         free(rr);
         if (!has_reference && !b->quiet)
             fprintf(stderr, "bench: %s %dx%d: no reference image: %s\n", scene->name, width, height,
@@ -351,6 +358,9 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
             failures = -1;
             break;
         }
+        r->scene_histogram_bins = scene_bins;
+        if (scene_bins > 0)
+            memcpy(r->scene_histogram, scene_histogram, sizeof r->scene_histogram);
         progress->index++;
         progress->scene = scene->name;
         progress->algorithm = algorithm->label;

@@ -23,8 +23,8 @@ static const char csv_header[] =
     "cpu_ms_median,cpu_ms_min,cpu_ms_max,gpu_ms_median,gpu_ms_min,gpu_ms_max,memory_bytes,scene_bytes,"
     "fragments,max_list,mean_list,psi,layers,overflow_retries,bytes_per_fragment,ref_max_diff,"
     "ref_mean_diff,ref_over_tolerance_percent,error_rmse,error_psnr,error_ssim,error_max,error_share_over_2,"
-    "flicker,flicker_max,orbit_rmse_mean,stages,error\n";
-#define CSV_RUN_COLUMNS 29 /* warmup .. stages: empty in a failed run's row */
+    "flicker,flicker_max,orbit_rmse_mean,stages,list_histogram,scene_histogram,error\n";
+#define CSV_RUN_COLUMNS 31 /* warmup .. scene_histogram: empty in a failed run's row */
 
 /* A CSV field: quoted when it holds a separator, a quote or a line break. */
 static void csv_field(FILE *out, const char *text)
@@ -40,6 +40,17 @@ static void csv_field(FILE *out, const char *text)
         fputc(*c, out);
     }
     fputc('"', out);
+}
+
+/* A histogram in one CSV field: the counts of bins 0, 1, ... joined by ';'
+ * (no quoting, like stages), the trailing empty bins left out (a reader pads
+ * with zeros to OIT_HISTOGRAM_BINS); nothing when there are no bins. */
+static void csv_histogram(FILE *out, const uint64_t *counts, int bins)
+{
+    while (bins > 1 && counts[bins - 1] == 0)
+        --bins;
+    for (int b = 0; b < bins; ++b)
+        fprintf(out, "%s%llu", b ? ";" : "", (unsigned long long)counts[b]);
 }
 
 void iso_time(char *out, size_t size)
@@ -123,6 +134,10 @@ static void write_csv_row(FILE *f, const bench_scene *scene, const session *s, c
     for (int j = 0; j < r->stage_count; ++j)
         fprintf(f, "%s%s=%.4f/%.4f/%.4f", j ? ";" : "", r->stages[j].name, r->stages[j].ms.median,
                 r->stages[j].ms.min, r->stages[j].ms.max);
+    fputc(',', f);
+    csv_histogram(f, st->list_histogram, st->histogram_bins);
+    fputc(',', f);
+    csv_histogram(f, r->scene_histogram, r->scene_histogram_bins);
     fputs(",\n", f);
 }
 
@@ -175,6 +190,8 @@ void write_json_row(FILE *f, const bench_scene *scene, const session *s,
     fprintf(f, "], \"memory_bytes\": %llu, \"scene_bytes\": %llu", (unsigned long long)r->memory_max,
             (unsigned long long)s->gpu_scene.gpu_bytes);
     json_stats_figures(f, st, false);
+    json_histogram(f, "list_histogram", st->list_histogram, st->histogram_bins);
+    json_histogram(f, "scene_histogram", r->scene_histogram, r->scene_histogram_bins);
     if (r->has_reference_diff)
         fprintf(f,
                 ", \"reference\": {\"max_channel_diff\": %d, \"mean_diff\": %.6f, "

@@ -36,6 +36,11 @@ typedef struct run_result {
     oit_image_diff diff;
     bool has_error; /* the oit_image_error figures against the same reference */
     oit_image_error error_figures;
+    /* the scene's depth complexity at this size: the list-length histogram of
+     * the CPU reference's frame (oit_stats.list_histogram), 0 bins when bench
+     * rendered no reference (width x height over --reference-max-pixels) */
+    int scene_histogram_bins;
+    uint64_t scene_histogram[OIT_HISTOGRAM_BINS];
     /* --orbit-sequence: the temporal stability of the error (run_orbit) */
     int orbit_frames; /* 0: not measured */
     double flicker, flicker_max, orbit_rmse_mean;

@@ -108,12 +108,17 @@ void json_stats_figures(FILE *out, const oit_stats *st, bool detail)
     for (size_t k = 0; k < sizeof shares / sizeof shares[0]; ++k)
         if (shares[k].value >= 0.0)
             fprintf(out, ", \"%s\": %.6g", shares[k].key, shares[k].value);
-    if (st->histogram_bins > 0) {
-        fprintf(out, ", \"list_histogram\": [");
-        for (int b = 0; b < st->histogram_bins; ++b)
-            fprintf(out, "%s%llu", b ? ", " : "", (unsigned long long)st->list_histogram[b]);
-        fprintf(out, "]");
-    }
+    json_histogram(out, "list_histogram", st->list_histogram, st->histogram_bins);
+}
+
+void json_histogram(FILE *out, const char *key, const uint64_t *counts, int bins)
+{
+    if (bins <= 0)
+        return;
+    fprintf(out, ", \"%s\": [", key);
+    for (int b = 0; b < bins; ++b)
+        fprintf(out, "%s%llu", b ? ", " : "", (unsigned long long)counts[b]);
+    fputc(']', out);
 }
 
 void json_image_error(FILE *out, const oit_image_error *e, const char *prefix)

@@ -20,8 +20,13 @@ void json_matrix_rows(FILE *out, const double m[16]);
 /* ', "fragments": N, ...': the figures of oit_stats the algorithm has (those
  * at -1 are not applicable and left out; "truncated" is always there), in one
  * order for every command. detail adds bytes_per_pixel, the ib neighbour
- * shares and the list histogram (oit render --json; bench rows leave them out). */
+ * shares and the list histogram (oit render --json; bench rows leave them
+ * out, and write the histogram themselves with json_histogram). */
 void json_stats_figures(FILE *out, const oit_stats *stats, bool detail);
+/* ', "<key>": [c0, c1, ...]': a list-length histogram of bins counts (bin i:
+ * the pixels whose list has i fragments, the last bin the rest); nothing when
+ * bins is 0 (the algorithm keeps none). */
+void json_histogram(FILE *out, const char *key, const uint64_t *counts, int bins);
 /* '"<prefix>rmse": R, "<prefix>psnr": P, "<prefix>ssim": S, "<prefix>max": M,
  * "<prefix>share_over_2": O' (oit_image_error); psnr is null for identical
  * images (infinite). render nests them in "error": {...}, bench flattens
