@@ -23,7 +23,7 @@ void json_matrix_rows(FILE *out, const double m[16]);
  * shares and the list histogram (oit render --json; bench rows leave them out). */
 void json_stats_figures(FILE *out, const oit_stats *stats, bool detail);
 /* '"<prefix>rmse": R, "<prefix>psnr": P, "<prefix>ssim": S, "<prefix>max": M,
- * "<prefix>share_over_2": O' (oit_image_error); psnr is null for identical
+ * "<prefix>share_over_2": O, "<prefix>flip": F' (oit_image_error); psnr is null for identical
  * images (infinite). render nests them in "error": {...}, bench flattens
  * them with the prefix "error_". */
 void json_image_error(FILE *out, const oit_image_error *error, const char *prefix);
