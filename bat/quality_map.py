@@ -90,7 +90,9 @@ class QualityMap:
         r.emit(f"Every scene with every algorithm and parameter at {size}, each frame compared with the CPU "
                f"reference of the same frame (`{command}`). Error is the RMSE over the RGB channels on the "
                "0..255 scale (docs/cli.md, --error-vs-reference); time is the median frame time; memory "
-               "what the algorithm holds after the frame.", "")
+               "what the algorithm holds after the frame. The table adds the median SSIM and the median "
+               "mean FLIP (the perceptual error of Andersson et al. 2020, LDR, at 67 pixels per degree: 0 "
+               "identical, 1 the largest; docs/algorithms.md, Error figures), where the results have it.", "")
         self.pareto(rows)
         self.table(rows)
         self.worst_images(rows)
@@ -129,15 +131,19 @@ class QualityMap:
     def table(self, rows):
         r = self.report
         labels = sorted({x["algorithm"] for x in rows}, key=label_order)
-        lines = ["| algorithm | median RMSE | worst RMSE (scene) | median SSIM | median time (ms) | median memory (MB) |",
-                 "|---|---:|---|---:|---:|---:|"]
+        # FLIP (the mean LDR FLIP, 0..1; oit bench's error_flip): empty for results measured before it
+        lines = ["| algorithm | median RMSE | worst RMSE (scene) | median SSIM | median FLIP | median time (ms) | "
+                 "median memory (MB) |",
+                 "|---|---:|---|---:|---:|---:|---:|"]
         for label in labels:
             mine = [x for x in rows if x["algorithm"] == label]
             worst = max(mine, key=self.rmse)
             ssim = median_or_none([x.get("error_ssim") for x in mine])
+            flip = median_or_none([x.get("error_flip") for x in mine])
             lines.append(f"| {label} | {median_or_none([self.rmse(x) for x in mine]):.3g} | "
                          f"{self.rmse(worst):.3g} ({worst['scene']}) | "
                          f"{'' if ssim is None else f'{ssim:.4f}'} | "
+                         f"{'' if flip is None else f'{flip:.4f}'} | "
                          f"{median_or_none([self.time_ms(x) for x in mine]):.1f} | "
                          f"{median_or_none([x.get('memory_bytes', 0) for x in mine]) / 2**20:.2f} |")
         r.emit(*lines, "")

@@ -19,7 +19,8 @@ expected = ["scene", "model", "view", "algorithm", "width", "height", "vertices"
             "gpu_ms_max", "memory_bytes", "scene_bytes", "fragments", "max_list", "mean_list", "psi", "layers",
             "overflow_retries", "bytes_per_fragment", "ref_max_diff", "ref_mean_diff",
             "ref_over_tolerance_percent", "error_rmse", "error_psnr", "error_ssim", "error_max",
-            "error_share_over_2", "flicker", "flicker_max", "orbit_rmse_mean", "stages", "list_histogram", "scene_histogram", "error"]
+            "error_share_over_2", "error_flip", "flicker", "flicker_max", "orbit_rmse_mean", "stages",
+            "list_histogram", "scene_histogram", "error"]
 assert list(rows[0].keys()) == expected, list(rows[0].keys())
 assert len(rows) == 10, len(rows)
 assert [(r["algorithm"], r["width"]) for r in rows[:5]] == [(a, "32") for a in ["blend", "dp", "ll", "ll-array", "ib"]], rows

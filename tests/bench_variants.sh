@@ -81,12 +81,12 @@ rows = list(csv.DictReader(open(os.path.join(work, "bench.csv"))))
 data = json.load(open(os.path.join(work, "bench.json")))
 header = list(rows[0])
 expected_tail = ["ref_max_diff", "ref_mean_diff", "ref_over_tolerance_percent", "error_rmse", "error_psnr",
-                 "error_ssim", "error_max", "error_share_over_2", "flicker", "flicker_max", "orbit_rmse_mean",
-                 "stages", "list_histogram", "scene_histogram", "error"]
+                 "error_ssim", "error_max", "error_share_over_2", "error_flip", "flicker", "flicker_max",
+                 "orbit_rmse_mean", "stages", "list_histogram", "scene_histogram", "error"]
 assert header[-len(expected_tail):] == expected_tail, header
 assert len(rows) == 2 * len(variants) == len(data["results"]), (len(rows), len(data["results"]))
 keys = {"rmse": "error_rmse", "psnr": "error_psnr", "ssim": "error_ssim", "max": "error_max",
-        "share_over_2": "error_share_over_2"}
+        "share_over_2": "error_share_over_2", "flip": "error_flip"}
 for row, result in zip(rows, data["results"]):
     label, size = row["algorithm"], f"{row['width']}x{row['height']}"
     assert result["algorithm"] == label and row["error"] == "", (row, result)
@@ -99,7 +99,7 @@ for row, result in zip(rows, data["results"]):
     assert row["flicker"] == "" and "flicker" not in result, row
     assert row["ref_max_diff"] == str(result["reference"]["max_channel_diff"]) == str(render["max"]), row
     print(f"{label:14} {size}: rmse {render['rmse']:.4f} psnr {render['psnr']} ssim {render['ssim']:.5f} "
-          f"max {render['max']} over 2 {render['share_over_2']:.3f}%  = oit render")
+          f"max {render['max']} over 2 {render['share_over_2']:.3f}% flip {render['flip']:.5f}  = oit render")
 # the parameter reaches the algorithm: its two settings give two images (a k-buffer of 1 layer
 # and of 3 on a gearbox of 3+ layers at alpha 0.4; power and trigonometric moments)
 pairs = [(a, b) for a, b in zip(variants, variants[1:]) if a.split(":")[0] == b.split(":")[0] and ":" in a]
@@ -117,7 +117,8 @@ PY
 python3 - "$work/none.csv" "$work/none.json" <<'PY' || fail "error columns without a reference"
 import csv, json, sys
 row = list(csv.DictReader(open(sys.argv[1])))[0]
-assert all(row[k] == "" for k in ("error_rmse", "error_psnr", "error_ssim", "error_max", "error_share_over_2")), row
+assert all(row[k] == "" for k in ("error_rmse", "error_psnr", "error_ssim", "error_max", "error_share_over_2",
+                                  "error_flip")), row
 assert not any(k.startswith("error_") for k in json.load(open(sys.argv[2]))["results"][0]), "error_* keys"
 print("no reference: empty error columns")
 PY

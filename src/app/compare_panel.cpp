@@ -19,7 +19,7 @@ ComparePanel::ComparePanel(RenderSettings &settings, QWidget *parent) : QWidget(
     error_->setObjectName("error_view");
     error_->setToolTip("error against reference (--error-vs-reference): show each pixel's largest channel difference against the CPU reference's image of "
                        "the same frame (black: exact; blue to red: 1 to 64+, logarithmic), with rmse, psnr, "
-                       "ssim, max and the share over 2 in the status line. The reference renders on the "
+                       "ssim, max, the share over 2 and the mean FLIP in the status line. The reference renders on the "
                        "worker after each full frame (cached per camera, size and settings); coarse frames "
                        "show the plain image. View ▸ Error against reference (R)");
     form->addRow(error_);

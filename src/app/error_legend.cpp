@@ -100,10 +100,11 @@ void ErrorLegend::paintEvent(QPaintEvent *)
 QString error_figures_text(const oit_image_error &e)
 {
     QString psnr = std::isinf(e.psnr_db) ? QString("inf") : QString("%1 dB").arg(e.psnr_db, 0, 'f', 2);
-    return QString("rmse %1, psnr %2, ssim %3, max %4, %5% over 2")
+    return QString("rmse %1, psnr %2, ssim %3, max %4, %5% over 2, flip %6")
         .arg(e.rmse, 0, 'f', 3)
         .arg(psnr)
         .arg(e.ssim, 0, 'f', 5)
         .arg(e.max)
-        .arg(e.share_over_2, 0, 'f', 3);
+        .arg(e.share_over_2, 0, 'f', 3)
+        .arg(e.flip, 0, 'f', 4);
 }

@@ -219,8 +219,8 @@ void MainWindow::build_view_menu()
     QAction *error_view = view->addAction("&Error against reference");
     error_view->setShortcut(QKeySequence("R"));
     error_view->setCheckable(true);
-    error_view->setToolTip("the error map of the frame against the CPU reference, with rmse, psnr, ssim, max "
-                           "and the share over 2 (--error-vs-reference)");
+    error_view->setToolTip("the error map of the frame against the CPU reference, with rmse, psnr, ssim, max, "
+                           "the share over 2 and the mean FLIP (--error-vs-reference)");
     connect(error_view, &QAction::triggered, this, [this](bool on) { set_error_view(on); });
     sync_actions_.push_back([this, error_view] { error_view->setChecked(settings_->render_settings().error_view); });
     QAction *split = view->addAction("&Split view (wipe line)");

@@ -23,8 +23,8 @@ static const char csv_header[] =
     "cpu_ms_median,cpu_ms_min,cpu_ms_max,gpu_ms_median,gpu_ms_min,gpu_ms_max,memory_bytes,scene_bytes,"
     "fragments,max_list,mean_list,psi,layers,overflow_retries,bytes_per_fragment,ref_max_diff,"
     "ref_mean_diff,ref_over_tolerance_percent,error_rmse,error_psnr,error_ssim,error_max,error_share_over_2,"
-    "flicker,flicker_max,orbit_rmse_mean,stages,list_histogram,scene_histogram,error\n";
-#define CSV_RUN_COLUMNS 31 /* warmup .. scene_histogram: empty in a failed run's row */
+    "error_flip,flicker,flicker_max,orbit_rmse_mean,stages,list_histogram,scene_histogram,error\n";
+#define CSV_RUN_COLUMNS 32 /* warmup .. scene_histogram: empty in a failed run's row */
 
 /* A CSV field: quoted when it holds a separator, a quote or a line break. */
 static void csv_field(FILE *out, const char *text)
@@ -122,9 +122,9 @@ static void write_csv_row(FILE *f, const bench_scene *scene, const session *s, c
         fprintf(f, "%.9g,", e->rmse);
         if (isfinite(e->psnr_db)) /* empty: identical images */
             fprintf(f, "%.9g", e->psnr_db);
-        fprintf(f, ",%.9g,%d,%.9g,", e->ssim, e->max, e->share_over_2);
+        fprintf(f, ",%.9g,%d,%.9g,%.9g,", e->ssim, e->max, e->share_over_2, e->flip);
     } else {
-        fputs(",,,,,", f);
+        fputs(",,,,,,", f);
     }
     if (r->orbit_frames > 0)
         fprintf(f, "%.9g,%.9g,%.9g,", r->flicker, r->flicker_max, r->orbit_rmse_mean);

@@ -130,4 +130,5 @@ void json_image_error(FILE *out, const oit_image_error *e, const char *prefix)
         fputs("null", out); /* identical images */
     fprintf(out, ", \"%sssim\": %.9g, \"%smax\": %d, \"%sshare_over_2\": %.9g", prefix, e->ssim, prefix, e->max,
             prefix, e->share_over_2);
+    fprintf(out, ", \"%sflip\": %.9g", prefix, e->flip);
 }

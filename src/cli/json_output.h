@@ -28,7 +28,7 @@ void json_stats_figures(FILE *out, const oit_stats *stats, bool detail);
  * bins is 0 (the algorithm keeps none). */
 void json_histogram(FILE *out, const char *key, const uint64_t *counts, int bins);
 /* '"<prefix>rmse": R, "<prefix>psnr": P, "<prefix>ssim": S, "<prefix>max": M,
- * "<prefix>share_over_2": O' (oit_image_error); psnr is null for identical
+ * "<prefix>share_over_2": O, "<prefix>flip": F' (oit_image_error); psnr is null for identical
  * images (infinite). render nests them in "error": {...}, bench flattens
  * them with the prefix "error_". */
 void json_image_error(FILE *out, const oit_image_error *error, const char *prefix);

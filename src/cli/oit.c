@@ -207,10 +207,12 @@ static void print_render_help(FILE *out)
     fprintf(out, "  --moments M            %s: power4, power6 or trig3 (default power4)\n",
             algorithms_reading(OIT_OPTION_MOMENTS, reading, sizeof reading));
     fputs("  --error-vs-reference   also render the frame with the CPU reference and report the error:\n"
-          "                         rmse, psnr, ssim, max, share_over_2 (RGB; docs/cli.md); --json adds\n"
-          "                         \"error\": {...}\n"
+          "                         rmse, psnr, ssim, max, share_over_2 (RGB), flip (mean LDR FLIP, 0..1;\n"
+          "                         docs/cli.md); --json adds \"error\": {...}\n"
           "  --error-map FILE.png   write the per-pixel error against the reference as a heat map with a\n"
-          "                         legend (black: exact; blue to red: 1 to 64+ of 255, logarithmic)\n",
+          "                         legend (black: exact; blue to red: 1 to 64+ of 255, logarithmic)\n"
+          "  --error-metric abs|flip  what --error-map shows: abs, the largest channel difference\n"
+          "                         (default), or flip, the per-pixel FLIP (0..1) through magma\n",
           out);
     fprintf(out,
             "  --locks-held           %s (tests): every pixel's lock starts taken, so every fragment\n"
@@ -286,6 +288,8 @@ static int render_with_options(int argc, char **argv, render_options *options, c
     oit_status status = OIT_OK;
     bool error_vs_reference = false;
     const char *error_map_path = NULL;
+    const char *error_metric_word = NULL;
+    oit_error_metric error_metric = OIT_ERROR_METRIC_ABS;
     turntable_options turntable;
     turntable_options_defaults(&turntable);
     for (int i = 0; i < argc; ++i) {
@@ -310,6 +314,14 @@ static int render_with_options(int argc, char **argv, render_options *options, c
             error_map_path = argv[++i];
             continue;
         }
+        if (strcmp(argv[i], "--error-metric") == 0) {
+            if (i + 1 >= argc)
+                return usage_error("--error-metric needs a value%s", "");
+            error_metric_word = argv[++i];
+            if ((status = oit_error_metric_parse(error_metric_word, &error_metric, &err)) != OIT_OK)
+                return report(status, &err);
+            continue;
+        }
         int turntable_parsed = turntable_parse_option(argc, argv, &i, &turntable, &err, &status);
         if (turntable_parsed < 0)
             return report(status, &err);
@@ -326,6 +338,8 @@ static int render_with_options(int argc, char **argv, render_options *options, c
     if (from_session->has_matrices && !projection_given &&
         (long)o.width * from_session->height != (long)o.height * from_session->width)
         o.projection[0] = o.projection[5] * o.height / o.width;
+    if (error_metric_word && !error_map_path)
+        return usage_error("--error-metric goes with --error-map FILE.png%s", "");
     if (!o.model_path)
         return usage_error("render needs --model PATH (or --session FILE)%s", "");
     if (turntable.frames > 0)
@@ -371,7 +385,7 @@ static int render_with_options(int argc, char **argv, render_options *options, c
         }
         if (status == OIT_OK && error_map_path) {
             oit_image map;
-            status = oit_image_error_map(&result.image, &reference.image, true, &map, &err);
+            status = oit_image_error_map_metric(&result.image, &reference.image, error_metric, true, &map, &err);
             if (status == OIT_OK)
                 status = oit_png_write(error_map_path, &map, &err);
             oit_image_free(&map);
@@ -393,8 +407,8 @@ static int render_with_options(int argc, char **argv, render_options *options, c
                     o.out_path ? ", wrote " : "", o.out_path ? o.out_path : "");
             if (has_error)
                 fprintf(summary, "error vs reference: rmse %.3f, psnr %.2f dB, ssim %.5f, max %d, %.3f%% of pixels "
-                                "over 2\n",
-                        error.rmse, error.psnr_db, error.ssim, error.max, error.share_over_2);
+                                "over 2, flip %.5f\n",
+                        error.rmse, error.psnr_db, error.ssim, error.max, error.share_over_2, error.flip);
         }
     }
     oit_image_free(&result.image);
@@ -413,6 +427,8 @@ static int command_compare(int argc, char **argv)
     for (int i = 0; i < argc; ++i) {
         if (strcmp(argv[i], "--help") == 0) {
             fputs("usage: oit compare A.png B.png [--tolerance T] [--max-mismatch PERCENT] [--json]\n"
+                  "  reports the largest and mean channel difference, PSNR, the share of pixels over the\n"
+                  "  tolerance, and the mean LDR FLIP (0..1, docs/cli.md; not part of the pass/fail)\n"
                   "  --tolerance T           largest channel difference (0..255) a pixel may have and still\n"
                   "                          match (default 0)\n"
                   "  --max-mismatch PERCENT  share of pixels allowed over the tolerance (default 0)\n"
@@ -451,6 +467,9 @@ static int command_compare(int argc, char **argv)
         status = oit_png_read(paths[1], &b, &err);
     if (status == OIT_OK)
         status = oit_image_compare(&a, &b, (int)tolerance, &diff, &err);
+    double flip = 0.0; /* the mean LDR FLIP of A against B (symmetric) */
+    if (status == OIT_OK)
+        status = oit_image_flip(&a, &b, OIT_FLIP_PPD_DEFAULT, NULL, &flip, &err);
     if (status == OIT_OK && diff_path) {
         oit_image d = {0};
         status = oit_image_alloc(&d, a.width, a.height, &err);
@@ -479,11 +498,12 @@ static int command_compare(int argc, char **argv)
         snprintf(psnr, sizeof psnr, "%.3f", diff.psnr_db);
     if (json)
         printf("{\"max_channel_diff\": %d, \"mean_diff\": %.6f, \"psnr_db\": %s, "
-               "\"over_tolerance_percent\": %.4f, \"tolerance\": %ld, \"within\": %s}\n",
-               diff.max_channel_diff, diff.mean_diff, psnr, percent, tolerance, within ? "true" : "false");
+               "\"over_tolerance_percent\": %.4f, \"tolerance\": %ld, \"within\": %s, \"flip\": %.9g}\n",
+               diff.max_channel_diff, diff.mean_diff, psnr, percent, tolerance, within ? "true" : "false", flip);
     else
-        printf("max channel diff %d, mean diff %.4f, PSNR %s dB, %.3f%% of pixels over tolerance %ld: %s\n",
-               diff.max_channel_diff, diff.mean_diff, psnr, percent, tolerance, within ? "within" : "OUTSIDE");
+        printf("max channel diff %d, mean diff %.4f, PSNR %s dB, %.3f%% of pixels over tolerance %ld: %s; "
+               "FLIP %.5f\n",
+               diff.max_channel_diff, diff.mean_diff, psnr, percent, tolerance, within ? "within" : "OUTSIDE", flip);
     return within ? EXIT_OK : EXIT_MISMATCH;
 }
 
@@ -834,7 +854,7 @@ static const char main_help[] =
     "oit: order-independent transparency workbench, headless\n"
     "usage: oit COMMAND [options]   (oit COMMAND --help for each)\n"
     "  render      render a model with one algorithm; write a PNG; report timings (--json)\n"
-    "  compare     compare two PNG images: largest and mean difference, PSNR, share over tolerance\n"
+    "  compare     compare two PNG images: largest and mean difference, PSNR, share over tolerance, FLIP\n"
     "  info        counts, bounds and components of a model\n"
     "  gen         write a procedural test scene (cyclic, onion, spheres, gearbox, coplanar, menger)\n"
     "  demo        render the bundled model with every algorithm and print a table\n"

@@ -15,16 +15,23 @@
  * - max: the largest channel difference;
  * - share_over_2: the percentage of pixels with a channel more than 2 off
  *   (the tests' tolerance for exact algorithms).
- * The error map colours each pixel by its largest channel difference d on a
- * logarithmic scale, log2(1 + d) / log2(1 + 64), through the heat ramp the
- * buffer views use (blue, green, yellow, red at 64 and above); exact pixels
- * (d = 0) are black. The legend is a bar with ticks at 1, 2, 8, 32 and 64.
+ * - flip: the mean of the per-pixel LDR FLIP (flip.c) at the paper's default
+ *   viewing (OIT_FLIP_PPD_DEFAULT pixels per degree), 0..1.
+ * The error map (metric abs) colours each pixel by its largest channel
+ * difference d on a logarithmic scale, log2(1 + d) / log2(1 + 64), through
+ * the heat ramp the buffer views use (blue, green, yellow, red at 64 and
+ * above); exact pixels (d = 0) are black. The legend is a bar with ticks at
+ * 1, 2, 8, 32 and 64. The flip map colours each pixel's FLIP value v through
+ * magma (magma_table.h) at round(255 v), as the paper's figures do: black
+ * (0, 0, 4) at 0, light yellow at 1; its legend's ticks are at 0, .25, .5,
+ * .75 and 1.
  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "magma_table.h"
 #include "oit.h"
 
 #define SSIM_WINDOW 11
@@ -140,7 +147,7 @@ oit_status oit_image_error_compute(const oit_image *image, const oit_image *refe
     if (out->ssim < -0.5)
         return oit_fail(err, OIT_E_RUNTIME, "error figures: out of memory for SSIM of %dx%d", image->width,
                         image->height);
-    return OIT_OK;
+    return oit_image_flip(image, reference, OIT_FLIP_PPD_DEFAULT, NULL, &out->flip, err);
 }
 
 /* ------------------------------------------------------------ error map */
@@ -184,17 +191,17 @@ void oit_heatmap_colour(int64_t length, int64_t longest, uint8_t rgb[3])
     heat((double)length / (double)(longest > 1 ? longest : 1), rgb);
 }
 
-/* 3x5 digits and '+', one row of three bits per line, top first */
-static const uint8_t glyphs[11][5] = {
+/* 3x5 digits, '+' and '.', one row of three bits per line, top first */
+static const uint8_t glyphs[12][5] = {
     {7, 5, 5, 5, 7}, {2, 6, 2, 2, 7}, {7, 1, 7, 4, 7}, {7, 1, 7, 1, 7}, {5, 5, 7, 1, 1}, {7, 4, 7, 1, 7},
-    {7, 4, 7, 5, 7}, {7, 1, 1, 1, 1}, {7, 5, 7, 5, 7}, {7, 5, 7, 1, 7}, {0, 2, 7, 2, 0},
+    {7, 4, 7, 5, 7}, {7, 1, 1, 1, 1}, {7, 5, 7, 5, 7}, {7, 5, 7, 1, 7}, {0, 2, 7, 2, 0}, {0, 0, 0, 0, 2},
 };
 
 static void put_text(oit_image *out, int x, int y, const char *text)
 {
     for (; *text; ++text, x += 4) {
-        int g = *text == '+' ? 10 : *text - '0';
-        if (g < 0 || g > 10)
+        int g = *text == '+' ? 10 : *text == '.' ? 11 : *text - '0';
+        if (g < 0 || g > 11)
             continue;
         for (int row = 0; row < 5; ++row)
             for (int col = 0; col < 3; ++col)
@@ -208,19 +215,62 @@ static void put_text(oit_image *out, int x, int y, const char *text)
     }
 }
 
+void oit_flip_map_colour(double value, uint8_t rgb[3])
+{
+    double v = value < 0.0 ? 0.0 : value > 1.0 ? 1.0 : value;
+    memcpy(rgb, magma_table[(int)lround(v * 255.0)], 3);
+}
+
+oit_status oit_error_metric_parse(const char *word, oit_error_metric *out, oit_error *err)
+{
+    if (strcmp(word, "abs") == 0)
+        *out = OIT_ERROR_METRIC_ABS;
+    else if (strcmp(word, "flip") == 0)
+        *out = OIT_ERROR_METRIC_FLIP;
+    else
+        return oit_fail(err, OIT_E_INPUT, "--error-metric must be abs or flip, got '%s'", word);
+    return OIT_OK;
+}
+
 oit_status oit_image_error_map(const oit_image *image, const oit_image *reference, bool legend, oit_image *out,
                                oit_error *err)
+{
+    return oit_image_error_map_metric(image, reference, OIT_ERROR_METRIC_ABS, legend, out, err);
+}
+
+oit_status oit_image_error_map_metric(const oit_image *image, const oit_image *reference, oit_error_metric metric,
+                                      bool legend, oit_image *out, oit_error *err)
 {
     memset(out, 0, sizeof *out);
     oit_status status = check_pair(image, reference, err);
     if (status != OIT_OK)
         return status;
     int width = image->width, height = image->height;
+    size_t pixels = (size_t)width * (size_t)height;
+    bool flip = metric == OIT_ERROR_METRIC_FLIP;
+    float *values = NULL;
+    if (flip) {
+        values = malloc(sizeof(float) * (pixels ? pixels : 1));
+        if (!values)
+            return oit_fail(err, OIT_E_RUNTIME, "FLIP map: out of memory for %dx%d", width, height);
+        double mean;
+        status = oit_image_flip(image, reference, OIT_FLIP_PPD_DEFAULT, values, &mean, err);
+        if (status != OIT_OK) {
+            free(values);
+            return status;
+        }
+    }
     status = oit_image_alloc(out, width, height + (legend ? OIT_ERROR_MAP_LEGEND_HEIGHT : 0), err);
-    if (status != OIT_OK)
+    if (status != OIT_OK) {
+        free(values);
         return status;
+    }
     memset(out->rgba, 0, (size_t)out->width * (size_t)out->height * 4);
-    for (size_t i = 0; i < (size_t)width * (size_t)height; ++i) {
+    for (size_t i = 0; i < pixels; ++i) {
+        if (flip) {
+            oit_flip_map_colour(values[i], out->rgba + i * 4);
+            continue;
+        }
         int d = 0;
         for (int c = 0; c < 3; ++c) {
             int e = abs((int)image->rgba[i * 4 + c] - (int)reference->rgba[i * 4 + c]);
@@ -228,27 +278,36 @@ oit_status oit_image_error_map(const oit_image *image, const oit_image *referenc
         }
         oit_error_map_colour(d, out->rgba + i * 4);
     }
+    free(values);
     for (size_t i = 0; i < (size_t)out->width * (size_t)out->height; ++i)
         out->rgba[i * 4 + 3] = 255;
     if (!legend)
         return OIT_OK;
-    /* the bar: column x shows the colour of the difference at position x / (width - 1) */
+    /* the bar: column x shows the colour of the value at position x / (width - 1) */
     int bar_top = height + 2, bar_rows = 6;
     for (int x = 0; x < width; ++x) {
         double t = width > 1 ? (double)x / (width - 1) : 1.0;
         uint8_t rgb[3];
-        heat(t, rgb);
+        if (flip)
+            oit_flip_map_colour(t, rgb);
+        else
+            heat(t, rgb);
         for (int y = bar_top; y < bar_top + bar_rows; ++y)
             memcpy(out->rgba + ((size_t)y * width + x) * 4, rgb, 3);
     }
-    static const int ticks[] = {1, 2, 8, 32, OIT_ERROR_MAP_SATURATION};
-    /* right to left, so that 64+ always shows; a label that would touch the one to its right is
-     * left out (narrow maps) */
+    static const int abs_ticks[] = {1, 2, 8, 32, OIT_ERROR_MAP_SATURATION};
+    static const char *const flip_labels[] = {"0", ".25", ".5", ".75", "1"};
+    /* right to left, so that the last tick (64+, 1) always shows; a label that would touch the one
+     * to its right is left out (narrow maps) */
     int labelled_from = width + 2;
-    for (size_t k = sizeof ticks / sizeof ticks[0]; k-- > 0;) {
-        int x = (int)lround(oit_error_map_position(ticks[k]) * (width - 1));
+    for (size_t k = 5; k-- > 0;) {
+        double position = flip ? 0.25 * (double)k : oit_error_map_position(abs_ticks[k]);
+        int x = (int)lround(position * (width - 1));
         char label[8];
-        snprintf(label, sizeof label, "%d%s", ticks[k], ticks[k] == OIT_ERROR_MAP_SATURATION ? "+" : "");
+        if (flip)
+            snprintf(label, sizeof label, "%s", flip_labels[k]);
+        else
+            snprintf(label, sizeof label, "%d%s", abs_ticks[k], abs_ticks[k] == OIT_ERROR_MAP_SATURATION ? "+" : "");
         int text_width = 4 * (int)strlen(label) - 1;
         int left = x - text_width / 2;
         if (left + text_width > width)

@@ -274,14 +274,29 @@ oit_status oit_image_compare(const oit_image *a, const oit_image *b, int toleran
 /* How far an image is from a reference (image_error.c; docs/cli.md), RGB only:
  * rmse and max on the 0..255 scale, psnr in dB (INFINITY when identical),
  * ssim (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5, K1 0.01, K2 0.03,
- * mean over windows and channels), share_over_2 in percent of the pixels. */
+ * mean over windows and channels), share_over_2 in percent of the pixels,
+ * flip the mean of the per-pixel LDR FLIP (oit_image_flip) at
+ * OIT_FLIP_PPD_DEFAULT, 0 (identical) .. 1. */
 typedef struct oit_image_error {
     double rmse;
     double psnr_db;
     double ssim;
     int max;
     double share_over_2;
+    double flip;
 } oit_image_error;
+
+/* FLIP (Andersson et al., HPG 2020), the LDR version (flip.c): the perceived
+ * difference of two sRGB images seen at ppd pixels per degree of visual
+ * angle, per pixel in [0, 1] (0 where nothing differs). The default ppd is
+ * the paper's: a 0.7 m wide 3840-pixel monitor seen from 0.7 m,
+ * 3840 * (0.7 / 0.7) * pi / 180. map (w * h floats, may be NULL) receives
+ * the per-pixel values, *mean their mean. Images of different sizes, or ppd
+ * outside (0, 1000], are OIT_E_INPUT. The result is symmetric in the two
+ * images. */
+#define OIT_FLIP_PPD_DEFAULT 67.02064327658225
+oit_status oit_image_flip(const oit_image *image, const oit_image *reference, double ppd, float *map,
+                          double *mean, oit_error *err);
 
 oit_status oit_image_error_compute(const oit_image *image, const oit_image *reference, oit_image_error *out,
                                    oit_error *err);
@@ -296,6 +311,16 @@ oit_status oit_image_error_map(const oit_image *image, const oit_image *referenc
 /* The map's scale: where a difference lies on the bar (0..1), and its colour. */
 double oit_error_map_position(int difference);
 void oit_error_map_colour(int difference, uint8_t rgb[3]);
+/* What --error-map draws: the largest channel difference (abs, above) or
+ * the per-pixel FLIP at OIT_FLIP_PPD_DEFAULT (flip: 0..1 through the magma
+ * colour map, black at 0, light yellow at 1; with legend, ticks at 0, .25,
+ * .5, .75 and 1). */
+typedef enum oit_error_metric { OIT_ERROR_METRIC_ABS = 0, OIT_ERROR_METRIC_FLIP = 1 } oit_error_metric;
+oit_status oit_error_metric_parse(const char *word, oit_error_metric *out, oit_error *err);
+oit_status oit_image_error_map_metric(const oit_image *image, const oit_image *reference, oit_error_metric metric,
+                                      bool legend, oit_image *out, oit_error *err);
+/* The flip map's colour of a value in [0, 1] (clamped): magma at round(255 value). */
+void oit_flip_map_colour(double value, uint8_t rgb[3]);
 /* The buffer views' heatmap (view "heatmap", ll and ib): the colour of a pixel
  * whose list holds length fragments when the frame's longest list
  * (oit_stats.max_list) is longest, as their compose shaders compute it:
