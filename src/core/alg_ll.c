@@ -142,9 +142,9 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
         return status;
     ll_state *s = (ll_state *)gpu;
 
-    const char *sort_shader = config->ll_sort == OIT_LL_SORT_LOCAL_ARRAY
-                                  ? "ll/sort_local_array.frag"
-                                  : "ll/sort_insertion.frag";
+    const char *sort_shader = config->ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "ll/sort_local_array.frag"
+                              : config->ll_sort == OIT_LL_SORT_BMA       ? "ll/sort_bma.frag"
+                                                                         : "ll/sort_insertion.frag";
     GLuint unused;
     status = ll_programs(s, LL_PLAIN, &unused, &unused, err);
     if (status == OIT_OK)
