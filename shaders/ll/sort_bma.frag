@@ -10,6 +10,8 @@
 // pass costs llvmpipe a walk over the whole frame; llvmpipe runs 8 pixels as
 // one group under a mask, so a branch no pixel of a group takes costs only its
 // straight-line code: its loops end at once).
+// (--sort merge leaves the arrays out: every list past 8 nodes takes the
+// merge in the lists.)
 //   up to 8 nodes      one register block: no array at all
 //   9..16, 17..32,     arrays of 16, 32, 64 (two halves each: the merge
 //   33..64             passes go back and forth between them)
@@ -30,6 +32,11 @@
 #extension GL_ARB_ES3_1_compatibility : enable
 #include "common/oit_shared.h"
 #include "ll/ll_nodes.glsl"
+// --sort merge (alg_ll.c defines it 1): no private arrays, every list past one
+// register block is merged in the lists (faster on llvmpipe: docs/algorithms.md)
+#ifndef LL_BMA_NO_ARRAYS
+#define LL_BMA_NO_ARRAYS 0
+#endif
 
 // A sort key and its node: x = depth bits, y = triangle, z = node.
 // LL_BMA_PAD sorts behind every fragment (depths are in [0, 1]).
@@ -172,9 +179,13 @@ void main()
         ++length;
     const uint REGISTERS = 0u, ARRAY_16 = 1u, ARRAY_32 = 2u, ARRAY_64 = 3u, LONG = 4u;
     uint interval = length <= uint(OIT_LL_BMA_BLOCK) ? REGISTERS
+#if LL_BMA_NO_ARRAYS
+                  : LONG;
+#else
                   : length <= 16u ? ARRAY_16
                   : length <= 32u ? ARRAY_32
                   : length <= uint(OIT_LL_BMA_LARGEST_ARRAY) ? ARRAY_64 : LONG;
+#endif
 
     // One loop over the register blocks (the block's code once: llvmpipe
     // compiles every copy of it, taken or not). Short lists: the block is the
@@ -182,7 +193,9 @@ void main()
     // is linked as a run of 8 and merged bottom-up in the lists like a binary
     // counter (pending[level] holds a run of 8 << level nodes that came before
     // the later ones).
+#if !LL_BMA_NO_ARRAYS
     uvec3 a16[32], a32[64], a64[2 * OIT_LL_BMA_LARGEST_ARRAY];
+#endif
     uint pending[OIT_LL_BMA_LEVELS];
     for (int level = 0; level < OIT_LL_BMA_LEVELS; ++level)
         pending[level] = OIT_LIST_END;
@@ -203,7 +216,9 @@ void main()
             }
             pending[level] = run;
             levels = max(levels, level + 1u);
-        } else {
+        }
+#if !LL_BMA_NO_ARRAYS
+        else {
             for (int k = 0; k < OIT_LL_BMA_BLOCK; ++k) {
                 if (uint(k) < block_count) {
                     if (interval == ARRAY_16)
@@ -215,15 +230,18 @@ void main()
                 }
             }
         }
+#endif
         count += block_count;
     }
+#if !LL_BMA_NO_ARRAYS
     if (interval == ARRAY_16)
         LL_BMA_MERGE_ARRAY(a16, 16)
     else if (interval == ARRAY_32)
         LL_BMA_MERGE_ARRAY(a32, 32)
     else if (interval == ARRAY_64)
         LL_BMA_MERGE_ARRAY(a64, OIT_LL_BMA_LARGEST_ARRAY)
-    else // the pending runs, from the shortest (the latest) up
+    else
+#endif // the pending runs, from the shortest (the latest) up
         for (uint level = 0u; level < levels; ++level)
             sorted_head = ll_bma_merge(pending[level], sorted_head);
     // The length is what the sorted list holds, walked once more: llvmpipe
