@@ -148,6 +148,13 @@
 #define OIT_MAX_IMAGE_SIDE 65535
 /* local-array sort: the longest list that can be sorted in registers */
 #define OIT_LOCAL_ARRAY_CAPACITY 64
+/* ll --sort bma (shaders/ll/sort_bma.frag): the register block (nodes sorted in
+ * registers by a network), the largest private array (lists of 9..16, 17..32,
+ * 33..64 nodes get arrays of 16, 32, 64), and the levels of the merge in the
+ * lists for longer ones (runs of 8 << level nodes; 29 levels reach 2^32) */
+#define OIT_LL_BMA_BLOCK 8
+#define OIT_LL_BMA_LARGEST_ARRAY 64
+#define OIT_LL_BMA_LEVELS 30
 /* kbuffer, hybrid, mlab: the layers kept per pixel (oit_algorithm_config.layers)
  * by default and at most (shader-local arrays are sized by the maximum) */
 #define OIT_APPROX_LAYERS_DEFAULT 8

@@ -350,7 +350,7 @@ struct RowTip {
 static const RowTip kRowTips[] = {
     {"algorithm", "--algorithm", "how transparency is composited: the exact ones (dp, ddp, ll, ib, reference) agree; "
                                  "blend and wboit approximate"},
-    {"sort", "--sort", "ll's per-pixel sort: insertion sort in the lists, or a copy into a local array"},
+    {"sort", "--sort", "ll's per-pixel sort: insertion in the lists, a local array, bma (Knowles' arrays by length) or merge (default); the same image"},
     {"neighbours", "--neighbours", "how a fragment finds its neighbours on the surface (shared vertex index, welded "
                                    "position, or the epsilon depth/normal search)"},
     {"memory budget", "--max-memory", "the most the fragment pools and buffers may grow to"},

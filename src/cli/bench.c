@@ -54,15 +54,17 @@ static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err
         parameter = colon + 1;
     }
     const char *name = item;
-    if (strcmp(name, "ll-array") == 0) {
+    int sort = -1;
+    a->sort = -1;
+    if (strncmp(name, "ll-", 3) == 0 && oit_setting_value(OIT_SETTING_SORT, name + 3, strlen(name + 3), &sort)) {
         a->ops = oit_algorithm_find("ll");
-        a->sort_array = true;
+        a->sort = sort;
     } else {
         a->ops = oit_algorithm_find(name);
     }
     if (!a->ops)
         return oit_fail(err, OIT_E_INPUT,
-                        "--algorithms: unknown algorithm '%s' (oit algorithms lists them; also ll-array)",
+                        "--algorithms: unknown algorithm '%s' (oit algorithms lists them; also ll-insertion, ll-array, ll-bma, ll-merge)",
                         name);
     if (!parameter)
         return OIT_OK;
@@ -350,7 +352,7 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
     for (int a = 0; a < b->algorithm_count; ++a) {
         const bench_algorithm *algorithm = &b->algorithms[a];
         o.algorithm = algorithm->ops;
-        o.config.ll_sort = algorithm->sort_array ? OIT_LL_SORT_LOCAL_ARRAY : scene->options.config.ll_sort;
+        o.config.ll_sort = algorithm->sort >= 0 ? (oit_ll_sort)algorithm->sort : scene->options.config.ll_sort;
         o.config.layers = algorithm->layers ? algorithm->layers : scene->options.config.layers;
         o.config.moments = algorithm->moments ? algorithm->moments : scene->options.config.moments;
         run_result *r = calloc(1, sizeof *r);

@@ -12,14 +12,15 @@
 #define BENCH_MAX_ALGORITHMS 16
 
 /* One algorithm variant: a registry name, optionally with the ll sort
- * ("ll-array" is ll --sort array, as the thesis's table 5.3 compares) or a
+ * ("ll-array" is ll --sort array, as the thesis's table 5.3 compares; also
+ * ll-insertion, ll-bma, ll-merge) or a
  * parameter after a colon: NAME:K sets the layers of an algorithm that reads
  * them (kbuffer:16), NAME:MOMENTS its moments (mboit:power6). The label is
  * the text as given. */
 typedef struct bench_algorithm {
     char label[48];
     const oit_algorithm_ops *ops;
-    bool sort_array;
+    int sort;            /* -1: the scene's --sort; else oit_ll_sort (ll-insertion, ll-array, ...) */
     int layers;          /* 0: the scene's --layers */
     oit_moments moments; /* OIT_MOMENTS_DEFAULT: the scene's --moments */
 } bench_algorithm;

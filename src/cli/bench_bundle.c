@@ -432,9 +432,10 @@ oit_status bundle_commit(bench_bundle *bundle, const bench_settings *b, bool has
         fprintf(f, "%s{\"label\": ", a ? ", " : "");
         json_string(f, algorithm->label);
         fprintf(
-            f, ", \"algorithm\": \"%s\", \"exact\": %s, \"sort\": %s, \"layers\": %d, \"moments\": %s%s%s}",
-            algorithm->ops->name, algorithm->ops->exact ? "true" : "false",
-            algorithm->sort_array ? "\"array\"" : "null", algorithm->layers, algorithm->moments ? "\"" : "",
+            f, ", \"algorithm\": \"%s\", \"exact\": %s, \"sort\": %s%s%s, \"layers\": %d, \"moments\": %s%s%s}",
+            algorithm->ops->name, algorithm->ops->exact ? "true" : "false", algorithm->sort >= 0 ? "\"" : "",
+            algorithm->sort >= 0 ? oit_setting_word(OIT_SETTING_SORT, algorithm->sort) : "null",
+            algorithm->sort >= 0 ? "\"" : "", algorithm->layers, algorithm->moments ? "\"" : "",
             algorithm->moments ? oit_setting_word(OIT_SETTING_MOMENTS, algorithm->moments) : "null",
             algorithm->moments ? "\"" : "");
     }

@@ -186,7 +186,9 @@ static void print_render_help(FILE *out)
     fprintf(out, "  --max-memory MB        budget for growing buffers such as the fragment pool (default\n"
                  "                         1024); read by %s\n",
             algorithms_reading(OIT_OPTION_MAX_MEMORY, reading, sizeof reading));
-    fprintf(out, "  --sort VARIANT         %s: insertion (in place, default) | array (local array of 64)\n",
+    fprintf(out, "  --sort VARIANT         %s: insertion (in place) | array (local array of 64) | bma (Knowles'\n"
+                 "                         arrays by list length, register blocks) | merge (default: bma's\n"
+                 "                         register blocks merged in the lists); the same images\n",
             algorithms_reading(OIT_OPTION_SORT, reading, sizeof reading));
     fprintf(out,
             "  --fragment-pool N      %s: initial fragment pool capacity (default: automatic); it grows\n"

@@ -142,13 +142,19 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
         return status;
     ll_state *s = (ll_state *)gpu;
 
-    const char *sort_shader = config->ll_sort == OIT_LL_SORT_LOCAL_ARRAY
-                                  ? "ll/sort_local_array.frag"
+    const char *sort_shader = config->ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "ll/sort_local_array.frag"
+                              : config->ll_sort == OIT_LL_SORT_BMA ||
+                                        config->ll_sort == OIT_LL_SORT_MERGE
+                                  ? "ll/sort_bma.frag"
                                   : "ll/sort_insertion.frag";
     GLuint unused;
     status = ll_programs(s, LL_PLAIN, &unused, &unused, err);
     if (status == OIT_OK)
-        status = oit_gpu_program(&s->gpu, "common/fullscreen.vert", sort_shader, &s->sort_program, err);
+        status = oit_gpu_program_variant(&s->gpu, "common/fullscreen.vert", sort_shader,
+                                         config->ll_sort == OIT_LL_SORT_MERGE
+                                             ? "#define LL_BMA_NO_ARRAYS 1\n"
+                                             : NULL,
+                                         &s->sort_program, err);
     if (status != OIT_OK) {
         ll_destroy((oit_algorithm *)s);
         return status;

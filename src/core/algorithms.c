@@ -51,8 +51,9 @@ oit_status oit_algorithm_create(const oit_algorithm_ops *ops, const oit_algorith
         return oit_fail(err, OIT_E_INPUT, "%s: config.moments %d is not power4, power6 or trig3 (0: power4)",
                         ops->name, (int)config->moments);
     if (oit_algorithm_reads(ops, OIT_OPTION_SORT) &&
-        config->ll_sort != OIT_LL_SORT_INSERTION && config->ll_sort != OIT_LL_SORT_LOCAL_ARRAY)
-        return oit_fail(err, OIT_E_INPUT, "%s: config.ll_sort %d is not insertion or array", ops->name,
+        config->ll_sort != OIT_LL_SORT_INSERTION && config->ll_sort != OIT_LL_SORT_LOCAL_ARRAY &&
+        config->ll_sort != OIT_LL_SORT_BMA && config->ll_sort != OIT_LL_SORT_MERGE)
+        return oit_fail(err, OIT_E_INPUT, "%s: config.ll_sort %d is not insertion, array, bma or merge", ops->name,
                         (int)config->ll_sort);
     return ops->create(config, out, err);
 }

@@ -842,7 +842,10 @@ void oit_stats_add_stage(oit_stats *stats, const char *name, double ms);
 
 typedef enum oit_ll_sort {
     OIT_LL_SORT_INSERTION = 0, /* in-place insertion sort on the lists, second next buffer */
-    OIT_LL_SORT_LOCAL_ARRAY = 1 /* copy into a fixed local array and sort there */
+    OIT_LL_SORT_LOCAL_ARRAY = 1, /* copy into a fixed local array and sort there */
+    OIT_LL_SORT_BMA = 2,  /* Knowles et al.: arrays sized by list length, register blocks,
+                             a merge sort in the lists past the largest array */
+    OIT_LL_SORT_MERGE = 3 /* bma without the arrays: register blocks merged in the lists (the default) */
 } oit_ll_sort;
 
 /* mboit: which moments of the optical depth it keeps (Muenstermann et al. 2018) */
@@ -1115,7 +1118,7 @@ oit_status oit_find_shader_dir(const char *argv0, char *out, size_t out_size, oi
  * writes that default's word for it. */
 typedef enum oit_setting {
     OIT_SETTING_SHADING,    /* oit_shading_mode: flat, headlight */
-    OIT_SETTING_SORT,       /* oit_ll_sort: insertion, array */
+    OIT_SETTING_SORT,       /* oit_ll_sort: insertion, array, bma, merge */
     OIT_SETTING_MOMENTS,    /* oit_moments: power4, power6, trig3 (0: power4) */
     OIT_SETTING_VIEW,       /* oit_view: colour, heatmap, peel-limit, layer, ... */
     OIT_SETTING_MODULATION, /* oit_modulation_mode: none, curvature, distance, ... */

@@ -18,7 +18,7 @@ typedef struct setting_words {
 
 static const setting_words settings[OIT_SETTING_COUNT] = {
     [OIT_SETTING_SHADING] = {"--shading", OIT_SHADE_FLAT, 2, OIT_SHADE_FLAT, {"flat", "headlight"}},
-    [OIT_SETTING_SORT] = {"--sort", OIT_LL_SORT_INSERTION, 2, OIT_LL_SORT_INSERTION, {"insertion", "array"}},
+    [OIT_SETTING_SORT] = {"--sort", OIT_LL_SORT_INSERTION, 4, OIT_LL_SORT_INSERTION, {"insertion", "array", "bma", "merge"}},
     [OIT_SETTING_MOMENTS] = {"--moments", OIT_MOMENTS_POWER4, 3, OIT_MOMENTS_POWER4,
                              {"power4", "power6", "trig3"}},
     [OIT_SETTING_VIEW] = {"--view", OIT_VIEW_COLOUR, OIT_VIEW_COUNT, OIT_VIEW_COLOUR,
