@@ -242,6 +242,7 @@ QTabWidget *MainWindow::build_tabs()
     histogram_plot_ = new HistogramPlot;
     histogram_plot_->setObjectName("histogram_plot");
     auto *histogram_title = new QLabel("Depth complexity (list lengths) of the shown frame");
+    histogram_title->setWordWrap(true); // unwrapped, its width alone widened the panel past 30% of the window
     stats_layout->addWidget(stats_panel_, 1);
     stats_layout->addWidget(histogram_title);
     stats_layout->addWidget(histogram_plot_);
