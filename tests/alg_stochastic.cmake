@@ -33,3 +33,9 @@ set(APPROX_stochastic_spider "17 0.818 0.0487")
 set(APPROX_stochastic_wuson "0 0 0")
 # engine: 115 strongly coloured parts, many layers: the largest single errors.
 set(APPROX_stochastic_engine "54 6.647 0.4983")
+
+# the noise falls with N (both masks), seeds, exact at alpha 1, the --samples default, refusals
+add_test(NAME stochastic_checks
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/stochastic_checks.sh ${OIT} ${WORK}/stochastic_checks ${SCENES}
+          ${WORK}/reference)
+set_tests_properties(stochastic_checks PROPERTIES FIXTURES_REQUIRED "scenes;reference_gearbox_flat")
