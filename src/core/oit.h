@@ -681,7 +681,9 @@ typedef struct oit_frame_settings {
      * the frame that many times, each with the projection moved by one of
      * the standard sample positions (oit_sample_positions), and average the
      * RGBA8 images. oit_frame_check refuses any other value. Done once for
-     * every algorithm, the reference included, by oit_algorithm_render. */
+     * every algorithm, the reference included, by oit_algorithm_render, but
+     * those that read it themselves (OIT_OPTION_SAMPLES: stochastic's
+     * samples per pixel, 0 its default), which render once. */
     int samples;
 } oit_frame_settings;
 
