@@ -182,6 +182,20 @@
 #define OIT_TEXUNIT_MBOIT_EXTRA 26
 #define OIT_TEXUNIT_MBOIT_ACCUM 27
 
+/* ---- stochastic transparency (alg_stochastic.c, shaders/stochastic/) ----
+ * Per pixel S depth slots (uint: floatBitsToUint of the window depth, which
+ * orders as the depth for depths in [0, 1]; OIT_STOCHASTIC_EMPTY: no sample
+ * covered), slot s of pixel p at index p * S + s of OIT_SSBO_STOCHASTIC_DEPTH. */
+#define OIT_SSBO_STOCHASTIC_DEPTH 1
+#define OIT_STOCHASTIC_EMPTY 0xFFFFFFFFu
+#define OIT_STOCHASTIC_SAMPLES_MAX 16
+/* the pixel's sample count S (int), the seed (uint), the masks (int: OIT_STOCHASTIC_MASKS_*) */
+#define OIT_UNIFORM_STOCHASTIC_SAMPLES 16
+#define OIT_UNIFORM_STOCHASTIC_SEED 17
+#define OIT_UNIFORM_STOCHASTIC_MASKS 18
+#define OIT_STOCHASTIC_MASKS_STRATIFIED 1
+#define OIT_STOCHASTIC_MASKS_INDEPENDENT 2
+
 /* ---- the frame's parameters: one std140 uniform block (common/frame.glsl) ----
  * uploaded once per frame (oit_gpu_frame_begin: gl_util.h's oit_frame_block,
  * which asserts these byte offsets; every program's are checked against them

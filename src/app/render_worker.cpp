@@ -582,11 +582,19 @@ oit_status RenderWorker::render_side(const FrameJob &job, const std::string &nam
 
     // the options this algorithm does not render are left out, and said (its capabilities)
     reduce_to_capabilities(ops, frame, left_out);
+    // an algorithm that reads the samples as its own per-pixel count (stochastic,
+    // OIT_OPTION_SAMPLES): the view's 1 (no anti-aliasing) takes its default
+    if (oit_algorithm_reads(ops, OIT_OPTION_SAMPLES) && frame.samples <= 1)
+        frame.samples = 0;
     oit_status status = needs_resize ? oit_algorithm_resize(ops, algorithm, frame.width, frame.height, &err) : OIT_OK;
     if (status == OIT_OK) {
         reset_gl_state();
         status = oit_algorithm_render(ops, algorithm, scene, &frame, &err);
     }
+    // its samples sit at the pixel centre: the frame as rendered, which the
+    // error view's reference renders too, has no anti-aliasing
+    if (oit_algorithm_reads(ops, OIT_OPTION_SAMPLES))
+        frame.samples = 0;
     if (status == OIT_OK) {
         oit_image out{};
         status = ops->read_image(algorithm, &out, &err);

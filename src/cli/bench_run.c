@@ -163,6 +163,8 @@ static oit_status orbit_reference(session *s, const render_options *o, const oit
         status = render_setup_create(s, &ro, reference, err);
     }
     reference->frame = *frame;
+    if (oit_algorithm_reads(o->algorithm, OIT_OPTION_SAMPLES))
+        reference->frame.samples = 0; /* stochastic's samples are depth slots at the pixel centre */
     if (status == OIT_OK)
         status = oit_algorithm_render(&oit_algorithm_reference, reference->alg, reference->scene, &reference->frame, err);
     oit_image *target = cached ? cached : scratch;

@@ -54,8 +54,16 @@ static void print_render_json(FILE *out, const render_options *o, const session 
         json_string(out, s->shader_dir);
     }
     fprintf(out, ", \"width\": %d, \"height\": %d, \"frames\": %d", o->width, o->height, o->frames);
-    fprintf(out, ", \"samples\": %d, \"sample_positions\": \"%s\"", o->samples,
-            oit_sample_positions_name(o->samples));
+    if (oit_algorithm_reads(o->algorithm, OIT_OPTION_SAMPLES)) {
+        /* stochastic: its own samples per pixel, all at the pixel centre */
+        fprintf(out, ", \"samples\": %d, \"sample_positions\": \"centre\"",
+                o->samples > 0 ? o->samples : OIT_STOCHASTIC_SAMPLES_DEFAULT);
+        fprintf(out, ", \"seed\": %u, \"stochastic_masks\": \"%s\"", (unsigned)o->config.seed,
+                o->config.stochastic_masks == OIT_STOCHASTIC_INDEPENDENT ? "independent" : "stratified");
+    } else {
+        fprintf(out, ", \"samples\": %d, \"sample_positions\": \"%s\"", o->samples > 0 ? o->samples : 1,
+                oit_sample_positions_name(o->samples));
+    }
     fprintf(out, ", \"triangles\": %u", s->model.triangle_count);
     json_warnings(out, &s->model);
     /* the camera used, row by row as --modelview/--projection and oit measure take it */
@@ -174,7 +182,9 @@ static void print_render_help(FILE *out)
             "  --backend NAME         egl | osmesa (default egl)\n"
             "  --samples N            anti-aliasing: 1 (default, off), 4, 8 or 16 samples per pixel at\n"
             "                         the standard (Direct3D 11 / Vulkan) positions; every algorithm\n"
-            "                         renders N times and the images are averaged (N times the time)\n"
+            "                         renders N times and the images are averaged (N times the time);\n"
+            "                         stochastic: its samples per pixel, 1, 4, 8 (default) or 16, at the\n"
+            "                         pixel centre, in one render\n"
             "  --explode F            exploded view, F in [0, 10] (default 0: the assembly as built): each\n"
             "                         part moves away from its parent's centre (the model's, or its node's\n"
             "                         in an assembly tree) by F times its centre's distance from it;\n"
@@ -208,6 +218,10 @@ static void print_render_help(FILE *out)
             OIT_LAYERS_DEFAULT);
     fprintf(out, "  --moments M            %s: power4, power6 or trig3 (default power4)\n",
             algorithms_reading(OIT_OPTION_MOMENTS, reading, sizeof reading));
+    fprintf(out, "  --seed S               %s: the seed of the coverage masks, 0..4294967295 (default 0)\n"
+                 "  --stochastic-masks M   %s: stratified (default: exactly round(alpha N) of the N samples)\n"
+                 "                         or independent (each sample with probability alpha)\n",
+            algorithms_reading(OIT_OPTION_SEED, reading, sizeof reading), reading);
     fputs("  --error-vs-reference   also render the frame with the CPU reference and report the error:\n"
           "                         rmse, psnr, ssim, max, share_over_2 (RGB), flip (mean LDR FLIP, 0..1;\n"
           "                         docs/cli.md); --json adds \"error\": {...}\n"
@@ -372,6 +386,8 @@ static int render_with_options(int argc, char **argv, render_options *options, c
         reference_options.algorithm = &oit_algorithm_reference;
         reference_options.frames = 1;
         reference_options.out_path = NULL;
+        if (oit_algorithm_reads(o.algorithm, OIT_OPTION_SAMPLES))
+            reference_options.samples = 0; /* its samples are depth slots at the pixel centre, not anti-aliasing */
         render_result reference;
         memset(&reference, 0, sizeof reference);
         status = render_frames(&s, &reference_options, &reference, &err);

@@ -160,7 +160,7 @@ void render_options_defaults(render_options *o)
     oit_algorithm_config_defaults(&o->config);
     o->frames = 1;
     oit_overlay_options_defaults(&o->overlay);
-    o->samples = 1;
+    o->samples = 0; /* not given: 1 (anti-aliasing off), or the algorithm's own default (OIT_OPTION_SAMPLES) */
 }
 
 /* Parses one render option at argv[*i]; returns 1 if consumed, 0 if unknown, -1 on error. */
@@ -248,6 +248,26 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
             return -1;
         }
         o->samples = (int)n;
+    } else if (strcmp(flag, "--seed") == 0) {
+        NEED_VALUE();
+        long seed;
+        if (!parse_int(value, 0, 4294967295L, &seed)) {
+            *status = oit_fail(err, OIT_E_INPUT, "--seed must be a whole number from 0 to 4294967295, got '%s'",
+                               value);
+            return -1;
+        }
+        o->config.seed = (uint32_t)seed;
+    } else if (strcmp(flag, "--stochastic-masks") == 0) {
+        NEED_VALUE();
+        if (strcmp(value, "stratified") == 0)
+            o->config.stochastic_masks = OIT_STOCHASTIC_STRATIFIED;
+        else if (strcmp(value, "independent") == 0)
+            o->config.stochastic_masks = OIT_STOCHASTIC_INDEPENDENT;
+        else {
+            *status = oit_fail(err, OIT_E_INPUT, "--stochastic-masks must be stratified or independent, got '%s'",
+                               value);
+            return -1;
+        }
     } else if (strcmp(flag, "--backend") == 0) {
         NEED_VALUE();
         int backend;

@@ -56,7 +56,7 @@ typedef struct render_options {
     oit_import_options import; /* --tessellation (STEP, IGES) */
     double explode;            /* --explode F, 0..OIT_EXPLODE_MAX (0: the assembly as built) */
     oit_overlay_options overlay; /* --axes[=CORNER], --scale-bar: drawn on the image render_frames returns */
-    int samples;               /* --samples N: 1, 4, 8 or 16 (oit_frame_settings.samples) */
+    int samples;               /* --samples N: 1, 4, 8 or 16 (oit_frame_settings.samples); 0: not given */
 } render_options;
 
 void render_options_defaults(render_options *o);

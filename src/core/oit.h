@@ -681,7 +681,9 @@ typedef struct oit_frame_settings {
      * the frame that many times, each with the projection moved by one of
      * the standard sample positions (oit_sample_positions), and average the
      * RGBA8 images. oit_frame_check refuses any other value. Done once for
-     * every algorithm, the reference included, by oit_algorithm_render. */
+     * every algorithm, the reference included, by oit_algorithm_render, but
+     * those that read it themselves (OIT_OPTION_SAMPLES: stochastic's
+     * samples per pixel, 0 its default), which render once. */
     int samples;
 } oit_frame_settings;
 
@@ -848,6 +850,15 @@ typedef enum oit_ll_sort {
     OIT_LL_SORT_MERGE = 3 /* bma without the arrays: register blocks merged in the lists (the default) */
 } oit_ll_sort;
 
+/* stochastic: how a fragment of opacity a picks the samples it covers */
+typedef enum oit_stochastic_masks {
+    OIT_STOCHASTIC_DEFAULT = 0,     /* stratified */
+    OIT_STOCHASTIC_STRATIFIED = 1,  /* exactly round(a S) distinct samples (Laine & Karras 2011 style) */
+    OIT_STOCHASTIC_INDEPENDENT = 2  /* each sample with probability a */
+} oit_stochastic_masks;
+/* stochastic: the samples per pixel when the frame's samples is 0 (not given) */
+#define OIT_STOCHASTIC_SAMPLES_DEFAULT 8
+
 /* mboit: which moments of the optical depth it keeps (Muenstermann et al. 2018) */
 typedef enum oit_moments {
     OIT_MOMENTS_DEFAULT = 0, /* power 4 */
@@ -889,6 +900,9 @@ typedef struct oit_algorithm_config {
        0: OIT_LAYERS_DEFAULT. Others ignore it. */
     int layers;
     oit_moments moments; /* mboit; others ignore it */
+    /* stochastic: the seed of its coverage masks and how they are drawn */
+    uint32_t seed;
+    oit_stochastic_masks stochastic_masks;
     /* tests only (false normally): mlab's clear leaves every pixel's lock taken,
      * as if a fragment outside the frame held it, so every fragment spins to its
      * cap (OIT_MLAB_LOCK_TRIES) and gives up, and the frame must fail naming them */
@@ -966,7 +980,11 @@ enum {
                                             --buffer-fragment-limit */
     OIT_OPTION_MAX_MEMORY = 1u << 5,     /* --max-memory */
     OIT_OPTION_LOCKS_HELD = 1u << 6,     /* --locks-held (tests) */
-    OIT_OPTION_COUNT = 7
+    OIT_OPTION_SEED = 1u << 8,           /* --seed, --stochastic-masks */
+    /* --samples read by the algorithm itself as its samples per pixel, in one
+     * render (0: its own default), instead of the central supersampling */
+    OIT_OPTION_SAMPLES = 1u << 9,
+    OIT_OPTION_COUNT = 10
 };
 /* The flags of one OIT_OPTION_* bit, space-separated ("--sort"); NULL for a bit outside them. */
 const char *oit_option_flags(unsigned option);
