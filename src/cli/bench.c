@@ -34,6 +34,8 @@
 /* What an algorithm's parameter may be, for messages. */
 static const char *parameter_kind(const oit_algorithm_ops *ops)
 {
+    if (oit_algorithm_reads(ops, OIT_OPTION_SAMPLES))
+        return "samples 1, 4, 8 or 16";
     if (oit_algorithm_reads(ops, OIT_OPTION_LAYERS) && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS))
         return "layers K or moments power4, power6 or trig3";
     return oit_algorithm_reads(ops, OIT_OPTION_LAYERS) ? "layers K" : "moments power4, power6 or trig3";
@@ -75,7 +77,12 @@ static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err
     if (!oit_setting_value(OIT_SETTING_MOMENTS, parameter, strlen(parameter), &moments))
         moments = -1;
     const oit_algorithm_ops *ops = a->ops;
-    if (numeric && oit_algorithm_reads(ops, OIT_OPTION_LAYERS)) {
+    if (numeric && oit_algorithm_reads(ops, OIT_OPTION_SAMPLES)) {
+        long samples;
+        if (!parse_int(parameter, 1, 16, &samples) || (samples != 1 && samples != 4 && samples != 8 && samples != 16))
+            return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': samples must be 1, 4, 8 or 16", a->label);
+        a->samples = (int)samples;
+    } else if (numeric && oit_algorithm_reads(ops, OIT_OPTION_LAYERS)) {
         long layers;
         if (!parse_int(parameter, 1, OIT_LAYERS_MAX, &layers))
             return oit_fail(err, OIT_E_INPUT,
@@ -84,7 +91,8 @@ static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err
         a->layers = (int)layers;
     } else if (moments >= 0 && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS)) {
         a->moments = (oit_moments)moments;
-    } else if (oit_algorithm_reads(ops, OIT_OPTION_LAYERS) || oit_algorithm_reads(ops, OIT_OPTION_MOMENTS)) {
+    } else if (oit_algorithm_reads(ops, OIT_OPTION_LAYERS) || oit_algorithm_reads(ops, OIT_OPTION_MOMENTS) ||
+               oit_algorithm_reads(ops, OIT_OPTION_SAMPLES)) {
         return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': %s takes %s, got '%s'", a->label, name,
                         parameter_kind(ops), parameter);
     } else {
@@ -163,7 +171,8 @@ static const char bench_help[] =
     "  --scenes LIST          only these scenes: comma-separated names or patterns (engine*)\n"
     "  --algorithms LIST      default blend,dp,ddp,ll,ib,wboit; also reference and ll-array;\n"
     "                         NAME:K sets the layers of kbuffer, hybrid, mlab (kbuffer:16),\n"
-    "                         NAME:MOMENTS the moments of mboit (mboit:power6)\n"
+    "                         NAME:MOMENTS the moments of mboit (mboit:power6), NAME:N the\n"
+    "                         samples of stochastic (stochastic:16)\n"
     "  --sizes LIST           WxH or N (NxN), comma-separated (default 600x600)\n"
     "  --frames N             measured frames per run (default 10)\n"
     "  --warmup N             frames rendered first and not measured (default 2)\n"
@@ -355,6 +364,7 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
         o.config.ll_sort = algorithm->sort >= 0 ? (oit_ll_sort)algorithm->sort : scene->options.config.ll_sort;
         o.config.layers = algorithm->layers ? algorithm->layers : scene->options.config.layers;
         o.config.moments = algorithm->moments ? algorithm->moments : scene->options.config.moments;
+        o.samples = algorithm->samples ? algorithm->samples : scene->options.samples;
         run_result *r = calloc(1, sizeof *r);
         if (!r) {
             failures = -1;
@@ -378,13 +388,32 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
             run = run_algorithm(s, &o, cpu ? 0 : (int)b->warmup, cpu ? 1 : (int)b->frames, b->budget_ms, r,
                                 has_reference || bundle ? &image : NULL, b->quiet ? NULL : progress_frame,
                                 progress, &run_err);
-            if (run == OIT_OK && has_reference) {
+            /* An algorithm reading --samples takes them as its own samples at the pixel
+             * centre (stochastic): with the scene anti-aliased, its reference is the
+             * reference at the pixel centre, rendered for it alone, and its orbit does
+             * not share the scene's cached reference frames. */
+            bool own_samples = oit_algorithm_reads(o.algorithm, OIT_OPTION_SAMPLES) && scene->options.samples > 1;
+            oit_image centre_reference = {0};
+            bool has_centre_reference = false;
+            if (run == OIT_OK && has_reference && own_samples) {
+                render_options ro = o;
+                ro.algorithm = oit_algorithm_find("reference");
+                ro.samples = 0;
+                run_result *rr = calloc(1, sizeof *rr);
+                oit_error ref_err = {{0}};
+                has_centre_reference =
+                    rr && run_algorithm(s, &ro, 0, 1, 0.0, rr, &centre_reference, NULL, NULL, &ref_err) == OIT_OK;
+                free(rr);
+            }
+            const oit_image *row_reference = own_samples ? &centre_reference : &reference_image;
+            if (run == OIT_OK && has_reference && (!own_samples || has_centre_reference)) {
                 oit_error compare_err;
-                r->has_reference_diff = oit_image_compare(&image, &reference_image, (int)b->tolerance,
+                r->has_reference_diff = oit_image_compare(&image, row_reference, (int)b->tolerance,
                                                           &r->diff, &compare_err) == OIT_OK;
-                r->has_error = oit_image_error_compute(&image, &reference_image, &r->error_figures,
+                r->has_error = oit_image_error_compute(&image, row_reference, &r->error_figures,
                                                        &compare_err) == OIT_OK;
             }
+            oit_image_free(&centre_reference);
             if (run == OIT_OK && bundle) {
                 row = &files;
                 bundle_run_images(bundle, scene, algorithm, width, height, &image,
@@ -392,7 +421,8 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
             }
             oit_image_free(&image);
             if (run == OIT_OK && b->orbit_frames > 0)
-                run = run_orbit(s, &o, (int)b->orbit_frames, b->orbit_step, orbit_references, r, &run_err);
+                run = run_orbit(s, &o, (int)b->orbit_frames, b->orbit_step, own_samples ? NULL : orbit_references,
+                                r, &run_err);
         }
         if (run != OIT_OK) {
             r->ok = false;
