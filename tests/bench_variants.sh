@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench_variants.sh OIT WORKDIR SCENES: `oit bench --algorithms NAME:PARAMETER` and the
-# error columns. Variants of the algorithms that read layers or moments (found in
+# error columns. Variants of the algorithms that read layers, moments or their own samples (found in
 # `oit algorithms --json`, whatever the registry holds) run with the parameter and give
 # the same error figures as `oit render --layers K / --moments M --error-vs-reference`;
 # a parameter an algorithm does not read, or a bad one, is one line and exit 2; every
@@ -30,6 +30,8 @@ assert "ll" not in layers + moments and "reference" not in layers + moments, (la
 print(layers[0] if layers else "-", moments[0] if moments else "-")
 PY
 )
+# an algorithm that reads --samples as its own (stochastic): NAME:N is its samples
+sampler=$(python3 -c 'import json, sys; print(next((a["name"] for a in json.load(open(sys.argv[1])) if "--samples" in a["options"]), "-"))' "$work/algorithms.json")
 variants=ll,blend,wboit
 if [ "$layered" != - ]; then
     variants+=",$layered:1,$layered:3"
@@ -54,6 +56,13 @@ else
     echo "no algorithm reads moments yet: NAME:MOMENTS is checked by its refusals only"
 fi
 
+if [ "$sampler" != - ]; then
+    variants+=",$sampler:4,$sampler:16"
+    expect_exit 2 "'$sampler:5': samples must be 1, 4, 8 or 16" -- "$oit" bench --model "$scenes/onion.obj" --algorithms "$sampler:5"
+    expect_exit 2 "'$sampler:power6': $sampler takes samples 1, 4, 8 or 16, got 'power6'" -- \
+        "$oit" bench --model "$scenes/onion.obj" --algorithms "$sampler:power6"
+fi
+
 # error columns: every row against oit render --error-vs-reference (same view, same size)
 printf 'gear %s/gearbox.obj --orbit 30,20 --alpha 0.4\n' "$scenes" >"$work/scenes.txt"
 "$oit" bench --scene-list "$work/scenes.txt" --algorithms "$variants" --sizes 64,48x40 --frames 2 --warmup 0 \
@@ -65,7 +74,7 @@ for size in 64x64 48x40; do
         name=${label%%:*} parameter=${label#*:} flags=()
         if [ "$label" != "$name" ]; then
             case $parameter in
-            [0-9]*) flags=(--layers "$parameter") ;;
+            [0-9]*) if [ "$name" = "$sampler" ]; then flags=(--samples "$parameter"); else flags=(--layers "$parameter"); fi ;;
             *) flags=(--moments "$parameter") ;;
             esac
         fi
