@@ -9,7 +9,7 @@
 #include "render_session.h"
 
 #define BENCH_MAX_SIZES 32
-#define BENCH_MAX_ALGORITHMS 16
+#define BENCH_MAX_ALGORITHMS 32 /* the quality map sweeps every algorithm and parameter in one run */
 
 /* One algorithm variant: a registry name, optionally with the ll sort
  * ("ll-array" is ll --sort array, as the thesis's table 5.3 compares; also
