@@ -41,6 +41,14 @@ def label_order(label):
     return (name, int(parameter) if parameter.isdigit() else 0, parameter)
 
 
+def spearman_rank(xs, ys):
+    """Spearman's rho of two rankings without ties (1 - 6 sum d^2 / (n (n^2 - 1)))."""
+    n = len(xs)
+    if n < 2:
+        return float("nan")
+    return 1.0 - 6.0 * sum((x - y) ** 2 for x, y in zip(xs, ys)) / (n * (n * n - 1))
+
+
 def median_or_none(values):
     values = [v for v in values if v is not None and not (isinstance(v, float) and math.isnan(v))]
     return statistics.median(values) if values else None
@@ -95,6 +103,7 @@ class QualityMap:
                "identical, 1 the largest; docs/algorithms.md, Error figures), where the results have it.", "")
         self.pareto(rows)
         self.table(rows)
+        self.metric_orders(rows)
         self.worst_images(rows)
         self.stability_table()
         self.depth_sweep()
@@ -147,6 +156,99 @@ class QualityMap:
                          f"{median_or_none([self.time_ms(x) for x in mine]):.1f} | "
                          f"{median_or_none([x.get('memory_bytes', 0) for x in mine]) / 2**20:.2f} |")
         r.emit(*lines, "")
+
+    @staticmethod
+    def approximate_labels(rows):
+        """The variants that are approximate on these scenes: somewhere more pixels than the exact
+        algorithms' tests allow (EXACT_MISMATCH %) are more than EXACT_TOLERANCE off."""
+        from report_data import tests_bound
+
+        mismatch = tests_bound("EXACT_MISMATCH")
+        return sorted({x["algorithm"] for x in rows if (x.get("error_share_over_2") or 0) > mismatch},
+                      key=label_order)
+
+    def metric_orders(self, rows):
+        """How RMSE, SSIM and FLIP order the approximate methods (by their medians over the scenes),
+        the pairs the metrics order differently, and one such pair of images from the bundle."""
+        r = self.report
+        labels = [a for a in self.approximate_labels(rows)
+                  if median_or_none([x.get("error_flip") for x in rows if x["algorithm"] == a]) is not None]
+        r.emit("### RMSE, SSIM and FLIP: how they order the approximations", "")
+        if len(labels) < 2:
+            r.emit("Not enough approximate methods with FLIP figures in quality.json to order them.", "")
+            return
+        # a larger value is a worse image for each key: RMSE, 1 - SSIM, FLIP
+        metrics = {"RMSE": lambda x: self.rmse(x),
+                   "SSIM": lambda x: None if x.get("error_ssim") is None else 1.0 - x["error_ssim"],
+                   "FLIP": lambda x: x.get("error_flip")}
+        medians = {a: {m: median_or_none([f(x) for x in rows if x["algorithm"] == a]) for m, f in metrics.items()}
+                   for a in labels}
+        ranks = {m: {a: i + 1 for i, a in enumerate(sorted(labels, key=lambda a: medians[a][m]))} for m in metrics}
+        lines = ["| method | rank by RMSE | rank by SSIM | rank by FLIP | median FLIP |", "|---|---:|---:|---:|---:|"]
+        for a in sorted(labels, key=lambda a: ranks["FLIP"][a]):
+            lines.append(f"| {a} | {ranks['RMSE'][a]} | {ranks['SSIM'][a]} | {ranks['FLIP'][a]} | "
+                         f"{medians[a]['FLIP']:.4f} |")
+        swapped = [(a, b) for i, a in enumerate(labels) for b in labels[i + 1:]
+                   if (ranks["RMSE"][a] - ranks["RMSE"][b]) * (ranks["FLIP"][a] - ranks["FLIP"][b]) < 0]
+        swapped_ssim = [(a, b) for i, a in enumerate(labels) for b in labels[i + 1:]
+                        if (ranks["SSIM"][a] - ranks["SSIM"][b]) * (ranks["FLIP"][a] - ranks["FLIP"][b]) < 0]
+        pairs = len(labels) * (len(labels) - 1) // 2
+        rho_rmse = spearman_rank([ranks["RMSE"][a] for a in labels], [ranks["FLIP"][a] for a in labels])
+        rho_ssim = spearman_rank([ranks["SSIM"][a] for a in labels], [ranks["FLIP"][a] for a in labels])
+        r.emit("The variants approximate on these scenes (on some scene more pixels than the exact algorithms' "
+               "tests allow are more than 2/255 off) ranked by their median over the "
+               "scenes, 1 the closest to the reference (SSIM ranked by 1 - SSIM). FLIP orders "
+               f"{pairs - len(swapped)} of the {pairs} pairs as RMSE does (Spearman's rho {rho_rmse:.3f}) and "
+               f"{pairs - len(swapped_ssim)} as SSIM does (rho {rho_ssim:.3f}).", "", *lines, "")
+        if swapped:
+            r.emit("Pairs FLIP orders against RMSE: " + ", ".join(
+                f"{a} / {b}" for a, b in sorted(swapped, key=lambda p: (ranks["FLIP"][p[0]], ranks["FLIP"][p[1]]))) + ".",
+                "")
+        self.disagreement_images(rows, labels)
+
+    def disagreement_images(self, rows, labels):
+        """One scene where two methods' images are ordered one way by RMSE and the other by FLIP, the
+        largest such disagreement (relative FLIP difference), shown beside the reference."""
+        import matplotlib.image as mpimg
+        import matplotlib.pyplot as plt
+
+        r = self.report
+        bundle = os.path.join(self.results, "quality-bundle")
+        best = None
+        by = {(x["scene"], x["algorithm"]): x for x in rows}
+        for scene in sorted({x["scene"] for x in rows}):
+            for i, a in enumerate(labels):
+                for b in labels[i + 1:]:
+                    x, y = by.get((scene, a)), by.get((scene, b))
+                    if not x or not y or None in (self.rmse(x), self.rmse(y), x.get("error_flip"), y.get("error_flip")):
+                        continue
+                    if (self.rmse(x) - self.rmse(y)) * (x["error_flip"] - y["error_flip"]) >= 0:
+                        continue
+                    # the disagreement's size: the smaller of the two relative gaps
+                    gap = min(abs(self.rmse(x) - self.rmse(y)) / max(self.rmse(x), self.rmse(y)),
+                              abs(x["error_flip"] - y["error_flip"]) / max(x["error_flip"], y["error_flip"]))
+                    if best is None or gap > best[0]:
+                        best = (gap, scene, x, y)
+        if best is None:
+            r.emit("On no scene do RMSE and FLIP order two of these methods differently.", "")
+            return
+        _, scene, x, y = best
+        size = f"{x['width']}x{x['height']}"
+        paths = [os.path.join(bundle, f"{scene}_{size}.reference.png")] + \
+            [os.path.join(bundle, f"{scene}_{v['algorithm'].replace(':', '-')}_{size}.png") for v in (x, y)]
+        text = (f"The clearest disagreement: on {scene}, {x['algorithm']} has RMSE {self.rmse(x):.2f}, SSIM "
+                f"{x.get('error_ssim', 0):.4f}, FLIP {x['error_flip']:.4f}; {y['algorithm']} has RMSE "
+                f"{self.rmse(y):.2f}, SSIM {y.get('error_ssim', 0):.4f}, FLIP {y['error_flip']:.4f}.")
+        if not all(os.path.exists(p) for p in paths):
+            r.emit(text + " (The bundle has no images of it.)", "")
+            return
+        fig, axes = plt.subplots(1, 3, figsize=(9, 3.4))
+        for ax, path, title in zip(axes, paths, ["reference", x["algorithm"], y["algorithm"]]):
+            ax.imshow(mpimg.imread(path))
+            ax.set_title(title, fontsize=9)
+            ax.axis("off")
+        fig.suptitle(f"{scene}: RMSE and FLIP disagree", fontsize=10)
+        r.emit(text, "", r.save(fig, "metric-disagreement"), "")
 
     def worst_images(self, rows):
         """Each algorithm's worst image (largest RMSE) beside the reference and its error map, from the

@@ -20,6 +20,9 @@
 #                 400..500; the report goes
 #                 to BUILD/bench/quick-docs/ instead of docs/ (a smoke test, minutes not hours)
 #   --skip-measure  only oit bench and the report
+#   --quality-only  only step 3b, then `report.py --section quality` rewrites that section of the
+#                 existing docs/benchmarks.md (saying which command and commit made it); with
+#                 --quick, of BUILD/bench/quick-docs/benchmarks.md. About 20 minutes.
 # The full run takes about 1.5 hours on a quiet 2-core machine with llvmpipe (estimated from
 # single-frame runs of every scene; menger4 alone, with dp and ddp at 80-90 s a frame, is a quarter);
 # --quick about 10 minutes.
@@ -28,13 +31,15 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$ROOT/build
 QUICK=0
 MEASURE=1
+QUALITY_ONLY=0
 while [ $# -gt 0 ]; do
     case $1 in
     --build) BUILD=$2; shift 2 ;;
     --quick) QUICK=1; shift ;;
     --skip-measure) MEASURE=0; shift ;;
+    --quality-only) QUALITY_ONLY=1; MEASURE=0; shift ;;
     -h | --help) sed -n '2,/^$/p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run_comparison.sh: unknown option '$1' (--build DIR, --quick, --skip-measure)" >&2; exit 2 ;;
+    *) echo "run_comparison.sh: unknown option '$1' (--build DIR, --quick, --skip-measure, --quality-only)" >&2; exit 2 ;;
     esac
 done
 case $BUILD in /*) ;; *) BUILD=$ROOT/$BUILD ;; esac
@@ -82,8 +87,11 @@ python3 "$ROOT/bat/pages.py" machine --oit "$OIT" >"$RESULTS/machine.json"
 tolerance=$(sed -n 's/^set(EXACT_TOLERANCE \([0-9]*\))$/\1/p' "$ROOT/tests/CMakeLists.txt")
 [ -n "$tolerance" ] || { echo "run_comparison.sh: no set(EXACT_TOLERANCE N) in tests/CMakeLists.txt" >&2; exit 2; }
 
-step "oit bench (progress on stderr)"
+bench_status=0
+accuracy_status=0
 set +e
+if [ "$QUALITY_ONLY" = 0 ]; then
+step "oit bench (progress on stderr)"
 "$OIT" bench --scene-list "$SCENES" --algorithms blend,dp,ddp,ll,ll-array,ib,wboit "${bench_flags[@]}" \
     --reference-max-pixels 0 --csv "$RESULTS/bench.csv" --json "$RESULTS/bench.json"
 bench_status=$?
@@ -92,6 +100,7 @@ step "accuracy against the reference at ${accuracy_size}x${accuracy_size}"
     --frames 1 --warmup 0 --reference-max-pixels $((accuracy_size * accuracy_size)) --tolerance "$tolerance" --quiet \
     --csv "$RESULTS/accuracy.csv"
 accuracy_status=$?
+fi
 set -e
 
 # The cost/quality map of the approximations (issue 12; bat/quality_map.py draws it): every
@@ -124,9 +133,11 @@ done
 "$OIT" bench --scene-list "$sweep_dir/scenes.txt" --algorithms ll,dp,kbuffer:8,hybrid:8,mlab:8,mboit:power4,stochastic:8,wboit \
     --sizes "$quality_size" --frames 3 --warmup 1 --reference-max-pixels $((quality_size * quality_size)) --quiet \
     --json "$RESULTS/depth_sweep.json"
-step "scale: the deepest scenes at 1920x1080 and 3840x2160, a 13M-triangle sponge -> scale.json"
-python3 "$ROOT/bat/scale.py" --oit "$OIT" --results "$RESULTS" --scene-list "$SCENES" \
-    --models "$BUILD/bench/models" "${quick[@]}"
+if [ "$QUALITY_ONLY" = 0 ]; then
+    step "scale: the deepest scenes at 1920x1080 and 3840x2160, a 13M-triangle sponge -> scale.json"
+    python3 "$ROOT/bat/scale.py" --oit "$OIT" --results "$RESULTS" --scene-list "$SCENES" \
+        --models "$BUILD/bench/models" "${quick[@]}"
+fi
 set -e
 
 [ $bench_status -eq 0 ] || echo "run_comparison.sh: some bench runs failed (rows with an error in bench.csv)" >&2
@@ -143,6 +154,15 @@ if [ "$MEASURE" = 1 ]; then
     else
         bash "$ROOT/bat/measure_resolutions.sh" --build "$BUILD" "${measure_flags[@]}"
     fi
+fi
+
+if [ "$QUALITY_ONLY" = 1 ]; then
+    step "report: the cost/quality map section of $docs/benchmarks.md"
+    elapsed=$(( $(date +%s) - started ))
+    python3 "$ROOT/bat/report.py" --section quality --results "$RESULTS" --docs "$docs" \
+        --command "$(echo bat/run_comparison.sh "${quick[@]}" --quality-only)"
+    step "done in $((elapsed / 60)) min: the cost/quality map of $docs/benchmarks.md"
+    exit 0
 fi
 
 step "bat/profile.sh (perf; skipped without it)"
