@@ -15,7 +15,8 @@
  * ("ll-array" is ll --sort array, as the thesis's table 5.3 compares; also
  * ll-insertion, ll-bma, ll-merge) or a
  * parameter after a colon: NAME:K sets the layers of an algorithm that reads
- * them (kbuffer:16), NAME:MOMENTS its moments (mboit:power6). The label is
+ * them (kbuffer:16), NAME:MOMENTS its moments (mboit:power6), NAME:R the rank of
+ * one that reads --wavelet-rank (wavelet:2). The label is
  * the text as given. */
 typedef struct bench_algorithm {
     char label[48];
@@ -23,6 +24,7 @@ typedef struct bench_algorithm {
     int sort;            /* -1: the scene's --sort; else oit_ll_sort (ll-insertion, ll-array, ...) */
     int layers;          /* 0: the scene's --layers */
     oit_moments moments; /* OIT_MOMENTS_DEFAULT: the scene's --moments */
+    int wavelet_rank;    /* 0: the scene's --wavelet-rank */
 } bench_algorithm;
 
 /* What the bench's command line asks for. */
