@@ -15,8 +15,8 @@
  *    RGBA32F targets (the depth: the canonical depth in [0, 1], mboit's).
  * 2. "transmittance": depth test off, additive blending; every fragment reads
  *    its pixel's coefficients, subtracts its own step's (a fragment is not in
- *    front of itself: the paper's published code removes the fragment's own
- *    signal the same way), reconstructs the absorbance in front of its depth
+ *    front of itself; a public implementation of the method, Flywheel's GLSL,
+ *    removes the fragment's own signal the same way), reconstructs the absorbance in front of its depth
  *    (the projection's bin means, interpolated from the previous bin's at the
  *    start of its bin to its own bin's at the end) and adds (T a c, T a) into
  *    an RGBA32F target.
