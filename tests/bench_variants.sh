@@ -15,6 +15,8 @@ expect_exit 2 "--algorithms: 'll:4': ll takes no layers" -- "$oit" bench --model
 expect_exit 2 "'ll:power6': ll takes no moments" -- "$oit" bench --model "$scenes/onion.obj" --algorithms blend,ll:power6
 expect_exit 2 "'ll-array:8': ll-array takes no layers" -- "$oit" bench --model "$scenes/onion.obj" --algorithms ll-array:8
 expect_exit 2 "'dp:x': dp takes no parameter" -- "$oit" bench --model "$scenes/onion.obj" --algorithms dp:x
+expect_exit 2 "'wavelet:4': the wavelet rank must be a whole number from 1 to 3" -- "$oit" bench --model "$scenes/onion.obj" --algorithms wavelet:4
+expect_exit 2 "'wavelet:power6': wavelet takes a rank R, got 'power6'" -- "$oit" bench --model "$scenes/onion.obj" --algorithms wavelet:power6
 expect_exit 2 "'dp:': no parameter after the colon" -- "$oit" bench --model "$scenes/onion.obj" --algorithms dp:
 expect_exit 2 "unknown algorithm 'nope'" -- "$oit" bench --model "$scenes/onion.obj" --algorithms nope:4
 

@@ -81,6 +81,7 @@ echo "all error cases behaved"
 expect_exit 2 "--layers must be a whole number from 1 to 64, got '0'" -- "$oit" render --model "$model" --layers 0
 expect_exit 2 "--layers must be a whole number from 1 to 64, got '65'" -- "$oit" render --model "$model" --layers 65
 expect_exit 2 "--moments must be power4, power6 or trig3, got 'power5'" -- "$oit" render --model "$model" --moments power5
+expect_exit 2 "--wavelet-rank must be a whole number from 1 to 3, got '4'" -- "$oit" render --model "$model" --wavelet-rank 4
 expect_exit 2 "--error-map needs a value" -- "$oit" render --model "$model" --error-map
 expect_exit 2 "--error-map" -- "$oit" render --model "$model" --error-map "$work/no/such/dir/map.png"
 expect_exit 2 "algorithms: unknown option '--jsn'" -- "$oit" algorithms --jsn

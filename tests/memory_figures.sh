@@ -103,6 +103,7 @@ else:
                 ("ll", "--frames", "3"), ("ib", "--frames", "3"),
                 ("kbuffer", "--layers", "3"), ("hybrid", "--layers", "64"),
                 ("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3"),
+                ("wavelet", "--wavelet-rank", "1"), ("wavelet", "--wavelet-rank", "2"),
                 ("mlab", "--layers", "4"), ("mlab", "--frames", "3")]
     figures = {}
     for algorithm, *args in variants:
@@ -118,7 +119,8 @@ else:
 
     # per pixel: two image sizes, the pool (ll, ib) fixed and big enough for both
     pool = ("--fragment-pool", str(2 * fragments))
-    for algorithm, *variant in gpu_algorithms + [("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3")]:
+    for algorithm, *variant in gpu_algorithms + [("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3"),
+                                                 ("wavelet", "--wavelet-rank", "1"), ("wavelet", "--wavelet-rank", "2")]:
         args = pool if algorithm in ("ll", "ib") else tuple(variant)
         big, small = render(algorithm, SIZE, *args), render(algorithm, SMALL, *args)
         if algorithm in ("ll", "ib"):
@@ -136,6 +138,10 @@ else:
         if algorithm == "mboit": # b0 4, moments 16, (power6, trig3: 8 more), accumulation 16, output 4
             want = 48 if variant else 40
             check(per_pixel == want, f"mboit {' '.join(variant)}: {per_pixel:g} bytes per pixel == {want}")
+        if algorithm == "wavelet": # b0 4, 2^(R+1) coefficients of 4 (rank R, default 3), accumulation 16, output 4
+            rank = int(variant[1]) if variant else 3
+            want = 4 + 4 * 2 ** (rank + 1) + 16 + 4
+            check(per_pixel == want, f"wavelet rank {rank}: {per_pixel:g} bytes per pixel == {want}")
         if algorithm in ("kbuffer", "hybrid"):  # per pixel, and 69 counters
             check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel + 69 * 4 + FRAME_BLOCK,
                   f"{algorithm}: everything it holds is per pixel (output included) but its counters "

@@ -182,6 +182,22 @@
 #define OIT_TEXUNIT_MBOIT_EXTRA 26
 #define OIT_TEXUNIT_MBOIT_ACCUM 27
 
+/* ---- wavelet transparency (alg_wavelet.c, shaders/wavelet/) ----
+ * The rank R, 1..OIT_WAVELET_RANK_MAX (oit.h's OIT_WAVELET_RANK_MAX is the same):
+ * 2^(R+1) Haar coefficients per pixel in 2^(R+1) / 4 rgba32f targets. The most
+ * is 3 (16 coefficients): 4 targets and b0 make 5 colour attachments; rank 4
+ * would need 9, and GL 4.3 promises only 8 draw buffers.
+ * The "coefficients" pass's colour attachments (= fragment output locations):
+ * b0 (r32f: the pixel's total optical depth, as mboit's), then the coefficient
+ * targets from OIT_WAVELET_TARGET_COEFFICIENTS on. The passes after it read b0
+ * and the accumulation at mboit's units (its compose.frag is wavelet's), and
+ * coefficient target t at OIT_TEXUNIT_WAVELET_COEFFICIENTS + t (9..12: ib's
+ * units, which no wavelet program declares). */
+#define OIT_WAVELET_RANK_MAX 3
+#define OIT_WAVELET_TARGET_B0 0
+#define OIT_WAVELET_TARGET_COEFFICIENTS 1
+#define OIT_TEXUNIT_WAVELET_COEFFICIENTS 9
+
 /* ---- stochastic transparency (alg_stochastic.c, shaders/stochastic/) ----
  * Per pixel S depth slots (uint: floatBitsToUint of the window depth, which
  * orders as the depth for depths in [0, 1]; OIT_STOCHASTIC_EMPTY: no sample

@@ -25,6 +25,7 @@
 #include "common/oit_shared.h"
 #include "common/shade.glsl"
 #include "common/canonical_depth.glsl"
+#include "common/optical_depth.glsl"
 
 #ifndef MBOIT_VARIANT
 #error "define MBOIT_VARIANT before including mboit/common.glsl"
@@ -32,12 +33,8 @@
 
 const float MBOIT_PI = 3.14159265358979;
 
-// Opacity is clamped below 1 so that the optical depth -ln(1 - a) stays finite
-// (ln 0 is undefined in GLSL): a <= 1 - e^-10, i.e. optical depth <= 10, as the
-// paper's shader code caps the absorbance at 10. An opaque surface then lets
-// e^-10 = 4.5e-5 of what is behind it through: 0.012/255, invisible in 8 bits.
-const float MBOIT_MAX_OPTICAL_DEPTH = 10.0;
-const float MBOIT_MAX_ALPHA = 0.9999546; // 1 - exp(-10), rounded down
+// The optical depth and its clamp (opacity at most 1 - e^-10) are
+// common/optical_depth.glsl's, shared with wavelet.
 
 // The paper's overestimation strength (the published code
 // and its ports use 0.25): the reconstruction gives the weight of the support point at the
@@ -92,8 +89,9 @@ float mboit_phase(float s)
     return s * (2.0 * MBOIT_PI - MBOIT_WRAPPING_ZONE);
 }
 
-// The optical depth -ln(1 - a) of a fragment of opacity a (> 0), clamped.
+// The optical depth -ln(1 - a) of a fragment of opacity a (> 0), clamped
+// (common/optical_depth.glsl).
 float mboit_optical_depth(float alpha)
 {
-    return -log(1.0 - min(alpha, MBOIT_MAX_ALPHA));
+    return oit_optical_depth(alpha);
 }

@@ -68,7 +68,7 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
     layer_cap->setSpecialValueText("none");
     layers->addRow("layer cap", layer_cap);
     show_row_when(layers, layer_cap, reads(OIT_OPTION_MAX_LAYERS));
-    // the approximations' parameters (OIT_OPTION_LAYERS / OIT_OPTION_MOMENTS in their capabilities)
+    // the approximations' parameters (OIT_OPTION_LAYERS / _MOMENTS / _WAVELET_RANK in their capabilities)
     auto *approx_layers = spin_box(1, OIT_LAYERS_MAX,
                                    [&s] { return s.config.layers == 0 ? OIT_LAYERS_DEFAULT : s.config.layers; },
                                    [this, &s](int n) {
@@ -88,6 +88,14 @@ AlgorithmPanel::AlgorithmPanel(SettingsModel &model, QWidget *parent) : Settings
                           });
     layers->addRow("moments", moments);
     show_row_when(layers, moments, reads(OIT_OPTION_MOMENTS));
+    auto *wavelet_rank = spin_box(1, OIT_WAVELET_RANK_MAX,
+                                  [&s] { return s.config.wavelet_rank == 0 ? OIT_WAVELET_RANK_DEFAULT : s.config.wavelet_rank; },
+                                  [this, &s](int r) {
+                                      s.config.wavelet_rank = r;
+                                      emit edited();
+                                  });
+    layers->addRow("wavelet rank", wavelet_rank);
+    show_row_when(layers, wavelet_rank, reads(OIT_OPTION_WAVELET_RANK));
     layers->addRow("memory budget", memory);
     show_row_when(layers, memory, reads(OIT_OPTION_MAX_MEMORY));
     show_group_when_used(layers_box);

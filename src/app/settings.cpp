@@ -259,6 +259,8 @@ std::string render_command(const std::string &oit_program, const std::string &mo
         c << " --layers " << s.config.layers;
     if (ops && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS) && s.config.moments != OIT_MOMENTS_DEFAULT)
         c << " --moments " << oit_setting_word(OIT_SETTING_MOMENTS, s.config.moments);
+    if (ops && oit_algorithm_reads(ops, OIT_OPTION_WAVELET_RANK) && s.config.wavelet_rank != 0)
+        c << " --wavelet-rank " << s.config.wavelet_rank;
     if (ops && oit_algorithm_reads(ops, OIT_OPTION_SEED) && s.config.seed != 0)
         c << " --seed " << s.config.seed;
     if (ops && oit_algorithm_reads(ops, OIT_OPTION_SEED) && s.config.stochastic_masks == OIT_STOCHASTIC_INDEPENDENT)
@@ -534,6 +536,7 @@ std::string preset_to_json(const RenderSettings &s, const Camera &camera, const 
     add(d, "max-layers", Value(s.config.max_layers), a);
     add(d, "layers", Value(s.config.layers == 0 ? OIT_LAYERS_DEFAULT : s.config.layers), a);
     add(d, "moments", Value(rapidjson::StringRef(oit_setting_word(OIT_SETTING_MOMENTS, s.config.moments))), a);
+    add(d, "wavelet-rank", Value(s.config.wavelet_rank == 0 ? OIT_WAVELET_RANK_DEFAULT : s.config.wavelet_rank), a);
     add(d, "seed", Value(s.config.seed), a);
     add(d, "stochastic-masks",
         Value(rapidjson::StringRef(s.config.stochastic_masks == OIT_STOCHASTIC_INDEPENDENT ? "independent" : "stratified")), a);
@@ -640,6 +643,7 @@ RenderSettings preset_defaults(const RenderSettings &current)
     s.config.max_layers = preset_config.max_layers;
     s.config.layers = preset_config.layers;
     s.config.moments = preset_config.moments;
+    s.config.wavelet_rank = preset_config.wavelet_rank;
     s.config.seed = preset_config.seed;
     s.config.stochastic_masks = preset_config.stochastic_masks;
     // the parts are matched by name against a model; without one they stay
@@ -661,7 +665,7 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
     // applied only if the whole file is good; every key it lacks takes its default
     RenderSettings s = preset_defaults(out);
     static const char *const known[] = {
-        "algorithm", "sort", "max-memory", "max-layers", "layers", "moments", "seed", "stochastic-masks", "alpha", "shading", "background", "view", "modulation",
+        "algorithm", "sort", "max-memory", "max-layers", "layers", "moments", "wavelet-rank", "seed", "stochastic-masks", "alpha", "shading", "background", "view", "modulation",
         "neighbours", "curvature-neighbours", "curvature-effect", "epsilon-max", "distance", "focus-region",
         "fields", "diffusion-iterations", "blur-iterations", "lambda-alpha", "lambda-beta", "lambda-gamma",
         "halo-colour", "last-layer-opaque", "focus", "focus-point", "focus-plane", "focus-box", "contrast",
@@ -702,6 +706,8 @@ bool preset_from_object(const std::string &file, const std::string &text, const 
         return false;
     if (d.HasMember("moments")) // absent: the default itself, not the value it stands for
         s.config.moments = oit_moments(moments + OIT_MOMENTS_POWER4);
+    if (d.HasMember("wavelet-rank") && !r.whole(d, "wavelet-rank", 1, OIT_WAVELET_RANK_MAX, s.config.wavelet_rank))
+        return false;
     int seed = int(s.config.seed & 0x7fffffffu);
     if (!r.whole(d, "seed", 0, 0x7fffffff, seed)) // presets: the seeds up to 2^31 - 1
         return false;

@@ -36,6 +36,8 @@ static const char *parameter_kind(const oit_algorithm_ops *ops)
 {
     if (oit_algorithm_reads(ops, OIT_OPTION_SAMPLES))
         return "samples 1, 4, 8 or 16";
+    if (oit_algorithm_reads(ops, OIT_OPTION_WAVELET_RANK))
+        return "a rank R";
     if (oit_algorithm_reads(ops, OIT_OPTION_LAYERS) && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS))
         return "layers K or moments power4, power6 or trig3";
     return oit_algorithm_reads(ops, OIT_OPTION_LAYERS) ? "layers K" : "moments power4, power6 or trig3";
@@ -89,10 +91,17 @@ static oit_status parse_algorithm(char *item, bench_algorithm *a, oit_error *err
                             "--algorithms: '%s': layers must be a whole number from 1 to %d", a->label,
                             OIT_LAYERS_MAX);
         a->layers = (int)layers;
+    } else if (numeric && oit_algorithm_reads(ops, OIT_OPTION_WAVELET_RANK)) {
+        long rank;
+        if (!parse_int(parameter, 1, OIT_WAVELET_RANK_MAX, &rank))
+            return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': the wavelet rank must be a whole number from 1 to %d",
+                            a->label, OIT_WAVELET_RANK_MAX);
+        a->wavelet_rank = (int)rank;
     } else if (moments >= 0 && oit_algorithm_reads(ops, OIT_OPTION_MOMENTS)) {
         a->moments = (oit_moments)moments;
     } else if (oit_algorithm_reads(ops, OIT_OPTION_LAYERS) || oit_algorithm_reads(ops, OIT_OPTION_MOMENTS) ||
-               oit_algorithm_reads(ops, OIT_OPTION_SAMPLES)) {
+               oit_algorithm_reads(ops, OIT_OPTION_SAMPLES) ||
+               oit_algorithm_reads(ops, OIT_OPTION_WAVELET_RANK)) {
         return oit_fail(err, OIT_E_INPUT, "--algorithms: '%s': %s takes %s, got '%s'", a->label, name,
                         parameter_kind(ops), parameter);
     } else {
@@ -172,7 +181,8 @@ static const char bench_help[] =
     "  --algorithms LIST      default blend,dp,ddp,ll,ib,wboit; also reference and ll-array;\n"
     "                         NAME:K sets the layers of kbuffer, hybrid, mlab (kbuffer:16),\n"
     "                         NAME:MOMENTS the moments of mboit (mboit:power6), NAME:N the\n"
-    "                         samples of stochastic (stochastic:16)\n"
+    "                         samples of stochastic (stochastic:16), NAME:R the rank of wavelet,\n"
+    "                         1..3 (wavelet:2)\n"
     "  --sizes LIST           WxH or N (NxN), comma-separated (default 600x600)\n"
     "  --frames N             measured frames per run (default 10)\n"
     "  --warmup N             frames rendered first and not measured (default 2)\n"
@@ -365,6 +375,7 @@ static int bench_scene_size(const bench_settings *b, session *s, const bench_sce
         o.config.layers = algorithm->layers ? algorithm->layers : scene->options.config.layers;
         o.config.moments = algorithm->moments ? algorithm->moments : scene->options.config.moments;
         o.samples = algorithm->samples ? algorithm->samples : scene->options.samples;
+        o.config.wavelet_rank = algorithm->wavelet_rank ? algorithm->wavelet_rank : scene->options.config.wavelet_rank;
         run_result *r = calloc(1, sizeof *r);
         if (!r) {
             failures = -1;

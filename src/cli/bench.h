@@ -16,7 +16,8 @@
  * ll-insertion, ll-bma, ll-merge) or a
  * parameter after a colon: NAME:K sets the layers of an algorithm that reads
  * them (kbuffer:16), NAME:MOMENTS its moments (mboit:power6), NAME:N the
- * samples of one that reads them (stochastic:16). The label is
+ * samples of one that reads them (stochastic:16), NAME:R the rank of one
+ * that reads --wavelet-rank (wavelet:2). The label is
  * the text as given. */
 typedef struct bench_algorithm {
     char label[48];
@@ -25,6 +26,7 @@ typedef struct bench_algorithm {
     int layers;          /* 0: the scene's --layers */
     oit_moments moments; /* OIT_MOMENTS_DEFAULT: the scene's --moments */
     int samples;         /* 0: the scene's --samples (NAME:N of an algorithm reading OIT_OPTION_SAMPLES) */
+    int wavelet_rank;    /* 0: the scene's --wavelet-rank */
 } bench_algorithm;
 
 /* What the bench's command line asks for. */

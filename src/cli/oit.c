@@ -218,6 +218,10 @@ static void print_render_help(FILE *out)
             OIT_LAYERS_DEFAULT);
     fprintf(out, "  --moments M            %s: power4, power6 or trig3 (default power4)\n",
             algorithms_reading(OIT_OPTION_MOMENTS, reading, sizeof reading));
+    fprintf(out, "  --wavelet-rank R       %s: the Haar basis' rank, 1..%d (default %d): 2^(R+1) coefficients\n"
+                 "                         per pixel (4, 8 or 16)\n",
+            algorithms_reading(OIT_OPTION_WAVELET_RANK, reading, sizeof reading), OIT_WAVELET_RANK_MAX,
+            OIT_WAVELET_RANK_DEFAULT);
     fprintf(out, "  --seed S               %s: the seed of the coverage masks, 0..4294967295 (default 0)\n"
                  "  --stochastic-masks M   %s: stratified (default: exactly round(alpha N) of the N samples)\n"
                  "                         or independent (each sample with probability alpha)\n",

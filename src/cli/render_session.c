@@ -310,6 +310,15 @@ int parse_render_option(int argc, char **argv, int *i, render_options *o, oit_er
         int moments;
         CHECK(oit_setting_parse(OIT_SETTING_MOMENTS, value, &moments, err));
         o->config.moments = (oit_moments)moments;
+    } else if (strcmp(flag, "--wavelet-rank") == 0) {
+        NEED_VALUE();
+        long rank;
+        if (!parse_int(value, 1, OIT_WAVELET_RANK_MAX, &rank)) {
+            *status = oit_fail(err, OIT_E_INPUT, "--wavelet-rank must be a whole number from 1 to %d, got '%s'",
+                               OIT_WAVELET_RANK_MAX, value);
+            return -1;
+        }
+        o->config.wavelet_rank = (int)rank;
     } else if (strcmp(flag, "--fragment-pool") == 0) {
         NEED_VALUE();
         long capacity;

@@ -9,12 +9,12 @@
 /* Each algorithm's table (alg_<name>.c): one line here and one in the registry. */
 extern const oit_algorithm_ops oit_algorithm_blend, oit_algorithm_dp, oit_algorithm_ddp, oit_algorithm_ll,
     oit_algorithm_ib, oit_algorithm_wboit, oit_algorithm_kbuffer, oit_algorithm_hybrid, oit_algorithm_mlab,
-    oit_algorithm_mboit, oit_algorithm_stochastic;
+    oit_algorithm_mboit, oit_algorithm_wavelet, oit_algorithm_stochastic;
 
 static const oit_algorithm_ops *const registry[] = {
     &oit_algorithm_blend, &oit_algorithm_dp,    &oit_algorithm_ddp,
     &oit_algorithm_ll,    &oit_algorithm_ib,    &oit_algorithm_wboit, &oit_algorithm_kbuffer,
-    &oit_algorithm_hybrid, &oit_algorithm_mlab,  &oit_algorithm_mboit, &oit_algorithm_stochastic, &oit_algorithm_reference,
+    &oit_algorithm_hybrid, &oit_algorithm_mlab,  &oit_algorithm_mboit, &oit_algorithm_wavelet, &oit_algorithm_stochastic, &oit_algorithm_reference,
 };
 
 const oit_algorithm_ops *const *oit_algorithm_list(size_t *count)
@@ -55,6 +55,10 @@ oit_status oit_algorithm_create(const oit_algorithm_ops *ops, const oit_algorith
         config->ll_sort != OIT_LL_SORT_BMA && config->ll_sort != OIT_LL_SORT_MERGE)
         return oit_fail(err, OIT_E_INPUT, "%s: config.ll_sort %d is not insertion, array, bma or merge", ops->name,
                         (int)config->ll_sort);
+    if (oit_algorithm_reads(ops, OIT_OPTION_WAVELET_RANK) &&
+        (config->wavelet_rank < 0 || config->wavelet_rank > OIT_WAVELET_RANK_MAX))
+        return oit_fail(err, OIT_E_INPUT, "%s: config.wavelet_rank %d outside 1..%d (0: the default %d)", ops->name,
+                        config->wavelet_rank, OIT_WAVELET_RANK_MAX, OIT_WAVELET_RANK_DEFAULT);
     if (oit_algorithm_reads(ops, OIT_OPTION_SEED) &&
         (config->stochastic_masks < OIT_STOCHASTIC_DEFAULT || config->stochastic_masks > OIT_STOCHASTIC_INDEPENDENT))
         return oit_fail(err, OIT_E_INPUT, "%s: config.stochastic_masks %d is not stratified or independent",

@@ -15,6 +15,7 @@ const char *oit_option_flags(unsigned option)
     case OIT_OPTION_FRAGMENT_POOL: return "--fragment-pool --fragment-counter-start --buffer-fragment-limit";
     case OIT_OPTION_MAX_MEMORY: return "--max-memory";
     case OIT_OPTION_LOCKS_HELD: return "--locks-held";
+    case OIT_OPTION_WAVELET_RANK: return "--wavelet-rank";
     case OIT_OPTION_SEED: return "--seed --stochastic-masks";
     case OIT_OPTION_SAMPLES: return "--samples";
     default: return NULL;

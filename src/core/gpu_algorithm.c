@@ -189,9 +189,9 @@ oit_status oit_gpu_framebuffer(const oit_gpu_algorithm *gpu, GLuint *framebuffer
                                const GLuint *colour, int colour_count, GLuint depth, int width, int height,
                                oit_error *err)
 {
-    GLenum draw[4];
-    if (colour_count < 0 || colour_count > 4)
-        return oit_fail(err, OIT_E_RUNTIME, "%s: the %s framebuffer has %d colour targets (at most 4)", gpu->name,
+    GLenum draw[8]; /* GL 4.3 promises 8 draw buffers */
+    if (colour_count < 0 || colour_count > 8)
+        return oit_fail(err, OIT_E_RUNTIME, "%s: the %s framebuffer has %d colour targets (at most 8)", gpu->name,
                         what, colour_count);
     if (!*framebuffer)
         glGenFramebuffers(1, framebuffer);

@@ -91,7 +91,7 @@ oit_status oit_gpu_check_framebuffer(const oit_gpu_algorithm *gpu, const char *w
 /* A framebuffer drawing to colour[i] at GL_COLOR_ATTACHMENTi (GL_NONE where
  * colour[i] is 0) and depth-testing against `depth` (none if 0): created
  * into *framebuffer unless it holds one already (then re-attached), left
- * bound, and checked as oit_gpu_check_framebuffer(WHAT). At most 4 colours. */
+ * bound, and checked as oit_gpu_check_framebuffer(WHAT). At most 8 colours. */
 oit_status oit_gpu_framebuffer(const oit_gpu_algorithm *gpu, GLuint *framebuffer, const char *what,
                                const GLuint *colour, int colour_count, GLuint depth, int width, int height,
                                oit_error *err);

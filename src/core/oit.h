@@ -859,6 +859,13 @@ typedef enum oit_stochastic_masks {
 /* stochastic: the samples per pixel when the frame's samples is 0 (not given) */
 #define OIT_STOCHASTIC_SAMPLES_DEFAULT 8
 
+/* wavelet: the rank R of its Haar basis (oit_algorithm_config.wavelet_rank,
+ * --wavelet-rank): 2^(R+1) coefficients per pixel; 0 in the config means the
+ * default. The most equals shaders/common/oit_shared.h's OIT_WAVELET_RANK_MAX
+ * (alg_wavelet.c asserts it). */
+#define OIT_WAVELET_RANK_DEFAULT 3
+#define OIT_WAVELET_RANK_MAX 3
+
 /* mboit: which moments of the optical depth it keeps (Muenstermann et al. 2018) */
 typedef enum oit_moments {
     OIT_MOMENTS_DEFAULT = 0, /* power 4 */
@@ -903,6 +910,7 @@ typedef struct oit_algorithm_config {
     /* stochastic: the seed of its coverage masks and how they are drawn */
     uint32_t seed;
     oit_stochastic_masks stochastic_masks;
+    int wavelet_rank; /* wavelet: 1..OIT_WAVELET_RANK_MAX, 0: OIT_WAVELET_RANK_DEFAULT; others ignore it */
     /* tests only (false normally): mlab's clear leaves every pixel's lock taken,
      * as if a fragment outside the frame held it, so every fragment spins to its
      * cap (OIT_MLAB_LOCK_TRIES) and gives up, and the frame must fail naming them */
@@ -980,6 +988,7 @@ enum {
                                             --buffer-fragment-limit */
     OIT_OPTION_MAX_MEMORY = 1u << 5,     /* --max-memory */
     OIT_OPTION_LOCKS_HELD = 1u << 6,     /* --locks-held (tests) */
+    OIT_OPTION_WAVELET_RANK = 1u << 7,   /* --wavelet-rank */
     OIT_OPTION_SEED = 1u << 8,           /* --seed, --stochastic-masks */
     /* --samples read by the algorithm itself as its samples per pixel, in one
      * render (0: its own default), instead of the central supersampling */

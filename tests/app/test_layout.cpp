@@ -155,7 +155,7 @@ private slots:
             return oit_algorithm_reads(oit_algorithm_find(algorithm.toUtf8().constData()), option);
         };
         std::map<QString, QWidget *> all = rows();
-        for (const char *name : {"algorithm", "sort", "layer cap", "layers", "moments", "memory budget", "shading",
+        for (const char *name : {"algorithm", "sort", "layer cap", "layers", "moments", "wavelet rank", "memory budget", "shading",
                                  "modulation", "curvature effect", "distance", "skip K", "fields", "neighbours",
                                  "epsilon max", "halo colour", "view", "N / layer L", "edge view"})
             QVERIFY2(all.count(name), name);
@@ -170,6 +170,7 @@ private slots:
                 {"layer cap", reads(algorithm, OIT_OPTION_MAX_LAYERS)},
                 {"layers", reads(algorithm, OIT_OPTION_LAYERS)},
                 {"moments", reads(algorithm, OIT_OPTION_MOMENTS)},
+                {"wavelet rank", reads(algorithm, OIT_OPTION_WAVELET_RANK)},
                 {"memory budget", reads(algorithm, OIT_OPTION_MAX_MEMORY)},
                 {"modulation", renders("modulation:curvature", algorithm) || renders("modulation:distance", algorithm) ||
                                    renders("modulation:fields", algorithm) || renders("modulation:edges", algorithm)},

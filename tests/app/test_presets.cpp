@@ -33,6 +33,7 @@ void every_field_changed(RenderSettings &s, Camera &c)
     s.config.max_layers = 5;
     s.config.layers = 4;
     s.config.moments = OIT_MOMENTS_POWER6;
+    s.config.wavelet_rank = 2;
     s.config.seed = 7;
     s.config.stochastic_masks = OIT_STOCHASTIC_INDEPENDENT;
     s.alpha = 0.3f;
@@ -117,7 +118,7 @@ QStringList differences(const RenderSettings &a, const RenderSettings &b)
 {
     QStringList out;
     SAME(algorithm) SAME(config.max_memory_bytes) SAME(config.ll_sort) SAME(config.max_layers) SAME(config.layers)
-    SAME(config.moments) SAME(config.seed) SAME(config.stochastic_masks) SAME(alpha) SAME(shading) SAME_ARRAY(background, 3)
+    SAME(config.moments) SAME(config.wavelet_rank) SAME(config.seed) SAME(config.stochastic_masks) SAME(alpha) SAME(shading) SAME_ARRAY(background, 3)
     SAME(modulation.view) SAME(modulation.view_parameter) SAME(modulation.mode) SAME(modulation.neighbours)
     SAME(modulation.curvature_neighbours) SAME(modulation.curvature_effect) SAME(modulation.focus_region)
     SAME(modulation.distance) SAME(modulation.distance_skip) SAME(modulation.fields)
@@ -170,9 +171,9 @@ private slots:
         Camera default_camera;
         // every field really is away from its default (else the test proves nothing for it)
         QStringList changed_fields = differences(changed, defaults);
-        // 57 comparisons (arrays element by element), all but import.tessellation
+        // 58 comparisons (arrays element by element), all but import.tessellation
         // (the deflection stands for it) and axes (on by default; the corner stands for it)
-        QVERIFY2(changed_fields.size() == 57 && !changed_fields.contains("import.tessellation"),
+        QVERIFY2(changed_fields.size() == 58 && !changed_fields.contains("import.tessellation"),
                  qPrintable(changed_fields.join(", ")));
         QCOMPARE(camera_differences(camera, default_camera).size(), 8);
 
