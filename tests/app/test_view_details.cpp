@@ -210,7 +210,7 @@ private slots:
     {
         size_t count = 0;
         const oit_algorithm_ops *const *list = oit_algorithm_list(&count);
-        QCOMPARE(int(count), 11);
+        QVERIFY2(count >= 13, "the registry lists every algorithm (13 with adaptive)");
         for (size_t i = 0; i < count; ++i) {
             QString text = QString::fromStdString(algorithm_summary(*list[i]));
             QString word = list[i]->exact ? "exact" : "approximate";
