@@ -11,7 +11,7 @@
 # tracker). Then, from those enumerated bytes alone:
 # - per pixel: two image sizes (same pool) give the bytes per pixel, which
 #   bytes_per_pixel must equal; algorithms without a pool hold nothing else;
-# - per fragment (ll, ib): two pool capacities that both hold the frame give
+# - per fragment (ll, ib, adaptive: those reading --fragment-pool): two pool capacities that both hold the frame give
 #   the bytes per fragment, which bytes_per_fragment must equal; a pool forced
 #   small (--fragment-pool) must grow, and the memory must rise by at least
 #   (fragments - initial capacity) x those bytes over what the small pool held.
@@ -95,6 +95,9 @@ else:
     listed = json.loads(subprocess.run([oit, "algorithms", "--json"], capture_output=True, text=True,
                                        check=True).stdout)
     gpu_algorithms = [(a["name"],) for a in listed if a["uses_gl"]]
+    # the algorithms with a fragment pool (ll, ib, adaptive on ll's lists): those reading --fragment-pool
+    pooled = [a["name"] for a in listed if a["uses_gl"] and "--fragment-pool" in a.get("options", [])]
+    check({"ll", "ib"} <= set(pooled), f"ll and ib read --fragment-pool ({pooled})")
     check(len(gpu_algorithms) >= 10, f"oit algorithms --json lists {len(gpu_algorithms)} GPU algorithms")
     variants = gpu_algorithms + [
                 ("ll", "--sort", "array"), ("dp", "--modulation", "distance"),
@@ -121,9 +124,9 @@ else:
     pool = ("--fragment-pool", str(2 * fragments))
     for algorithm, *variant in gpu_algorithms + [("mboit", "--moments", "power6"), ("mboit", "--moments", "trig3"),
                                                  ("wavelet", "--wavelet-rank", "1"), ("wavelet", "--wavelet-rank", "2")]:
-        args = pool if algorithm in ("ll", "ib") else tuple(variant)
+        args = pool if algorithm in pooled else tuple(variant)
         big, small = render(algorithm, SIZE, *args), render(algorithm, SMALL, *args)
-        if algorithm in ("ll", "ib"):
+        if algorithm in pooled:
             check(big["overflow_retries"] == 0 and small["overflow_retries"] == 0,
                   f"{algorithm}: the pool of {2 * fragments} holds both sizes")
         for d in (big, small):
@@ -153,12 +156,12 @@ else:
             fixed = big["gl_allocated_bytes"] - pixels(SIZE) * per_pixel - FRAME_BLOCK
             check(0 < fixed <= 64, f"mlab: {fixed:g} bytes beside the per-pixel ones and the frame block "
                                    f"(its counters)")
-        elif algorithm not in ("ll", "ib"):
+        elif algorithm not in pooled:
             check(big["gl_allocated_bytes"] == pixels(SIZE) * per_pixel + FRAME_BLOCK,
                   f"{algorithm}: everything it holds is per pixel (output included) but the frame block")
 
     # per fragment: two pool capacities that both hold the frame
-    for algorithm in ("ll", "ib"):
+    for algorithm in pooled:
         c1, c2 = fragments + 1000, fragments + 6000
         one = render(algorithm, SIZE, "--fragment-pool", str(c1))
         two = render(algorithm, SIZE, "--fragment-pool", str(c2))

@@ -62,10 +62,17 @@ vec4 ll_node_colour(uvec4 node)
 }
 
 // The depth order every algorithm uses: window depth, then triangle index, so
-// fragments at equal depth always come in the same order.
+// fragments at equal depth always come in the same order. With
+// LL_ORDER_PRIMITIVE (adaptive's sort, linked_lists.h) the sorts order by
+// triangle index, then depth instead: the order the draw call submits the
+// fragments in, whatever order the fill's atomics ran in.
 bool ll_in_front(float depth_a, uint triangle_a, float depth_b, uint triangle_b)
 {
+#if defined(LL_ORDER_PRIMITIVE) && LL_ORDER_PRIMITIVE
+    return triangle_a < triangle_b || (triangle_a == triangle_b && depth_a < depth_b);
+#else
     return depth_a < depth_b || (depth_a == depth_b && triangle_a < triangle_b);
+#endif
 }
 
 // Insertion sort done on the list itself (thesis algorithm 10): takes the nodes

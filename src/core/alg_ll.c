@@ -1,6 +1,11 @@
 /*
  * alg_ll.c: per-pixel linked lists (Yang et al. 2010; thesis 3.1.4 and 4.3.3).
  *
+ * The lists are a family (linked_lists.h): everything below but the last pass
+ * is shared with adaptive (alg_adaptive.c), whose member sorts each list into
+ * primitive order and resolves it with its own shader; "compose" below is
+ * ll's resolve, and the messages name the member.
+ *
  * GPU data (layouts in oit_shared.h, GLSL declarations in shaders/ll/ll_nodes.glsl):
  *   head image    r32ui, one per pixel, OIT_IMAGE_LIST_HEAD: first node of the pixel's list
  *   nodes         uvec4 per node, OIT_SSBO_FRAGMENT_NODES: colour (RGBA16), depth, triangle
@@ -57,6 +62,7 @@
 #include "capabilities.h"
 #include "fragment_pool.h"
 #include "gpu_algorithm.h"
+#include "linked_lists.h"
 
 /* The pool's buffers: the node and its two next pointers per fragment. */
 enum { LL_NODES, LL_NEXT, LL_SORTED_NEXT, LL_POOL_BUFFERS };
@@ -73,6 +79,8 @@ static const char *const ll_variant_defines[LL_VARIANT_COUNT] = {
 
 typedef struct ll_state {
     oit_gpu_algorithm gpu; /* first: configuration, output, memory, timer, statistics, programs */
+    const linked_lists_resolve *resolve; /* the member: ll's own, or adaptive's (linked_lists.h) */
+    char resolve_defines[LL_VARIANT_COUNT][160]; /* the variants' defines and the member's */
 
     /* fill and compose in two variants (common/variants.glsl): [LL_PLAIN] the
      * colour image without the distance modulation, compiled at create;
@@ -98,7 +106,7 @@ static ll_state *ll_from(oit_algorithm *alg) { return (ll_state *)alg; }
 
 /* --------------------------------------------------------------- create */
 
-static void ll_destroy(oit_algorithm *alg)
+void linked_lists_destroy(oit_algorithm *alg)
 {
     ll_state *s = ll_from(alg);
     if (!s)
@@ -121,47 +129,58 @@ static oit_status ll_programs(ll_state *s, int variant, GLuint *fill, GLuint *co
                                         ll_variant_defines[variant], &s->fill_programs[variant],
                                         err);
     if (status == OIT_OK && !s->compose_programs[variant])
-        status = oit_gpu_program_variant(&s->gpu, "common/fullscreen.vert", "ll/compose.frag",
-                                        ll_variant_defines[variant],
+        status = oit_gpu_program_variant(&s->gpu, "common/fullscreen.vert", s->resolve->resolve_shader,
+                                        s->resolve_defines[variant][0] ? s->resolve_defines[variant] : NULL,
                                         &s->compose_programs[variant], err);
     *fill = s->fill_programs[variant];
     *compose = s->compose_programs[variant];
     return status;
 }
 
-static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **out,
-                            oit_error *err)
+oit_status linked_lists_create(const linked_lists_resolve *resolve, const oit_algorithm_config *config,
+                               oit_algorithm **out, oit_error *err)
 {
     *out = NULL;
     if (!GLEW_VERSION_4_4 && !GLEW_ARB_clear_texture)
         return oit_fail(err, OIT_E_RUNTIME,
-                        "ll: needs OpenGL 4.4 or GL_ARB_clear_texture to clear the list heads");
+                        "%s: needs OpenGL 4.4 or GL_ARB_clear_texture to clear the list heads",
+                        resolve->algorithm);
     oit_gpu_algorithm *gpu;
-    oit_status status = oit_gpu_create(sizeof(ll_state), "ll", config, &gpu, err);
+    oit_status status = oit_gpu_create(sizeof(ll_state), resolve->algorithm, config, &gpu, err);
     if (status != OIT_OK)
         return status;
     ll_state *s = (ll_state *)gpu;
+    s->resolve = resolve;
+    for (int variant = 0; variant < LL_VARIANT_COUNT; ++variant) {
+        int n = snprintf(s->resolve_defines[variant], sizeof s->resolve_defines[variant], "%s",
+                         ll_variant_defines[variant] ? ll_variant_defines[variant] : "");
+        if (resolve->layers)
+            snprintf(s->resolve_defines[variant] + n, sizeof s->resolve_defines[variant] - (size_t)n,
+                     "#define LL_RESOLVE_LAYERS %d\n",
+                     config->layers ? config->layers : OIT_APPROX_LAYERS_DEFAULT); /* checked: oit_algorithm_create */
+    }
 
-    const char *sort_shader = config->ll_sort == OIT_LL_SORT_LOCAL_ARRAY ? "ll/sort_local_array.frag"
-                              : config->ll_sort == OIT_LL_SORT_BMA ||
-                                        config->ll_sort == OIT_LL_SORT_MERGE
+    const oit_ll_sort sort = resolve->sort_option ? config->ll_sort : OIT_LL_SORT_MERGE;
+    const char *sort_shader = sort == OIT_LL_SORT_LOCAL_ARRAY ? "ll/sort_local_array.frag"
+                              : sort == OIT_LL_SORT_BMA || sort == OIT_LL_SORT_MERGE
                                   ? "ll/sort_bma.frag"
                                   : "ll/sort_insertion.frag";
+    char sort_defines[96];
+    snprintf(sort_defines, sizeof sort_defines, "%s%s",
+             sort == OIT_LL_SORT_MERGE ? "#define LL_BMA_NO_ARRAYS 1\n" : "",
+             resolve->depth_order ? "" : "#define LL_ORDER_PRIMITIVE 1\n");
     GLuint unused;
     status = ll_programs(s, LL_PLAIN, &unused, &unused, err);
     if (status == OIT_OK)
         status = oit_gpu_program_variant(&s->gpu, "common/fullscreen.vert", sort_shader,
-                                         config->ll_sort == OIT_LL_SORT_MERGE
-                                             ? "#define LL_BMA_NO_ARRAYS 1\n"
-                                             : NULL,
-                                         &s->sort_program, err);
+                                         sort_defines[0] ? sort_defines : NULL, &s->sort_program, err);
     if (status != OIT_OK) {
-        ll_destroy((oit_algorithm *)s);
+        linked_lists_destroy((oit_algorithm *)s);
         return status;
     }
 
     s->pool = (oit_fragment_pool){
-        .algorithm = "ll",
+        .algorithm = resolve->algorithm,
         .gl_binding = "one shader storage buffer or buffer texture",
         .gl_binding_note = "; GL_MAX_SHADER_STORAGE_BLOCK_SIZE, GL_MAX_TEXTURE_BUFFER_SIZE",
         .memory = &s->gpu.memory,
@@ -191,10 +210,10 @@ static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **
                               s->counter_buffer, OIT_LL_COUNTER_COUNT * sizeof(GLuint), NULL,
                               GL_DYNAMIC_READ);
 
-    return oit_gpu_created(&s->gpu, status, ll_destroy, out, err);
+    return oit_gpu_created(&s->gpu, status, linked_lists_destroy, out, err);
 }
 
-static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error *err)
+oit_status linked_lists_resize(oit_algorithm *alg, int width, int height, oit_error *err)
 {
     ll_state *s = ll_from(alg);
     oit_status status = oit_gl_output_resize(&s->gpu.output, width, height, err);
@@ -218,7 +237,9 @@ static oit_status ll_resize(oit_algorithm *alg, int width, int height, oit_error
         if (status != OIT_OK)
             return status;
     }
-    return oit_gl_check("ll resize", err);
+    char what[64];
+    snprintf(what, sizeof what, "%s resize", s->resolve->algorithm);
+    return oit_gl_check(what, err);
 }
 
 /* --------------------------------------------------------------- render */
@@ -306,7 +327,7 @@ static oit_status ll_add_counts(ll_state *s, uint64_t needed, ll_counts *sum, oi
         psi_pixels = counters[OIT_LL_COUNTER_PSI_PIXELS]; /* compose counted them */
     /* the fill stored nodes fragment_counter_start..needed - 1 (0 but in tests) */
     const uint64_t stored = needed - s->gpu.config.fragment_counter_start;
-    oit_status status = oit_gl_check_sorted_fragments("ll", stored, sorted, err);
+    oit_status status = oit_gl_check_sorted_fragments(s->resolve->algorithm, stored, sorted, err);
     if (status != OIT_OK)
         return status;
     sum->counted += needed;
@@ -356,9 +377,11 @@ static oit_status ll_sort_and_compose(ll_state *s, GLuint compose_program,
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(compose_program);
-    glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, auto_region ? 2 : 0);
-    glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view); /* numbers of OIT_LL_VIEW_* */
-    glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
+    if (s->resolve->views) { /* a member's own resolve has none of these (linked_lists.h) */
+        glUniform1i(OIT_UNIFORM_LL_DISTANCE_PASS, auto_region ? 2 : 0);
+        glUniform1i(OIT_UNIFORM_LL_VIEW, (GLint)frame->modulation.view); /* numbers of OIT_LL_VIEW_* */
+        glUniform1i(OIT_UNIFORM_LL_VIEW_PARAMETER, frame->modulation.view_parameter);
+    }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     if (clear) {
         /* compose discards the empty pixels (LL_EMPTY_PIXEL_DISCARD in ll_nodes.glsl) */
@@ -381,7 +404,7 @@ static oit_status ll_fill_and_count(ll_state *s, GLuint fill_program, const oit_
     oit_status status = oit_gpu_stage_check(&s->gpu, "fill", err);
     if (status != OIT_OK)
         return status;
-    return oit_gl_check_frame_fragments("ll", *needed, s->gpu.config.fragment_counter_start, err);
+    return oit_gl_check_frame_fragments(s->resolve->algorithm, *needed, s->gpu.config.fragment_counter_start, err);
 }
 
 static bool ll_bands_allowed(const oit_frame_settings *frame)
@@ -411,10 +434,10 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
                              !(frame->modulation.focus_region > 0.0f);
     if (!ll_bands_allowed(frame))
         return oit_fail(err, OIT_E_RUNTIME,
-                        "ll: the frame needs %llu fragments, more than this GL can address in "
+                        "%s: the frame needs %llu fragments, more than this GL can address in "
                         "one shader storage buffer or buffer texture (%llu); it could be drawn in "
                         "bands of rows, but not with %s, which needs the whole frame's figures",
-                        (unsigned long long)frame_needed, (unsigned long long)s->pool.gl_limit,
+                        s->resolve->algorithm, (unsigned long long)frame_needed, (unsigned long long)s->pool.gl_limit,
                         auto_region ? "the distance modulation's automatic region"
                                     : "the heat map view");
     oit_status status = OIT_OK;
@@ -426,7 +449,7 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
     }
     const int height = s->gpu.output.height, width = s->gpu.output.width;
     oit_band_walk walk; /* from the last frame's bands when frame_needed is 0 */
-    status = oit_bands_begin(&walk, &s->band_plan, height, 0, frame_needed, s->pool.capacity, "ll",
+    status = oit_bands_begin(&walk, &s->band_plan, height, 0, frame_needed, s->pool.capacity, s->resolve->algorithm,
                              err);
     if (status != OIT_OK)
         return status;
@@ -450,9 +473,9 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
         if (needed > s->pool.capacity) {
             if (!oit_bands_halve(&walk, &band)) {
                 status = oit_fail(err, OIT_E_RUNTIME,
-                                  "ll: row %d of the image alone needs %llu fragments, more than "
+                                  "%s: row %d of the image alone needs %llu fragments, more than "
                                   "this GL can address in one buffer (%llu)",
-                                  band.first, (unsigned long long)needed,
+                                  s->resolve->algorithm, band.first, (unsigned long long)needed,
                                   (unsigned long long)s->pool.capacity);
                 break;
             }
@@ -474,14 +497,14 @@ static oit_status ll_render_bands(ll_state *s, GLuint fill_program, GLuint compo
     return status;
 }
 
-static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
-                            const oit_frame_settings *frame, oit_error *err)
+oit_status linked_lists_render(oit_algorithm *alg, const oit_scene *scene,
+                               const oit_frame_settings *frame, oit_error *err)
 {
     ll_state *s = ll_from(alg);
     oit_status status;
     if (frame->width != s->gpu.output.width || frame->height != s->gpu.output.height ||
         !s->head_image) {
-        status = ll_resize(alg, frame->width, frame->height, err);
+        status = linked_lists_resize(alg, frame->width, frame->height, err);
         if (status != OIT_OK)
             return status;
     }
@@ -534,9 +557,9 @@ static oit_status ll_render(oit_algorithm *alg, const oit_scene *scene,
             break;
         if (retries + 1 >= LL_MAX_FILLS) {
             status = oit_fail(err, OIT_E_RUNTIME,
-                              "ll: the frame still needs %llu fragments after growing the pool to "
+                              "%s: the frame still needs %llu fragments after growing the pool to "
                               "%llu",
-                              (unsigned long long)needed, (unsigned long long)s->pool.capacity);
+                              s->resolve->algorithm, (unsigned long long)needed, (unsigned long long)s->pool.capacity);
             goto failed;
         }
         if (needed > s->pool.gl_limit && needed <= oit_pool_budget(&s->pool))
@@ -610,6 +633,19 @@ static const oit_capabilities ll_capabilities = {
     .options = OIT_OPTION_SORT | OIT_OPTION_FRAGMENT_POOL | OIT_OPTION_MAX_MEMORY,
 };
 
+static const linked_lists_resolve ll_resolve = {
+    .algorithm = "ll",
+    .resolve_shader = "ll/compose.frag",
+    .depth_order = true,
+    .sort_option = true,
+    .views = true,
+};
+
+static oit_status ll_create(const oit_algorithm_config *config, oit_algorithm **out, oit_error *err)
+{
+    return linked_lists_create(&ll_resolve, config, out, err);
+}
+
 const oit_algorithm_ops oit_algorithm_ll = {
     .name = "ll",
     .summary = "per-pixel linked lists: one geometry pass, then sort and compose per pixel",
@@ -617,10 +653,10 @@ const oit_algorithm_ops oit_algorithm_ll = {
     .exact = true,
     .capabilities = &ll_capabilities,
     .create = ll_create,
-    .resize = ll_resize,
-    .render = ll_render,
+    .resize = linked_lists_resize,
+    .render = linked_lists_render,
     .read_image = oit_gpu_read_image,
     .stats = oit_gpu_stats,
     .accumulate = oit_gpu_accumulate,
-    .destroy = ll_destroy,
+    .destroy = linked_lists_destroy,
 };

@@ -9,12 +9,13 @@
 /* Each algorithm's table (alg_<name>.c): one line here and one in the registry. */
 extern const oit_algorithm_ops oit_algorithm_blend, oit_algorithm_dp, oit_algorithm_ddp, oit_algorithm_ll,
     oit_algorithm_ib, oit_algorithm_wboit, oit_algorithm_kbuffer, oit_algorithm_hybrid, oit_algorithm_mlab,
-    oit_algorithm_mboit, oit_algorithm_wavelet, oit_algorithm_stochastic;
+    oit_algorithm_mboit, oit_algorithm_wavelet, oit_algorithm_stochastic, oit_algorithm_adaptive;
 
 static const oit_algorithm_ops *const registry[] = {
     &oit_algorithm_blend, &oit_algorithm_dp,    &oit_algorithm_ddp,
     &oit_algorithm_ll,    &oit_algorithm_ib,    &oit_algorithm_wboit, &oit_algorithm_kbuffer,
-    &oit_algorithm_hybrid, &oit_algorithm_mlab,  &oit_algorithm_mboit, &oit_algorithm_wavelet, &oit_algorithm_stochastic, &oit_algorithm_reference,
+    &oit_algorithm_hybrid, &oit_algorithm_mlab,  &oit_algorithm_mboit, &oit_algorithm_wavelet,
+    &oit_algorithm_stochastic, &oit_algorithm_adaptive, &oit_algorithm_reference,
 };
 
 const oit_algorithm_ops *const *oit_algorithm_list(size_t *count)
