@@ -855,21 +855,13 @@ static int command_demo(int argc, char **argv)
         char path[4400];
         snprintf(path, sizeof path, "%s/%s.png", out_dir, list[i]->name);
         status = oit_png_write(path, &r.image, &err);
-        /* stochastic reads --samples as its own samples at the pixel centre: with
-         * anti-aliasing asked for, its reference is the one at the pixel centre */
+        /* stochastic's --samples are its own, at the pixel centre: so is its reference */
         bool own_samples = oit_algorithm_reads(list[i], OIT_OPTION_SAMPLES) && o.samples > 1;
-        if (status == OIT_OK && own_samples && !centre_reference.rgba) {
-            render_options centre = ref_options;
-            centre.samples = 0;
-            render_result centre_result;
-            status = render_frames(&s, &centre, &centre_result, &err);
-            if (status == OIT_OK)
-                centre_reference = centre_result.image;
-        }
+        if (status == OIT_OK && own_samples && !centre_reference.rgba)
+            status = render_centre_reference(&s, &ref_options, &centre_reference, &err);
         oit_image_diff diff = {0};
         if (status == OIT_OK)
-            status = oit_image_compare(&r.image, own_samples ? &centre_reference : &reference.image, 0, &diff,
-                                       &err);
+            status = oit_image_compare(&r.image, own_samples ? &centre_reference : &reference.image, 0, &diff, &err);
         if (status == OIT_OK) {
             char fragments[32] = "-";
             if (r.stats.fragments >= 0)

@@ -739,3 +739,14 @@ double stages_total(const oit_stats *stats)
         total += stats->stages[i].gpu_ms;
     return total;
 }
+
+oit_status render_centre_reference(session *s, const render_options *o, oit_image *out, oit_error *err)
+{
+    render_options centre = *o;
+    centre.samples = 0;
+    render_result result;
+    oit_status status = render_frames(s, &centre, &result, err);
+    if (status == OIT_OK)
+        *out = result.image;
+    return status;
+}

@@ -159,4 +159,7 @@ void warn_if_truncated(const char *what, const oit_algorithm_config *config, con
 void print_model_warnings(const oit_model *model);
 double stages_total(const oit_stats *stats);
 
+/* The frame of o (the reference, say) rendered at the pixel centre (--samples off). */
+oit_status render_centre_reference(session *s, const render_options *o, oit_image *out, oit_error *err);
+
 #endif
