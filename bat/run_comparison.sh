@@ -6,8 +6,10 @@
 #      -> BUILD/bench/results/bench.csv (+ .json); then every scene at 128x128, one frame,
 #      against the CPU reference -> accuracy.csv
 #   3b. the cost/quality map: every algorithm and parameter (kbuffer/hybrid/mlab k = 4/8/16, mboit
-#      power4/power6/trig3, stochastic N = 4/8/16) against the reference -> quality.json and quality-bundle/; the flicker
-#      of a slow orbit -> stability.json; nested spheres of growing depth -> depth_sweep.json
+#      power4/power6/trig3, wavelet rank 1/2/3, stochastic N = 4/8/16, adaptive k = 4/8/16) against the
+#      reference -> quality.json and quality-bundle/; the flicker of a slow orbit -> stability.json;
+#      nested spheres of growing depth -> depth_sweep.json
+#   3d. ll's four sorts (insertion, array, bma, merge) on the deepest views -> sorts.json
 #   3c. scale (bat/scale.py): the deepest scenes at 1920x1080 and 3840x2160, and a level-5 Menger
 #      sponge (13M triangles) at 600x600 and 1920x1080 -> scale.json
 #   4. the source's six measurements (bat/measure_*.sh) -> BUILD/bench/results/*.txt
@@ -106,7 +108,7 @@ set -e
 # The cost/quality map of the approximations (issue 12; bat/quality_map.py draws it): every
 # algorithm and parameter on every scene against the reference, with a bundle of the images;
 # the flicker of a slow orbit on a few scenes; and a depth sweep over nested spheres.
-quality_algorithms=blend,wboit,kbuffer:4,kbuffer:8,kbuffer:16,hybrid:4,hybrid:8,hybrid:16,mlab:4,mlab:8,mlab:16,mboit:power4,mboit:power6,mboit:trig3,stochastic:4,stochastic:8,stochastic:16,ll,dp
+quality_algorithms=blend,wboit,kbuffer:4,kbuffer:8,kbuffer:16,hybrid:4,hybrid:8,hybrid:16,mlab:4,mlab:8,mlab:16,mboit:power4,mboit:power6,mboit:trig3,wavelet:1,wavelet:2,wavelet:3,stochastic:4,stochastic:8,stochastic:16,adaptive:4,adaptive:8,adaptive:16,ll,dp
 quality_size=$accuracy_size
 stability_frames=24
 sweep_complexities="1 2 4 8 16 32"
@@ -130,10 +132,16 @@ for complexity in $sweep_complexities; do
     "$OIT" gen onion --complexity "$complexity" --out "$sweep_dir/onion$complexity.obj"
     echo "onion$complexity $sweep_dir/onion$complexity.obj" >>"$sweep_dir/scenes.txt"
 done
-"$OIT" bench --scene-list "$sweep_dir/scenes.txt" --algorithms ll,dp,kbuffer:8,hybrid:8,mlab:8,mboit:power4,stochastic:8,wboit \
+"$OIT" bench --scene-list "$sweep_dir/scenes.txt" --algorithms ll,dp,kbuffer:8,hybrid:8,mlab:8,adaptive:8,mboit:power4,wavelet:2,stochastic:8,wboit \
     --sizes "$quality_size" --frames 3 --warmup 1 --reference-max-pixels $((quality_size * quality_size)) --quiet \
     --json "$RESULTS/depth_sweep.json"
 if [ "$QUALITY_ONLY" = 0 ]; then
+    # Knowles' sorts against the plain ones (issue 30): the sort stage is what differs; the deepest
+    # views, where the lists are longest, are where a sort shows
+    step "ll's sorts on the deepest views -> sorts.json"
+    "$OIT" bench --scene-list "$SCENES" --scenes 'engine-longest,menger4-longest,spheres11-longest' \
+        --algorithms ll-insertion,ll-array,ll-bma,ll-merge "${bench_flags[@]}" --reference-max-pixels 0 --quiet \
+        --json "$RESULTS/sorts.json"
     step "scale: the deepest scenes at 1920x1080 and 3840x2160, a 13M-triangle sponge -> scale.json"
     python3 "$ROOT/bat/scale.py" --oit "$OIT" --results "$RESULTS" --scene-list "$SCENES" \
         --models "$BUILD/bench/models" "${quick[@]}"
