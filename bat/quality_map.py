@@ -382,3 +382,96 @@ def published_section(report, quality_rows, published, time_ms):
                 "Frame time relative to depth peeling on the same scene, as the papers published it "
                 "(docs/data/published_approximations.csv) and as measured here (a GPU against llvmpipe: "
                 "only the ratios compare).", "", *lines, "")
+
+
+def read_claims(path):
+    """docs/data/published_claims.csv: the papers' own claims (ratios, shares), quoted with their source."""
+    import csv
+
+    if not os.path.exists(path):
+        return []
+    return list(csv.DictReader(open(path, encoding="utf-8")))
+
+
+def _frame_ms(row):
+    value = row.get("gpu_ms")
+    return value.get("median") if isinstance(value, dict) else value
+
+
+def _sort_share(row):
+    stages = {s["name"]: s.get("median") for s in row.get("stages") or [] if isinstance(s, dict)}
+    total = sum(v for v in stages.values() if v)
+    return stages.get("sort", 0) / total if total and stages.get("sort") else None
+
+
+def _spread(values, percent=False):
+    values = sorted(values)
+    if not values:
+        return None
+    f = (lambda v: f"{100 * v:.0f}%") if percent else (lambda v: f"{v:.2f}x")
+    if len(values) == 1:
+        return f"{f(values[0])} (1 scene)"
+    return f"{f(values[0])}-{f(values[-1])} (median {f(statistics.median(values))}, {len(values)} scenes)"
+
+
+def claims_section(report, results, claims):
+    """The papers' claims (docs/data/published_claims.csv) beside the same ratio measured here: a
+    speed-up is the baseline's frame time over the method's, both from one bench run (side by side);
+    a sort share is the sort stage over the sum of the stages."""
+    if not claims:
+        return
+    runs = []  # (what, rows) per bench run that can hold the labels
+    for name, what in (("sorts.json", "ll's sorts run"), ("quality.json", "quality run")):
+        data = read_bench_json(os.path.join(results, name))
+        if data:
+            size = {f"{r.get('width')}x{r.get('height')}" for r in data.get("results", [])}
+            runs.append((f"{what}, {', '.join(sorted(size))}",
+                         [r for r in data.get("results", []) if not r.get("error") or isinstance(r.get("error"), dict)]))
+
+    def matches(label, algorithm):
+        return label == algorithm or label.startswith(algorithm + ":")
+
+    lines = ["| source | claim | theirs | ours: same ratio, range over scenes (run) |", "|---|---|---:|---|"]
+    for claim in claims:
+        low, high = claim["low"].strip(), claim["high"].strip()
+        share = "sort_share" in claim["measure"].split()
+        if not low and not high:
+            theirs = "no figure"
+        elif share:
+            theirs = f"{100 * float(low):.0f}-{100 * float(high):.0f}%" if low else f"up to {100 * float(high):.0f}%"
+        else:
+            theirs = f"{float(low):g}-{float(high):g}x" if low else f"up to {float(high):g}x"
+        ours = []
+        for what, rows in runs:
+            by = {}
+            for r in rows:
+                by.setdefault(r["algorithm"], {})[r["scene"]] = r
+            for label in sorted((x for x in by if matches(x, claim["algorithm"])), key=label_order):
+                if share:
+                    values = [v for v in map(_sort_share, by[label].values()) if v]
+                    text = _spread(values, percent=True)
+                    name = f"`{label}`'s sort"
+                else:
+                    base = by.get(claim["baseline"], {})
+                    values = [_frame_ms(base[s]) / _frame_ms(r) for s, r in by[label].items()
+                              if s in base and _frame_ms(base[s]) and _frame_ms(r)]
+                    text = _spread(values)
+                    name = f"`{claim['baseline']}` / `{label}`"
+                    if text and "memory" in claim["measure"].split():
+                        memory = [base[s]["memory_bytes"] / r["memory_bytes"] for s, r in by[label].items()
+                                  if s in base and base[s].get("memory_bytes") and r.get("memory_bytes")]
+                        if memory:
+                            text += f", memory {_spread(memory).split(' (')[0]}"
+                if text:
+                    ours.append(f"{name}: {text} ({what})")
+        claim_text = claim["claim"].replace("|", "/")
+        lines.append(f"| [{claim['source']}]({claim['url']}) ({claim['where']}) | {claim_text} | {theirs} | "
+                     f"{'<br>'.join(ours) if ours else 'not measured in this run'} |")
+    report.emit("### The papers' claims beside the same ratios here", "",
+                "What the papers of the newer methods claim in their abstracts (their tables were not "
+                "reachable here), quoted in docs/data/published_claims.csv, beside the same ratio from this "
+                "page's runs: a speed-up is the baseline's frame time over the method's (gpu median, both in "
+                "one run), a sort share the sort stage over the frame's stages, memory the baseline's bytes over the method's. Their figures are GPUs' "
+                "(with the occupancy and memory hierarchy the methods were built for), ours llvmpipe's: "
+                "[algorithms.md](algorithms.md) says for each method what carries over and why.", "",
+                *lines, "")

@@ -3,7 +3,9 @@
 
 Reads RESULTS/bench.csv (+ bench.json: renderer, back end, command), machine.json (the
 machine the benchmark ran on, written by bat/run_comparison.sh with `bat/pages.py machine`),
-accuracy.csv and the result files of bat/measure_*.sh, and the thesis's figures from SHARED
+accuracy.csv, sorts.json (ll's four sorts), quality.json/stability.json/depth_sweep.json (the
+cost/quality map, bat/quality_map.py, with docs/data/published_*.csv), the result files of
+bat/measure_*.sh, and the thesis's figures from SHARED
 (../shared beside the repository): its tables in data/*.csv, and from the thesis's and the
 paper's text (sources/) the figures no table holds (tables B.1-B.2, the GPU, the bytes per
 fragment). Writes DOCS/benchmarks.md and DOCS/images/bench-*.png (matplotlib). Every figure
@@ -425,6 +427,57 @@ class Report:
                   *table(["ratio", "ours", "thesis", "our scenes"], rows, ["---", "---:", "---:", "---:"]), "",
                   self.save(fig, "ratios"), "")
 
+    def ll_sorts(self):
+        """Knowles' sorts beside the plain ones (issue 30): sorts.json, run_comparison.sh step 3d."""
+        import quality_map
+
+        data = quality_map.read_bench_json(os.path.join(self.args.results, "sorts.json"))
+        if not data:
+            return
+        sorts = ["ll-insertion", "ll-array", "ll-bma", "ll-merge"]
+        by = {}
+        for r in data.get("results", []):
+            if not r.get("error"):
+                by.setdefault(r["scene"], {})[r["algorithm"]] = r
+        errors = sorted({f"`{r['algorithm']}` on {r['scene']}: {r['error']}" for r in data.get("results", [])
+                         if r.get("error")})
+
+        def stage(r, name):
+            return next((x.get("median") for x in r.get("stages") or [] if x.get("name") == name), None)
+
+        def frame(r):
+            return (r.get("gpu_ms") or {}).get("median")
+
+        rows = []
+        for scene, runs in by.items():
+            any_run = next(iter(runs.values()))
+            longest = f"{any_run.get('max_list')}, {any_run.get('mean_list', 0):.1f}"
+            rows.append([scene, longest] + [fmt(stage(runs[a], "sort")) if a in runs else "" for a in sorts]
+                        + [fmt(frame(runs[a])) if a in runs else "" for a in sorts])
+        ratio_lines = []
+        for a in ("ll-insertion", "ll-bma", "ll-merge"):
+            sort_ratio = [stage(v["ll-array"], "sort") / stage(v[a], "sort") for v in by.values()
+                          if a in v and "ll-array" in v and stage(v[a], "sort") and stage(v["ll-array"], "sort")]
+            frame_ratio = [frame(v["ll-array"]) / frame(v[a]) for v in by.values()
+                           if a in v and "ll-array" in v and frame(v[a]) and frame(v["ll-array"])]
+            if sort_ratio:
+                ratio_lines.append(f"- `{a}` against `ll-array`: sort stage {spread_text(sort_ratio, 2)} times as fast "
+                                   f"(median, range over the scenes), whole frame {spread_text(frame_ratio, 2)} times.")
+        width = {r.get("width") for r in data.get("results", [])}
+        self.emit("## ll's sorts: Knowles' against the plain ones", "",
+                  f"`{data.get('command', '?')}` (step 3d): the deepest views, all four sorts of `ll` in one run "
+                  f"at {', '.join(str(w) for w in sorted(width))} pixels square. `insertion` sorts each list in "
+                  "place, `array` in a private array sized for the longest list, `bma` groups the pixels by list "
+                  "length and sorts each group in an array of its size (Knowles et al. 2013) with register "
+                  "blocks, `merge` (the default) merges the register blocks in the list itself (after their "
+                  "register-based block sort, 2014). All four give the same image byte for byte "
+                  "(tests/ll_sort_bma.sh). Median ms of the sort stage, then of the whole frame; longest and "
+                  "mean list per scene. Why llvmpipe ranks them as it does: "
+                  "[algorithms.md](algorithms.md#ll-per-pixel-linked-lists-yang-et-al-2010).", "",
+                  *table(["scene", "longest, mean list"] + [f"sort `{a[3:]}`" for a in sorts]
+                         + [f"frame `{a[3:]}`" for a in sorts], rows), "",
+                  *ratio_lines, *(["", "Failed runs: " + "; ".join(errors)] if errors else []), "")
+
     def ib_stages(self):
         names = ["clear", "fill", "sort", "neighbours", "neighbours_epsilon", "compose"]
         rows, data = [], []
@@ -647,6 +700,8 @@ class Report:
             rows = [x for x in q.rows(q.quality) if q.time_ms(x)]
             quality_map.published_section(self, rows, quality_map.read_published(
                 os.path.join(ROOT, "docs", "data", "published_approximations.csv")), q.time_ms)
+        quality_map.claims_section(self, self.args.results, quality_map.read_claims(
+            os.path.join(ROOT, "docs", "data", "published_claims.csv")))
 
     def scale(self):
         """Screen sizes and the 13M-triangle model (bat/scale.py writes scale.json and renders it)."""
@@ -830,6 +885,7 @@ class Report:
         self.depth_complexity()
         self.frame_times()
         self.ratios_section()
+        self.ll_sorts()
         self.ib_stages()
         self.parallel()
         self.memory()
@@ -882,6 +938,8 @@ class QualitySection:
         rows = [x for x in q.rows(q.quality) if q.time_ms(x)]
         quality_map.published_section(self, rows, quality_map.read_published(
             os.path.join(ROOT, "docs", "data", "published_approximations.csv")), q.time_ms)
+        quality_map.claims_section(self, self.args.results, quality_map.read_claims(
+            os.path.join(ROOT, "docs", "data", "published_claims.csv")))
         machine_path = os.path.join(self.args.results, "machine.json")
         machine = json.load(open(machine_path)) if os.path.exists(machine_path) else {}
         date = q.quality.get("date") or datetime.datetime.utcnow().isoformat(timespec="seconds") + "Z"
