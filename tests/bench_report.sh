@@ -86,6 +86,31 @@ done
 for text in "no GPU" "llvmpipe runs" "two cores" "AMD EPYC"; do
     ! grep -qF -- "$text" "$other" || fail "the other machine's page still says '$text'"
 done
+# ... ll's sorts come from sorts.json (step 3d), and the papers' claims sit beside the same ratios ...
+mkdir -p "$work/sorted"
+"$oit" bench --scene-list "$work/scenes.txt" --scenes onion-a --algorithms ll-insertion,ll-array,ll-bma,ll-merge \
+    --sizes 24 --frames 1 --warmup 0 --quiet --reference-max-pixels 0 --json "$work/sorted/sorts.json" || fail "sorts bench"
+cp "$work/results/"* "$work/sorted/"
+python3 "$source/bat/report.py" --results "$work/sorted" --docs "$work/sorted-docs" --command "tests/bench_report.sh" \
+    >/dev/null || fail "report.py with sorts.json"
+python3 - "$work/sorted/sorts.json" "$work/sorted-docs/benchmarks.md" <<'PY' || fail "the sorts section does not show sorts.json"
+import json, sys
+run, page = json.load(open(sys.argv[1])), open(sys.argv[2]).read()
+assert "## ll's sorts: Knowles' against the plain ones" in page, "no sorts section"
+rows = {r["algorithm"]: r for r in run["results"]}
+def ms(v):
+    return f"{v:,.0f}" if v >= 1000 else f"{v:.2f}"
+sort = [ms(next(s["median"] for s in rows[a]["stages"] if s["name"] == "sort"))
+        for a in ("ll-insertion", "ll-array", "ll-bma", "ll-merge")]
+frame = [ms(rows[a]["gpu_ms"]["median"]) for a in ("ll-insertion", "ll-array", "ll-bma", "ll-merge")]
+line = "| onion-a | " + f"{rows['ll-array']['max_list']}, {rows['ll-array']['mean_list']:.1f} | " + " | ".join(sort + frame) + " |"
+assert line in page, (line, [l for l in page.splitlines() if l.startswith("| onion-a | ")])
+# the BMA claim (docs/data/published_claims.csv) beside array's frame over bma's, from the same run
+ratio = rows["ll-array"]["gpu_ms"]["median"] / rows["ll-bma"]["gpu_ms"]["median"]
+claim = next(l for l in page.splitlines() if "Backwards Memory Allocation" in l)
+assert "| up to 3x |" in claim and f"`ll-array` / `ll-bma`: {ratio:.2f}x (1 scene)" in claim, claim
+PY
+! grep -qF "## ll's sorts" "$page" || fail "a page without sorts.json has a sorts section"
 # ... the scale section comes from scale.json (bat/scale.py): figures, ll's and ib's bands and a refusal ...
 "$oit" bench --model "$scenes/onion.obj" --name onion-bands --algorithms blend,ll,ib --sizes 48 --frames 1 --warmup 0 \
     --quiet --reference-max-pixels 0 --buffer-fragment-limit 1000 --json "$work/scale-run.json" || fail "scale bench"
