@@ -10,6 +10,14 @@
 #    instead of 1 - z), so the far surfaces outweigh the near ones.
 #  - mboit/common.glsl: the power moments' depth warp reversed (1 - 2 s instead of
 #    2 s - 1, in both passes), so the reconstruction puts the far layers in front.
+#  - wavelet/common.glsl: the Haar detail coefficients' sign flipped, so the
+#    rebuilt absorbance in front of a fragment rises where it should fall.
+#  - stochastic/accumulate.frag: a sample counts as passed only strictly behind
+#    the fragment (< for <=), so a fragment never sees its own samples: the front
+#    layer's visibility is its uncovered share, the rest get too little.
+#  - adaptive/resolve.frag: the node whose removal changes the area MOST goes
+#    (> for <), so past k nodes the visibility keeps the least telling steps.
+# The last three break only where their twins run (APPROX_BROKEN_SCENES_<label>).
 set -eu
 source "$(dirname "$0")/lib.sh"
 src=$1 out=$2
@@ -27,3 +35,9 @@ replace wboit/accumulate.frag "float d = 1.0 - gl_FragCoord.z;" \
     "float d = gl_FragCoord.z; // BROKEN: depth reversed"
 replace mboit/common.glsl "return 2.0 * s - 1.0;" \
     "return 1.0 - 2.0 * s; // BROKEN: warp reversed"
+replace wavelet/common.glsl "= -a * exp2(-0.5 * float(j))" \
+    "= a * exp2(-0.5 * float(j)) /* BROKEN: sign */"
+replace stochastic/accumulate.frag "if (depth <= depth_slots[base + uint(s)])" \
+    "if (depth < depth_slots[base + uint(s)]) // BROKEN: own samples not counted"
+replace adaptive/resolve.frag "if (area < smallest_area) {" \
+    "if (area > smallest_area) { // BROKEN: removes the largest"
