@@ -166,13 +166,9 @@ def png_pixel(path, x, y):
         previous = line
 
 
-def main():
-    oit, work = sys.argv[1], sys.argv[2]
-    os.makedirs(work, exist_ok=True)
-    rng = random.Random(3)
-    depths = [-3 + 6 * i / 7 for i in range(8)]
-    rng.shuffle(depths)
-    colours = [(rng.random(), rng.random(), rng.random()) for _ in depths]
+def write_quads(work, depths, colours):
+    """Parallel 2x2 quads at z = depths, one colour each, in that order (the draw order): an OBJ and
+    its MTL in work. Returns the OBJ's path."""
     obj, mtl = os.path.join(work, "quads.obj"), os.path.join(work, "quads.mtl")
     with open(mtl, "w") as f:
         for i, c in enumerate(colours):
@@ -184,22 +180,41 @@ def main():
             for x, y in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
                 f.write(f"v {x} {y} {z}\n")
             f.write(f"f {4 * i + 1} {4 * i + 2} {4 * i + 3}\nf {4 * i + 1} {4 * i + 3} {4 * i + 4}\n")
+    return obj
+
+
+def render_centre_layers(oit, obj, algorithm, png, depths, colours, alpha):
+    """Renders obj at 16x16, flat, every part at alpha, with `oit render --algorithm ALGORITHM...`
+    into png. Returns (layers, None): each quad's (canonical depth s, alpha, rgb) at the centre
+    pixel, s = (eye depth - near) / (far - near) from --json's matrices (printed row by row);
+    or (None, the error)."""
+    run = subprocess.run([oit, "render", "--model", obj, "--algorithm", *algorithm, "--size", "16x16",
+                          "--shading", "flat", "--alpha", str(alpha), "--out", png, "--json", "--debug"],
+                         capture_output=True, text=True)
+    if run.returncode != 0:
+        return None, f"render exited {run.returncode}: {run.stderr.strip()}"
+    frame = json.loads(run.stdout)
+    modelview, projection = frame["modelview"], frame["projection"]
+    near = projection[11] / (projection[10] - 1)
+    far = projection[11] / (projection[10] + 1)
+    return [((-(z + modelview[11]) - near) / (far - near), alpha, c) for z, c in zip(depths, colours)], None
+
+
+def main():
+    oit, work = sys.argv[1], sys.argv[2]
+    os.makedirs(work, exist_ok=True)
+    rng = random.Random(3)
+    depths = [-3 + 6 * i / 7 for i in range(8)]
+    rng.shuffle(depths)
+    colours = [(rng.random(), rng.random(), rng.random()) for _ in depths]
+    obj = write_quads(work, depths, colours)
     alpha, background, failed = 0.5, (1.0, 1.0, 1.0), False
     for variant in ("power4", "power6", "trig3"):
         png = os.path.join(work, f"{variant}.png")
-        run = subprocess.run([oit, "render", "--model", obj, "--algorithm", "mboit", "--moments", variant,
-                              "--size", "16x16", "--shading", "flat", "--alpha", str(alpha), "--out", png,
-                              "--json", "--debug"], capture_output=True, text=True)
-        if run.returncode != 0:
-            print(f"FAIL: {variant}: render exited {run.returncode}: {run.stderr.strip()}")
+        layers, error = render_centre_layers(oit, obj, ["mboit", "--moments", variant], png, depths, colours, alpha)
+        if error:
+            print(f"FAIL: {variant}: {error}")
             return 1
-        frame = json.loads(run.stdout)
-        # the canonical depth s of each quad at the centre pixel: (eye depth - near) / (far - near);
-        # --json prints the matrices row by row
-        modelview, projection = frame["modelview"], frame["projection"]
-        near = projection[11] / (projection[10] - 1)
-        far = projection[11] / (projection[10] + 1)
-        layers = [((-(z + modelview[11]) - near) / (far - near), alpha, c) for z, c in zip(depths, colours)]
         model = [round(255 * v) for v in mboit_pixel(variant, layers, background)]
         exact = [round(255 * v) for v in exact_pixel(layers, background)]
         gpu = list(png_pixel(png, 8, 8))

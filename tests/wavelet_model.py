@@ -12,15 +12,13 @@ GPU (float, through the Haar coefficients) and this must agree within 1/255 per
 channel: a wrong coefficient, sign, level or bin index moves the pixel by far
 more. The exact composite is printed beside it; rank 1 must differ from it (two
 quads per bin at least), so the check is not of a case where any T would do."""
-import json
 import math
 import os
 import random
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mboit_model import exact_pixel, png_pixel  # noqa: E402  (the PNG reader and the exact composite)
+from mboit_model import exact_pixel, png_pixel, render_centre_layers, write_quads  # noqa: E402  (shared set-up)
 
 
 def bin_means(steps, bins):
@@ -59,32 +57,15 @@ def main():
     depths = [-3.0, -2.1, -1.0, -0.95, 0.4, 1.3, 2.6, 2.65]
     rng.shuffle(depths)
     colours = [(rng.random(), rng.random(), rng.random()) for _ in depths]
-    obj, mtl = os.path.join(work, "quads.obj"), os.path.join(work, "quads.mtl")
-    with open(mtl, "w") as f:
-        for i, c in enumerate(colours):
-            f.write(f"newmtl m{i}\nKd {c[0]:.6f} {c[1]:.6f} {c[2]:.6f}\nd 1\n")
-    with open(obj, "w") as f:
-        f.write("mtllib quads.mtl\n")
-        for i, z in enumerate(depths):
-            f.write(f"o quad{i}\nusemtl m{i}\n")
-            for x, y in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
-                f.write(f"v {x} {y} {z}\n")
-            f.write(f"f {4 * i + 1} {4 * i + 2} {4 * i + 3}\nf {4 * i + 1} {4 * i + 3} {4 * i + 4}\n")
+    obj = write_quads(work, depths, colours)
     alpha, background, failed = 0.5, (1.0, 1.0, 1.0), False
     for rank in (1, 2, 3):
         png = os.path.join(work, f"rank{rank}.png")
-        run = subprocess.run([oit, "render", "--model", obj, "--algorithm", "wavelet", "--wavelet-rank", str(rank),
-                              "--size", "16x16", "--shading", "flat", "--alpha", str(alpha), "--out", png,
-                              "--json", "--debug"], capture_output=True, text=True)
-        if run.returncode != 0:
-            print(f"FAIL: rank {rank}: render exited {run.returncode}: {run.stderr.strip()}")
+        layers, error = render_centre_layers(oit, obj, ["wavelet", "--wavelet-rank", str(rank)], png, depths,
+                                             colours, alpha)
+        if error:
+            print(f"FAIL: rank {rank}: {error}")
             return 1
-        frame = json.loads(run.stdout)
-        # the canonical depth s of each quad at the centre pixel (as mboit_model.py)
-        modelview, projection = frame["modelview"], frame["projection"]
-        near = projection[11] / (projection[10] - 1)
-        far = projection[11] / (projection[10] + 1)
-        layers = [((-(z + modelview[11]) - near) / (far - near), alpha, c) for z, c in zip(depths, colours)]
         model = [round(255 * v) for v in wavelet_pixel(rank, layers, background)]
         exact = [round(255 * v) for v in exact_pixel(layers, background)]
         gpu = list(png_pixel(png, 8, 8))
