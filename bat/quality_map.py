@@ -411,6 +411,8 @@ def _spread(values, percent=False):
     f = (lambda v: f"{100 * v:.0f}%") if percent else (lambda v: f"{v:.2f}x")
     if len(values) == 1:
         return f"{f(values[0])} (1 scene)"
+    if f(values[0]) == f(values[-1]):
+        return f"{f(values[0])} ({len(values)} scenes)"
     return f"{f(values[0])}-{f(values[-1])} (median {f(statistics.median(values))}, {len(values)} scenes)"
 
 
